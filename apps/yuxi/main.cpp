@@ -1,0 +1,31 @@
+// yuxi: 3-D soft-sphere DEM for granular matter.
+#include "run_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+int main(int argc, char** argv) {
+  CLI::App app{"yuxi: 3-D soft-sphere DEM simulation of granular matter"};
+  app.set_version_flag("--version", std::string("yuxi ") + YUXI_VERSION);
+  app.require_subcommand(1);
+  spdlog::set_pattern("[%H:%M:%S] %v");
+
+  yuxi::RunCommandOptions opt;
+  auto* run = app.add_subcommand("run", "Run a scene (default: the built-in small fish basin)");
+  run->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);
+  run->add_option("-o,--output", opt.output_dir, "Output folder (default: runs/<scene name>)");
+  run->add_flag("--overwrite", opt.overwrite, "Replace an existing output folder");
+  run->add_flag("--force", opt.force_dt, "Run even if dt exceeds t_c/10 of the stiffest contact");
+  run->add_option("--t-end", opt.t_end, "Override run.t_end");
+  run->add_flag("!--no-progress", opt.progress, "Do not show progress on the terminal");
+
+  auto* check = app.add_subcommand("check", "Validate a scene and report its time step");
+  check->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);
+  check->add_flag("--force", opt.force_dt, "Accept dt above t_c/10");
+
+  CLI11_PARSE(app, argc, argv);
+  if (run->parsed()) return yuxi::run_command(opt);
+  if (check->parsed()) return yuxi::check_command(opt);
+  return 1;
+}

@@ -1,0 +1,125 @@
+#include "run_command.hpp"
+
+#include "default_scene.hpp"
+#include "io/progress.hpp"
+#include "io/run_driver.hpp"
+#include "io/scene_builder.hpp"
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <spdlog/spdlog.h>
+
+namespace fs = std::filesystem;
+
+namespace yuxi {
+namespace {
+
+Scene load(const RunCommandOptions& o) {
+  Scene scene = o.scene_path.empty() ? read_scene_text(default_scene_text, default_scene_name)
+                                     : read_scene_file(o.scene_path);
+  if (o.t_end) {
+    if (!(*o.t_end > 0)) throw SceneError(fmt::format("--t-end: must be > 0 (got {})", *o.t_end));
+    scene.run.t_end = *o.t_end;
+  }
+  return scene;
+}
+
+void describe(const Scene& scene, const Simulation& sim, const BuildReport& r) {
+  spdlog::info("scene {} from {}", scene.run.name, scene.source);
+  spdlog::info("{} grains, {} wall particles, {} flat walls; domain [{}, {}] x [{}, {}] x [{}, {}]",
+               r.grains, r.walls, sim.planes().size(), scene.sim.box.lo.x, scene.sim.box.hi.x,
+               scene.sim.box.lo.y, scene.sim.box.hi.y, scene.sim.box.lo.z, scene.sim.box.hi.z);
+  const auto& m = scene.materials;
+  spdlog::info("time step dt = {:.4g} = t_c / {:.1f} of the stiffest contact ({}-{}: t_c = {:.4g}, "
+               "m_eff = {:.4g}); {} steps to t = {}",
+               scene.sim.dt, 1.0 / r.dt_over_tc, m[r.stiffest.material_a], m[r.stiffest.material_b],
+               r.stiffest.contact_time, r.stiffest.m_eff,
+               std::llround(scene.run.t_end / scene.sim.dt) - sim.step_count(), scene.run.t_end);
+  const auto e = sim.grid().edge();
+  const auto d = sim.grid().dims();
+  spdlog::info("linked cells {} x {} x {} of edge {:.4g}, skin {:.4g}; gravity ({}, {}, {}) in "
+               "the scene's units",
+               d[0] - 2, d[1] - 2, d[2] - 2, e.x, sim.config().skin, scene.sim.gravity.x,
+               scene.sim.gravity.y, scene.sim.gravity.z);
+}
+
+fs::path prepare_output(const RunCommandOptions& o, const Scene& scene) {
+  const fs::path dir =
+      o.output_dir.empty() ? fs::path("runs") / scene.run.name : fs::path(o.output_dir);
+  if (fs::exists(dir) && !fs::is_empty(dir)) {
+    if (!o.overwrite)
+      throw SceneError(fmt::format("output folder {} already holds a run; choose another with "
+                                   "-o or pass --overwrite",
+                                   dir.string()));
+    fs::remove_all(dir);
+  }
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Reads, validates and builds the scene; prints the error of bad input and returns false.
+bool prepare(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim) {
+  try {
+    scene = load(o);
+    BuildReport report;
+    sim = build_simulation(scene, o.force_dt, &report);
+    describe(scene, *sim, report);
+    return true;
+  } catch (const std::exception& e) { // SceneError, or invalid_argument from the engine
+    fmt::print(stderr, "error: {}\n", e.what());
+    return false;
+  }
+}
+
+} // namespace
+
+int check_command(const RunCommandOptions& o) {
+  Scene scene;
+  std::unique_ptr<Simulation> sim;
+  if (!prepare(o, scene, sim)) return 2;
+  fmt::print("{}: the scene is valid\n", scene.source);
+  return 0;
+}
+
+int run_command(const RunCommandOptions& o) {
+  Scene scene;
+  std::unique_ptr<Simulation> sim;
+  if (!prepare(o, scene, sim)) return 2;
+  fs::path dir;
+  try {
+    dir = prepare_output(o, scene); // only once the scene is known to be good
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  std::ofstream(dir / "scene.resolved.toml") << resolved_scene_toml(scene);
+  spdlog::info("writing to {}", dir.string());
+
+  RunOptions ro{dir, o.progress && Progress::stderr_is_terminal()};
+  const RunSummary s = run_to_end(scene, *sim, ro);
+  const auto& t = sim->timers();
+  const auto& e = s.final_energies;
+  spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
+               s.wall_seconds, static_cast<double>(s.steps) / std::max(s.wall_seconds, 1e-9),
+               s.particle_steps_per_second);
+  spdlog::info("time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  "
+               "({} list builds)",
+               100 * t.pair / t.total(), 100 * t.neighbor / t.total(), 100 * t.comm / t.total(),
+               100 * t.integrate / t.total(), sim->rebuilds());
+  spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
+               "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
+               e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,
+               e.contacts, e.grains, e.escaped);
+  if (s.failed) {
+    fmt::print(stderr, "error: the simulation stopped: {}\n", s.failure);
+    fmt::print(stderr, "its last state is in {}\n", (dir / "failure.vtu").string());
+    return 3;
+  }
+  fmt::print("{}\n", dir.string());
+  return 0;
+}
+
+} // namespace yuxi

@@ -1,0 +1,22 @@
+// `yuxi run` and `yuxi check`.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace yuxi {
+
+struct RunCommandOptions {
+  std::string scene_path; // empty: the built-in default basin
+  std::string output_dir; // empty: runs/<scene name>
+  bool overwrite = false;
+  bool force_dt = false;
+  std::optional<double> t_end;
+  bool progress = true;
+};
+
+// Each returns the process exit code: 0 success, 2 bad input, 3 the simulation had to stop.
+int run_command(const RunCommandOptions& options);
+int check_command(const RunCommandOptions& options);
+
+} // namespace yuxi

@@ -1,0 +1,37 @@
+// What a contact model is told about one contact, and what it answers.
+//
+// Conventions (validation.md section 0.1): n is the unit vector from j to i, overlap
+// delta = a_i + a_j - |x_i - x_j| (> 0 when touching), the force returned acts on i and its
+// opposite on j. For a flat wall j is the wall: a_j = 0 and its velocity is the wall's.
+#pragma once
+
+#include "core/vec3.hpp"
+
+namespace yuxi {
+
+struct ContactGeometry {
+  Vec3 n;          // unit normal, from j to i
+  double overlap;  // delta = a_i + a_j - distance [length]
+  double distance; // |x_i - x_j| (for a wall: distance from the plane) [length]
+  Vec3 v_rel;      // v_i - v_j of the centres (for a wall: v_i - v_wall) [length/time]
+  Vec3 w_i, w_j;   // angular velocities [1/time]
+  double a_i, a_j; // lever arms: the radii (0 for a flat wall) [length]
+  double m_eff;    // m_i m_j / (m_i + m_j); m_i against a wall particle or flat wall [mass]
+  double r_eff;    // a_i a_j / (a_i + a_j); a_i against a flat wall [length]
+  double dt;       // time step [time]
+
+  // Velocity of i's surface point relative to j's at the contact (validation.md 0.3):
+  // v_c = v_i - v_j - (a_i w_i + a_j w_j) x n.
+  Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
+};
+
+struct ContactResult {
+  Vec3 force;            // on i; -force acts on j [force]
+  Vec3 torque_i;         // on i about its centre [force length]
+  Vec3 torque_j;         // on j about its centre [force length]
+  double elastic = 0;    // energy stored in the contact's springs after this step [energy]
+  double dissipated = 0; // energy turned to heat during this step [energy]
+  bool touching = false; // the contact carries load (its history must be kept)
+};
+
+} // namespace yuxi

@@ -1,0 +1,84 @@
+// Per-contact state kept across neighbour-list rebuilds.
+//
+// Between rebuilds the state lives in arrays aligned with the neighbour list (one entry per
+// listed pair, one per grain-plane candidate). At a rebuild it is stashed by the global ids of
+// the two partners, the particles are reordered and the list rebuilt, and each new list entry
+// picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
+// state. Only states that differ from a fresh one are stashed: a default state carries nothing.
+//
+// Ownership (for MPI migration and checkpoints): a contact belongs with its particle of lower
+// global id; a grain-plane contact with its grain.
+#pragma once
+
+#include "core/neighbor_list.hpp"
+#include "core/particle_store.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace yuxi {
+
+struct ContactKey {
+  GlobalId first;  // lower global id (the grain, for a plane contact)
+  GlobalId second; // higher global id, or -(plane index + 1) for a plane contact
+  bool operator==(const ContactKey&) const = default;
+};
+
+struct ContactKeyHash {
+  std::size_t operator()(const ContactKey& k) const noexcept {
+    const auto a = static_cast<std::uint64_t>(k.first);
+    const auto b = static_cast<std::uint64_t>(k.second);
+    return static_cast<std::size_t>(a * 0x9E3779B97F4A7C15ull ^ (b + 0x632BE59BD9B4E019ull));
+  }
+};
+
+template <class State> class ContactHistory {
+public:
+  std::vector<State> pair;  // aligned with NeighborList::partners
+  std::vector<State> plane; // aligned with NeighborList::planes
+
+  // Moves every non-default state into the stash, keyed by global ids.
+  void stash(const ParticleStore& s, const NeighborList& list) {
+    stash_.clear();
+    const State fresh{};
+    for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
+      for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
+        if (pair[p] == fresh) continue;
+        const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
+        stash_.emplace(ContactKey{std::min(a, b), std::max(a, b)},
+                       a < b ? pair[p] : pair[p].mirrored());
+      }
+    for (std::size_t k = 0; k < list.planes.size(); ++k)
+      if (!(plane[k] == fresh)) stash_.emplace(plane_key(s, list.planes[k]), plane[k]);
+  }
+
+  // Gives each entry of the new list its stashed state (or a fresh one).
+  void restore(const ParticleStore& s, const NeighborList& list) {
+    pair.assign(list.n_pairs(), State{});
+    plane.assign(list.planes.size(), State{});
+    if (stash_.empty()) return;
+    for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
+      for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
+        const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
+        const auto it = stash_.find(ContactKey{std::min(a, b), std::max(a, b)});
+        if (it != stash_.end()) pair[p] = a < b ? it->second : it->second.mirrored();
+      }
+    for (std::size_t k = 0; k < list.planes.size(); ++k) {
+      const auto it = stash_.find(plane_key(s, list.planes[k]));
+      if (it != stash_.end()) plane[k] = it->second;
+    }
+    stash_.clear();
+  }
+
+  std::size_t stashed() const { return stash_.size(); }
+
+private:
+  static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
+    return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
+  }
+  std::unordered_map<ContactKey, State, ContactKeyHash> stash_;
+};
+
+} // namespace yuxi

@@ -1,0 +1,48 @@
+// Verlet neighbour list built from linked cells with the half-shell stencil.
+//
+// A pair (i, j) is listed when |x_i - x_j| < r_i + r_j + range, where range = skin plus any
+// extra interaction range of the contact model. The list stays valid until some particle has
+// moved more than skin/2 since the build (then no pair can have closed the gap unseen).
+//
+// Each physical pair is listed exactly once:
+//  - owned-owned pairs through the half shell (the cell itself, later members only, plus 13
+//    neighbour cells), Newton's third law giving the partner's force;
+//  - owned-ghost pairs through all 27 cells, kept only when the owned particle has the lower
+//    global id. The same rule holds on every rank and for every periodic image, so it picks one
+//    copy without depending on floating-point cell positions.
+// Wall-wall pairs are never listed: wall particles move by prescription.
+//
+// Rows are grouped by the owned particle i (CSR: offsets/partners) so the kernel can keep i's
+// force in registers; the contact history is stored aligned with `partners`.
+#pragma once
+
+#include "core/cell_grid.hpp"
+#include "core/particle_store.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace yuxi {
+
+// A grain near a flat wall.
+struct PlaneContactRef {
+  std::uint32_t particle;
+  std::uint32_t plane;
+};
+
+struct NeighborList {
+  std::vector<std::uint32_t> offsets;  // n_owned + 1 row offsets into partners
+  std::vector<std::uint32_t> partners; // j of each pair, grouped by i
+  std::vector<PlaneContactRef> planes; // grain-plane candidate contacts (filled by the owner)
+
+  std::size_t n_pairs() const { return partners.size(); }
+};
+
+// Builds the pair rows. `grid` must have binned all particles of `store` (owned and ghosts).
+void build_neighbor_list(const ParticleStore& store, const CellGrid& grid, double range,
+                         NeighborList& list);
+
+// Brute-force O(N^2) reference with the same pair rules, for tests.
+void build_neighbor_list_brute_force(const ParticleStore& store, double range, NeighborList& list);
+
+} // namespace yuxi

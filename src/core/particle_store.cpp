@@ -1,0 +1,75 @@
+#include "core/particle_store.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace yuxi {
+
+void ParticleStore::resize_all(std::size_t n) {
+  for_each_field([n](auto& field) { field.resize(n); });
+}
+
+std::size_t ParticleStore::add(const ParticleSpec& s, GlobalId id) {
+  if (n_ghost() != 0) throw std::logic_error("ParticleStore::add called while ghosts exist");
+  if (!(s.radius > 0.0) || !(s.mass > 0.0))
+    throw std::invalid_argument("particle radius and mass must be positive");
+  const std::size_t i = size();
+  resize_all(i + 1);
+  x[i] = s.position;
+  v[i] = s.velocity;
+  w[i] = s.angular_velocity;
+  x_rest[i] = s.position;
+  x_build[i] = s.position;
+  radius[i] = s.radius;
+  mass[i] = s.mass;
+  const bool wall = s.kind == Kind::wall;
+  inv_mass[i] = wall ? 0.0 : 1.0 / s.mass;
+  inv_inertia[i] = wall ? 0.0 : 1.0 / solid_sphere_inertia(s.mass, s.radius);
+  gid[i] = id;
+  kind[i] = s.kind;
+  material[i] = s.material;
+  motion[i] = s.motion;
+  n_owned_ = i + 1;
+  return i;
+}
+
+std::size_t ParticleStore::add_ghost(std::size_t source, const Vec3& shift) {
+  const std::size_t g = size();
+  for_each_field([source](auto& field) {
+    const auto value = field[source];
+    field.push_back(value);
+  });
+  x[g] += shift;
+  x_rest[g] += shift;
+  return g;
+}
+
+void ParticleStore::permute_owned(std::span<const std::uint32_t> order) {
+  if (order.size() != n_owned_) throw std::logic_error("permutation size mismatch");
+  clear_ghosts();
+  for_each_field([&order](auto& field) {
+    auto copy = field;
+    for (std::size_t k = 0; k < order.size(); ++k) field[k] = copy[order[k]];
+  });
+}
+
+void ParticleStore::remove_owned(std::span<const std::uint8_t> remove_flag) {
+  clear_ghosts();
+  std::vector<std::uint32_t> keep;
+  keep.reserve(n_owned_);
+  for (std::size_t i = 0; i < n_owned_; ++i)
+    if (!remove_flag[i]) keep.push_back(static_cast<std::uint32_t>(i));
+  for_each_field([&keep](auto& field) {
+    for (std::size_t k = 0; k < keep.size(); ++k) field[k] = field[keep[k]];
+    field.resize(keep.size());
+  });
+  n_owned_ = keep.size();
+}
+
+double ParticleStore::max_radius() const {
+  double r = 0.0;
+  for (std::size_t i = 0; i < n_owned_; ++i) r = std::max(r, radius[i]);
+  return r;
+}
+
+} // namespace yuxi

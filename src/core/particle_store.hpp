@@ -1,0 +1,86 @@
+// Particle data as a structure of arrays: owned particles first (indices [0, n_owned)), then
+// ghosts (periodic images here, copies from neighbour ranks under MPI) in [n_owned, size()).
+//
+// Every per-particle field is listed once, in for_each_field(), so that resizing, reordering,
+// ghost copies, migration and checkpoints handle all fields without per-field code.
+#pragma once
+
+#include "core/vec3.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace yuxi {
+
+enum class Kind : std::uint8_t {
+  grain = 0, // free grain, integrated by the equations of motion
+  wall = 1,  // wall particle: prescribed motion, infinite mass in contacts
+};
+
+using GlobalId = std::int64_t;
+
+// What a caller provides to create one particle.
+struct ParticleSpec {
+  Vec3 position;
+  Vec3 velocity;
+  Vec3 angular_velocity;
+  double radius = 1.0;
+  double mass = 1.0;
+  Kind kind = Kind::grain;
+  std::uint8_t material = 0;
+  std::uint16_t motion = 0; // index into the scene's wall motions (wall particles only)
+};
+
+class ParticleStore {
+public:
+  // Fields (one entry per particle).
+  std::vector<Vec3> x;       // position
+  std::vector<Vec3> v;       // velocity
+  std::vector<Vec3> w;       // angular velocity
+  std::vector<Vec3> f;       // force
+  std::vector<Vec3> torque;  // torque about the centre
+  std::vector<Vec3> x_rest;  // rest position of a wall particle (its motion is relative to it)
+  std::vector<Vec3> x_build; // position at the last neighbour-list build (skin criterion)
+  std::vector<double> radius;
+  std::vector<double> mass;        // finite for walls too (used in output only)
+  std::vector<double> inv_mass;    // 0 for wall particles: infinite mass in contacts
+  std::vector<double> inv_inertia; // 1 / J, J = (2/5) m r^2 for a solid sphere; 0 for walls
+  std::vector<GlobalId> gid;
+  std::vector<Kind> kind;
+  std::vector<std::uint8_t> material;
+  std::vector<std::uint16_t> motion;
+
+  template <class F> void for_each_field(F&& fn) {
+    fn(x), fn(v), fn(w), fn(f), fn(torque), fn(x_rest), fn(x_build), fn(radius), fn(mass),
+        fn(inv_mass), fn(inv_inertia), fn(gid), fn(kind), fn(material), fn(motion);
+  }
+
+  std::size_t size() const { return x.size(); }
+  std::size_t n_owned() const { return n_owned_; }
+  std::size_t n_ghost() const { return size() - n_owned_; }
+
+  // Appends an owned particle (only while there are no ghosts) and returns its index.
+  std::size_t add(const ParticleSpec& spec, GlobalId id);
+  // Appends a ghost copy of particle `source` displaced by `shift`; returns its index.
+  std::size_t add_ghost(std::size_t source, const Vec3& shift);
+  void clear_ghosts() { resize_all(n_owned_); }
+  // Reorders the owned particles: new index k holds old particle order[k]. Ghosts are dropped.
+  void permute_owned(std::span<const std::uint32_t> order);
+  // Removes the owned particles whose flag is set (ghosts are dropped).
+  void remove_owned(std::span<const std::uint8_t> remove_flag);
+
+  bool is_grain(std::size_t i) const { return kind[i] == Kind::grain; }
+  double max_radius() const;
+
+private:
+  void resize_all(std::size_t n);
+  std::size_t n_owned_ = 0;
+};
+
+// Moment of inertia of a solid sphere, J = (2/5) m r^2.
+inline double solid_sphere_inertia(double mass, double radius) {
+  return 0.4 * mass * radius * radius;
+}
+
+} // namespace yuxi

@@ -1,0 +1,40 @@
+#include "io/lammps_dump_writer.hpp"
+
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace yuxi {
+
+LammpsDumpWriter::LammpsDumpWriter(const std::filesystem::path& path, const Box& box)
+    : file_(std::fopen(path.c_str(), "w")), box_(box) {
+  if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+}
+
+LammpsDumpWriter::~LammpsDumpWriter() {
+  std::fclose(file_);
+}
+
+void LammpsDumpWriter::write(const ParticleStore& s, std::int64_t step) {
+  const std::size_t n = s.n_owned();
+  auto bounds = [&](int a) { return box_.periodic(a) ? "pp" : "ff"; };
+  fmt::memory_buffer buf;
+  fmt::format_to(std::back_inserter(buf),
+                 "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\nITEM: BOX BOUNDS {} {} {}\n", step,
+                 n, bounds(0), bounds(1), bounds(2));
+  for (int a = 0; a < 3; ++a)
+    fmt::format_to(std::back_inserter(buf), "{:.10g} {:.10g}\n", box_.lo[a], box_.hi[a]);
+  fmt::format_to(std::back_inserter(buf), "ITEM: ATOMS id type radius mass x y z vx vy vz omegax "
+                                          "omegay omegaz fx fy fz\n");
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 &x = s.x[i], &v = s.v[i], &w = s.w[i], &f = s.f[i];
+    fmt::format_to(std::back_inserter(buf),
+                   "{} {} {:.8g} {:.8g} {:.10g} {:.10g} {:.10g} {:.8g} {:.8g} {:.8g} {:.8g} {:.8g} "
+                   "{:.8g} {:.8g} {:.8g} {:.8g}\n",
+                   s.gid[i], s.material[i] + 1, s.radius[i], s.mass[i], x.x, x.y, x.z, v.x, v.y,
+                   v.z, w.x, w.y, w.z, f.x, f.y, f.z);
+  }
+  if (std::fwrite(buf.data(), 1, buf.size(), file_) != buf.size() || std::fflush(file_) != 0)
+    throw std::runtime_error("error while writing the LAMMPS dump");
+}
+
+} // namespace yuxi

@@ -1,0 +1,75 @@
+#include "io/run_driver.hpp"
+
+#include "io/energy_csv.hpp"
+#include "io/lammps_dump_writer.hpp"
+#include "io/progress.hpp"
+#include "io/vtk_writer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+
+namespace yuxi {
+namespace {
+
+// Steps between two outputs of period `interval` (0: never).
+std::int64_t every(double interval, double dt) {
+  return interval > 0 ? std::max<std::int64_t>(1, std::llround(interval / dt)) : 0;
+}
+
+} // namespace
+
+RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options) {
+  const auto& dir = options.output_dir;
+  const double dt = sim.config().dt;
+  const std::int64_t first = sim.step_count();
+  const std::int64_t last = std::llround(scene.run.t_end / dt);
+  const std::int64_t energy_every = every(scene.output.energy_interval, dt);
+  const std::int64_t snapshot_every = every(scene.output.snapshot_interval, dt);
+
+  EnergyCsv energies(dir / "energies.csv");
+  std::unique_ptr<VtkSeries> vtk;
+  std::unique_ptr<LammpsDumpWriter> dump;
+  if (scene.output.vtk && snapshot_every) vtk = std::make_unique<VtkSeries>(dir, "particles");
+  if (scene.output.lammps_dump && snapshot_every)
+    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box);
+  auto snapshot = [&] {
+    if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time());
+    if (dump) dump->write(sim.particles(), sim.step_count());
+  };
+
+  RunSummary summary;
+  Progress progress(first, last, options.show_progress);
+  const auto start = std::chrono::steady_clock::now();
+  double particle_steps = 0.0;
+  energies.write(sim.energies());
+  snapshot();
+  try {
+    while (sim.step_count() < last) {
+      sim.step();
+      particle_steps += static_cast<double>(sim.particles().n_owned());
+      const std::int64_t k = sim.step_count();
+      if (k % energy_every == 0 || k == last) energies.write(sim.energies());
+      if (snapshot_every && (k % snapshot_every == 0 || k == last)) snapshot();
+      progress.update(k, sim.time());
+    }
+  } catch (const SimulationError& e) {
+    progress.finish();
+    summary.failed = true;
+    summary.failure = e.what();
+    std::ofstream(dir / "failure.txt") << e.what() << "\n";
+    write_vtu(dir / "failure.vtu", sim.particles());
+  }
+  progress.finish();
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.steps = sim.step_count() - first;
+  summary.particle_steps_per_second =
+      summary.wall_seconds > 0 ? particle_steps / summary.wall_seconds : 0.0;
+  summary.final_energies = sim.energies();
+  return summary;
+}
+
+} // namespace yuxi

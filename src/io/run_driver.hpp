@@ -1,0 +1,32 @@
+// Runs a built simulation to the scene's end time and writes its outputs into one folder:
+//   energies.csv          the energy books every output.energy_interval
+//   particles.pvd + .vtu  VTK snapshots every output.snapshot_interval (ParaView)
+//   particles.lammpstrj   the same frames as a LAMMPS dump (OVITO)
+//   failure.txt, failure.vtu   if the run had to stop: the diagnosis and the last state
+#pragma once
+
+#include "io/scene.hpp"
+#include "sim/simulation.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace yuxi {
+
+struct RunOptions {
+  std::filesystem::path output_dir;
+  bool show_progress = false;
+};
+
+struct RunSummary {
+  std::int64_t steps = 0;
+  double wall_seconds = 0.0;
+  double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
+  EnergyReport final_energies;
+  bool failed = false;
+  std::string failure; // the diagnosis when failed
+};
+
+RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options);
+
+} // namespace yuxi

@@ -1,0 +1,50 @@
+// A scene file, parsed once into typed structs. Every field has its default here; the reader
+// fills what the file gives and validates it, the writer echoes the resolved scene.
+#pragma once
+
+#include "contact/contact_model.hpp"
+#include "scene/fish_basin.hpp"
+#include "scene/plane_wall.hpp"
+#include "sim/simulation.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+struct RunSettings {
+  std::string name = "yuxi";
+  double t_end = 1.0;          // simulated time to reach [time]
+  bool allow_large_dt = false; // accept dt > t_c / 10
+};
+
+struct OutputSettings {
+  double energy_interval = 0.01;  // time between rows of energies.csv [time]
+  double snapshot_interval = 0.5; // time between VTK / dump frames; 0 = none [time]
+  bool vtk = true;
+  bool lammps_dump = true;
+};
+
+struct Scene {
+  std::string source;      // file the scene was read from (for messages)
+  std::string dt_location; // "file:line:column" of run.dt, for the time-step check
+  RunSettings run;
+  OutputSettings output;
+  SimulationConfig sim;
+  std::vector<std::string> materials;
+  std::string contact_model = "linear";
+  AnyContactLaw law;
+  std::vector<PlaneWall> planes;
+  std::optional<FishBasinSpec> basin;
+  std::vector<ParticleSpec> particles;
+
+  std::optional<std::uint8_t> material_index(const std::string& name) const {
+    for (std::size_t k = 0; k < materials.size(); ++k)
+      if (materials[k] == name) return static_cast<std::uint8_t>(k);
+    return std::nullopt;
+  }
+};
+
+} // namespace yuxi

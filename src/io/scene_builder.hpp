@@ -1,0 +1,24 @@
+// Turns a validated Scene into a ready Simulation, and checks the time step against the
+// contact time of the stiffest contact.
+#pragma once
+
+#include "io/scene.hpp"
+#include "io/scene_error.hpp"
+#include "sim/simulation.hpp"
+
+#include <memory>
+
+namespace yuxi {
+
+struct BuildReport {
+  std::size_t walls = 0, grains = 0;
+  StiffestContact stiffest;
+  double dt_over_tc = 0.0;
+};
+
+// Throws SceneError if dt > t_c / 10 for the stiffest contact, unless the scene sets
+// run.allow_large_dt or `force_dt` is given.
+std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt,
+                                             BuildReport* report = nullptr);
+
+} // namespace yuxi

@@ -1,0 +1,305 @@
+#include "io/scene_reader.hpp"
+
+#include "io/toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace yuxi {
+namespace {
+
+Boundary to_boundary(const std::string& s) {
+  return s == "periodic" ? Boundary::periodic : s == "wall" ? Boundary::wall : Boundary::open;
+}
+
+std::uint8_t material_of(const Scene& scene, TomlReader& t, std::string_view key) {
+  const std::string name = t.string(key);
+  const auto k = scene.material_index(name);
+  if (!k)
+    t.fail(key, fmt::format("material \"{}\" is not in the top-level 'materials' list", name));
+  return *k;
+}
+
+void read_run(Scene& scene, TomlReader& root) {
+  auto run = root.table("run");
+  if (!run) root.fail("", "missing table [run]");
+  scene.run.name = run->string("name", scene.run.name);
+  scene.sim.dt = run->positive("dt");
+  scene.dt_location = run->where("dt");
+  scene.run.t_end = run->positive("t_end");
+  scene.run.allow_large_dt = run->boolean("allow_large_dt", false);
+  run->finish();
+}
+
+void read_output(Scene& scene, TomlReader& root) {
+  auto out = root.table("output");
+  if (!out) return;
+  auto& o = scene.output;
+  o.energy_interval = out->positive("energy_interval", o.energy_interval);
+  o.snapshot_interval = out->non_negative("snapshot_interval", o.snapshot_interval);
+  o.vtk = out->boolean("vtk", o.vtk);
+  o.lammps_dump = out->boolean("lammps_dump", o.lammps_dump);
+  out->finish();
+}
+
+void read_domain(Scene& scene, TomlReader& root) {
+  auto d = root.table("domain");
+  if (!d) root.fail("", "missing table [domain]");
+  auto& c = scene.sim;
+  c.box.lo = d->vec3("lo");
+  c.box.hi = d->vec3("hi");
+  for (int a = 0; a < 3; ++a)
+    if (!(c.box.hi[a] > c.box.lo[a]))
+      d->fail("hi", fmt::format("must exceed 'lo' on every axis (axis {}: {} <= {})", "xyz"[a],
+                                c.box.hi[a], c.box.lo[a]));
+  if (d->has("boundary")) {
+    const auto b = d->strings("boundary");
+    if (b.size() != 3) d->fail("boundary", "expected 3 entries (x, y, z)");
+    for (int a = 0; a < 3; ++a) {
+      if (b[a] != "periodic" && b[a] != "wall" && b[a] != "open")
+        d->fail("boundary",
+                fmt::format("unknown boundary \"{}\" (expected periodic, wall or open)", b[a]));
+      c.box.boundary[a] = to_boundary(b[a]);
+    }
+  }
+  c.gravity = d->vec3("gravity");
+  c.cell_size = d->positive("cell_size", 0.0);
+  c.skin = d->non_negative("skin", c.skin);
+  c.on_escape = d->choice("on_escape", {"stop", "remove"}, "stop") == "remove"
+                    ? EscapePolicy::remove
+                    : EscapePolicy::stop;
+  c.max_overlap_ratio = d->positive("max_overlap_ratio", c.max_overlap_ratio);
+  const bool has_wall_faces = std::any_of(c.box.boundary.begin(), c.box.boundary.end(),
+                                          [](Boundary b) { return b == Boundary::wall; });
+  if (has_wall_faces) c.box_wall_material = material_of(scene, *d, "wall_material");
+  d->finish();
+}
+
+void read_materials(Scene& scene, TomlReader& root) {
+  scene.materials = root.strings("materials");
+  if (scene.materials.empty()) root.fail("materials", "needs at least one material");
+  if (scene.materials.size() > 255) root.fail("materials", "at most 255 materials");
+  for (std::size_t a = 0; a < scene.materials.size(); ++a)
+    for (std::size_t b = a + 1; b < scene.materials.size(); ++b)
+      if (scene.materials[a] == scene.materials[b])
+        root.fail("materials", fmt::format("\"{}\" is listed twice", scene.materials[a]));
+}
+
+LinearSpringDashpot::Coeffs read_linear(TomlReader& p) {
+  LinearSpringDashpot::Coeffs c;
+  c.k_n = p.positive("k_n");
+  c.k_t = p.non_negative("k_t", 0.0);
+  c.gamma_n = p.non_negative("gamma_n", 0.0);
+  c.gamma_t = p.non_negative("gamma_t", 0.0);
+  c.mu_s = p.non_negative("mu_s", 0.0);
+  c.mu_d = p.non_negative("mu_d", c.mu_s);
+  if (c.mu_d > c.mu_s)
+    p.fail("mu_d",
+           fmt::format("dynamic friction {} exceeds static friction mu_s = {}", c.mu_d, c.mu_s));
+  return c;
+}
+
+void read_contact(Scene& scene, TomlReader& root) {
+  auto c = root.table("contact");
+  if (!c) root.fail("", "missing table [contact]");
+  scene.contact_model = c->choice("model", {"linear"}, "linear");
+  const std::size_t n = scene.materials.size();
+  ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(n)};
+  auto pairs = c->tables("pair");
+  if (pairs.empty()) c->fail("pair", "no [[contact.pair]] given");
+  for (auto& p : pairs) {
+    const auto names = p.strings("materials");
+    if (names.size() != 2) p.fail("materials", "expected two material names");
+    std::array<std::uint8_t, 2> m{};
+    for (int k = 0; k < 2; ++k) {
+      const auto idx = scene.material_index(names[k]);
+      if (!idx)
+        p.fail("materials",
+               fmt::format("material \"{}\" is not in the top-level 'materials' list", names[k]));
+      m[k] = *idx;
+    }
+    if (law.coeffs.has(m[0], m[1]))
+      p.fail("materials", fmt::format("pair (\"{}\", \"{}\") is given twice", names[0], names[1]));
+    law.coeffs.set(m[0], m[1], read_linear(p));
+    p.finish();
+  }
+  scene.law = law;
+  c->finish();
+}
+
+void read_planes(Scene& scene, TomlReader& root) {
+  for (auto& p : root.tables("plane")) {
+    PlaneWall w;
+    w.point = p.vec3("point");
+    const Vec3 n = p.vec3("normal");
+    if (norm(n) == 0.0) p.fail("normal", "must not be the zero vector");
+    w.normal = n / norm(n);
+    w.material = material_of(scene, p, "material");
+    w.amplitude = p.number("amplitude", 0.0);
+    w.omega = p.non_negative("omega", 0.0);
+    w.t0 = p.number("t0", 0.0);
+    p.finish();
+    scene.planes.push_back(w);
+  }
+}
+
+void read_basin(Scene& scene, TomlReader& root) {
+  auto b = root.table("basin");
+  if (!b) return;
+  FishBasinSpec s;
+  const auto cells = b->int3("cells", 1);
+  for (int a = 0; a < 3; ++a) s.cells[a] = static_cast<int>(cells[a]);
+  s.spacing = b->positive("spacing", s.spacing);
+  s.radius = b->positive("radius", s.radius);
+  s.wall_thickness = b->positive("wall_thickness", s.wall_thickness);
+  s.wall_height = static_cast<int>(b->integer("wall_height", s.wall_height, 1, 1 << 20));
+  s.bottom_layers = static_cast<int>(b->integer("bottom_layers", s.bottom_layers, 1, 1 << 20));
+  s.fill_layers = static_cast<int>(b->integer("fill_layers", s.fill_layers, 0, 1 << 20));
+  s.wall_radius = b->positive("wall_radius", s.wall_radius);
+  s.radius_mean = b->positive("radius_mean", s.radius_mean);
+  s.radius_sd = b->non_negative("radius_sd", s.radius_sd);
+  if (3.0 * s.radius_sd >= s.radius_mean)
+    b->fail("radius_sd", fmt::format("3 sd = {} must stay below the mean radius {} (radii are "
+                                     "drawn within 3 sd)",
+                                     3.0 * s.radius_sd, s.radius_mean));
+  s.jitter = b->non_negative("jitter", s.jitter);
+  s.seed = static_cast<std::uint64_t>(b->integer("seed", static_cast<std::int64_t>(s.seed), 0,
+                                                 std::numeric_limits<std::int64_t>::max()));
+  s.grain_material = material_of(scene, *b, "grain_material");
+  s.wall_material = material_of(scene, *b, "wall_material");
+  if (s.radius + s.wall_thickness > 0.5 * std::min(s.cells[0], s.cells[1]))
+    b->fail("radius", fmt::format("radius + wall_thickness = {} cells does not fit in the lattice "
+                                  "of {} x {} cells",
+                                  s.radius + s.wall_thickness, s.cells[0], s.cells[1]));
+  if (s.bottom_layers + s.wall_height > s.cells[2])
+    b->fail("wall_height", fmt::format("bottom_layers + wall_height = {} exceeds cells[2] = {}",
+                                       s.bottom_layers + s.wall_height, s.cells[2]));
+  if (s.fill_layers + basin_wall_gap(s) > s.wall_height)
+    b->fail("fill_layers", fmt::format("fill_layers = {} (+ {} empty layer next to the bottom) is "
+                                       "above the wall (wall_height = {})",
+                                       s.fill_layers, basin_wall_gap(s), s.wall_height));
+  if (auto e = b->table("excitation")) {
+    s.excitation.mode = static_cast<int>(e->integer("mode", s.excitation.mode, 0, 1000));
+    s.excitation.amplitude = e->non_negative("amplitude", s.excitation.amplitude);
+    s.excitation.omega = e->non_negative("omega", s.excitation.omega);
+    s.excitation.t0 = e->number("t0", s.excitation.t0);
+    e->finish();
+  }
+  // The lattice must fit in the domain.
+  const auto& box = scene.sim.box;
+  for (int a = 0; a < 3; ++a) {
+    const double top = box.lo[a] + s.cells[a] * s.spacing;
+    if (top > box.hi[a] + 1e-9 * s.spacing)
+      b->fail("cells",
+              fmt::format("the basin lattice reaches {} = {} on axis {}, beyond the "
+                          "domain (domain.hi = {}): the container is larger than the domain",
+                          a == 2 ? "z" : (a == 1 ? "y" : "x"), top, "xyz"[a], box.hi[a]));
+  }
+  b->finish();
+  scene.basin = s;
+}
+
+void read_particles(Scene& scene, TomlReader& root) {
+  for (auto& p : root.tables("particle")) {
+    ParticleSpec s;
+    s.position = p.vec3("position");
+    s.velocity = p.vec3("velocity", {});
+    s.angular_velocity = p.vec3("angular_velocity", {});
+    s.radius = p.positive("radius");
+    if (p.has("mass") == p.has("density")) p.fail("", "give exactly one of 'mass' and 'density'");
+    s.mass = p.has("mass") ? p.positive("mass")
+                           : p.positive("density") * 4.0 / 3.0 * pi * std::pow(s.radius, 3);
+    s.material = material_of(scene, p, "material");
+    s.kind = p.choice("kind", {"grain", "wall"}, "grain") == "wall" ? Kind::wall : Kind::grain;
+    if (!scene.sim.box.contains(s.position))
+      p.fail("position", fmt::format("({}, {}, {}) is outside the domain", s.position.x,
+                                     s.position.y, s.position.z));
+    p.finish();
+    scene.particles.push_back(s);
+  }
+}
+
+// Largest centre distance of a possible contact, and which materials grains and walls use.
+void check_consistency(Scene& scene, TomlReader& root) {
+  double rg = 0.0, rw = 0.0;
+  std::vector<bool> grain_mat(scene.materials.size()), other_mat(scene.materials.size());
+  if (scene.basin) {
+    rg = scene.basin->radius_mean + 3.0 * scene.basin->radius_sd;
+    rw = scene.basin->wall_radius;
+    grain_mat[scene.basin->grain_material] = true;
+    other_mat[scene.basin->wall_material] = true;
+  }
+  for (const auto& p : scene.particles) {
+    const bool grain = p.kind == Kind::grain;
+    double& largest = grain ? rg : rw;
+    largest = std::max(largest, p.radius);
+    (grain ? grain_mat : other_mat)[p.material] = true;
+  }
+  if (rg == 0.0) root.fail("", "the scene has no grains: add a [basin] or [[particle]] entries");
+  for (const auto& w : scene.planes) other_mat[w.material] = true;
+  for (int a = 0; a < 3; ++a)
+    if (scene.sim.box.boundary[a] == Boundary::wall) other_mat[scene.sim.box_wall_material] = true;
+
+  const double reach = std::max(2.0 * rg, rg + rw);
+  if (scene.sim.cell_size > 0.0 && scene.sim.cell_size < reach) {
+    auto d = root.table("domain");
+    d->fail("cell_size", fmt::format("{} is smaller than the largest contact distance {} (the "
+                                     "largest grain diameter, or grain + wall radius)",
+                                     scene.sim.cell_size, reach));
+  }
+  for (int a = 0; a < 3; ++a)
+    if (scene.sim.box.periodic(a) &&
+        scene.sim.box.length(a) < 2.0 * std::max(scene.sim.cell_size, reach + scene.sim.skin)) {
+      auto d = root.table("domain");
+      d->fail("hi", fmt::format("periodic axis {} is {} long, less than two cell edges", "xyz"[a],
+                                scene.sim.box.length(a)));
+    }
+  // Every pair that can touch needs coefficients.
+  const auto& law = std::get<ContactLaw<LinearSpringDashpot>>(scene.law);
+  for (std::size_t a = 0; a < scene.materials.size(); ++a) {
+    if (!grain_mat[a]) continue;
+    for (std::size_t b = 0; b < scene.materials.size(); ++b)
+      if ((grain_mat[b] || other_mat[b]) && !law.coeffs.has(a, b)) {
+        auto c = root.table("contact");
+        c->fail("pair", fmt::format("no [[contact.pair]] for materials (\"{}\", \"{}\"), which "
+                                    "can touch",
+                                    scene.materials[a], scene.materials[b]));
+      }
+  }
+}
+
+} // namespace
+
+Scene read_scene_text(std::string_view text, const std::string& source) {
+  const toml::table doc = parse_toml(text, source);
+  TomlReader root(doc, "", source);
+  Scene scene;
+  scene.source = source;
+  scene.run.name = std::filesystem::path(source).stem().string();
+  read_materials(scene, root);
+  read_run(scene, root);
+  read_output(scene, root);
+  read_domain(scene, root);
+  read_contact(scene, root);
+  read_planes(scene, root);
+  read_basin(scene, root);
+  read_particles(scene, root);
+  root.finish();
+  check_consistency(scene, root);
+  return scene;
+}
+
+Scene read_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return read_scene_text(text.str(), path);
+}
+
+} // namespace yuxi

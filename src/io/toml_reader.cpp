@@ -1,0 +1,213 @@
+#include "io/toml_reader.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace yuxi {
+namespace {
+
+std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  case toml::node_type::string:
+    return "a string";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a floating-point number";
+  case toml::node_type::boolean:
+    return "a boolean";
+  default:
+    return "a date or time";
+  }
+}
+
+std::string position(const std::string& file, const toml::source_region& r) {
+  if (r.begin.line == 0) return file;
+  return fmt::format("{}:{}:{}", file, r.begin.line, r.begin.column);
+}
+
+} // namespace
+
+toml::table parse_toml(std::string_view text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(
+        fmt::format("{}: syntax error: {}", position(file, e.source()), e.description()));
+  }
+}
+
+TomlReader::TomlReader(const toml::table& table, std::string path, std::string file)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+
+std::string TomlReader::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
+}
+
+std::string TomlReader::where(std::string_view key) const {
+  if (const toml::node* n = table_->get(key)) return position(file_, n->source());
+  return position(file_, table_->source());
+}
+
+void TomlReader::fail(std::string_view key, std::string_view message) const {
+  const std::string name =
+      key.empty() ? (path_.empty() ? "scene" : "[" + path_ + "]") : key_path(key);
+  throw SceneError(fmt::format("{}: {}: {}", where(key), name, message));
+}
+
+void TomlReader::wrong_type(std::string_view key, std::string_view expected) const {
+  fail(key, fmt::format("expected {}, got {}", expected, type_name(*table_->get(key))));
+}
+
+const toml::node* TomlReader::find(std::string_view key) {
+  const toml::node* n = table_->get(key);
+  if (n) read_.emplace(key);
+  return n;
+}
+
+const toml::node& TomlReader::require(std::string_view key) {
+  const toml::node* n = find(key);
+  if (!n) fail("", fmt::format("missing key '{}'", key));
+  return *n;
+}
+
+double TomlReader::number(std::string_view key) {
+  const toml::node& n = require(key);
+  const auto v = n.value<double>();
+  if (!n.is_number() || !v) wrong_type(key, "a number");
+  if (!std::isfinite(*v)) fail(key, "must be finite");
+  return *v;
+}
+
+double TomlReader::number(std::string_view key, double fallback) {
+  return has(key) ? number(key) : fallback;
+}
+
+double TomlReader::positive(std::string_view key) {
+  const double v = number(key);
+  if (!(v > 0.0)) fail(key, fmt::format("must be > 0 (got {})", v));
+  return v;
+}
+
+double TomlReader::positive(std::string_view key, double fallback) {
+  return has(key) ? positive(key) : fallback;
+}
+
+double TomlReader::non_negative(std::string_view key, double fallback) {
+  const double v = number(key, fallback);
+  if (v < 0.0) fail(key, fmt::format("must be >= 0 (got {})", v));
+  return v;
+}
+
+std::int64_t TomlReader::integer(std::string_view key, std::int64_t fallback, std::int64_t min,
+                                 std::int64_t max) {
+  const toml::node* n = find(key);
+  if (!n) return fallback;
+  if (!n->is_integer()) wrong_type(key, "an integer");
+  const std::int64_t v = *n->value<std::int64_t>();
+  if (v < min || v > max) fail(key, fmt::format("must be in [{}, {}] (got {})", min, max, v));
+  return v;
+}
+
+bool TomlReader::boolean(std::string_view key, bool fallback) {
+  const toml::node* n = find(key);
+  if (!n) return fallback;
+  if (!n->is_boolean()) wrong_type(key, "true or false");
+  return *n->value<bool>();
+}
+
+std::string TomlReader::string(std::string_view key) {
+  const toml::node& n = require(key);
+  if (!n.is_string()) wrong_type(key, "a string");
+  return *n.value<std::string>();
+}
+
+std::string TomlReader::string(std::string_view key, std::string fallback) {
+  return has(key) ? string(key) : fallback;
+}
+
+std::string TomlReader::choice(std::string_view key,
+                               std::initializer_list<std::string_view> options,
+                               std::string_view fallback) {
+  const std::string v = string(key, std::string(fallback));
+  for (auto o : options)
+    if (v == o) return v;
+  fail(key, fmt::format("unknown value \"{}\" (expected one of: {})", v, fmt::join(options, ", ")));
+}
+
+Vec3 TomlReader::vec3(std::string_view key) {
+  const toml::node& n = require(key);
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 3) wrong_type(key, "an array of 3 numbers");
+  Vec3 out;
+  for (int k = 0; k < 3; ++k) {
+    const auto v = (*a)[static_cast<std::size_t>(k)].value<double>();
+    if (!(*a)[static_cast<std::size_t>(k)].is_number() || !v)
+      wrong_type(key, "an array of 3 numbers");
+    if (!std::isfinite(*v)) fail(key, "must be finite");
+    out[k] = *v;
+  }
+  return out;
+}
+
+Vec3 TomlReader::vec3(std::string_view key, Vec3 fallback) {
+  return has(key) ? vec3(key) : fallback;
+}
+
+std::array<std::int64_t, 3> TomlReader::int3(std::string_view key, std::int64_t min) {
+  const toml::node& n = require(key);
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 3) wrong_type(key, "an array of 3 integers");
+  std::array<std::int64_t, 3> out{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!(*a)[k].is_integer()) wrong_type(key, "an array of 3 integers");
+    out[k] = *(*a)[k].value<std::int64_t>();
+    if (out[k] < min) fail(key, fmt::format("entries must be >= {} (got {})", min, out[k]));
+  }
+  return out;
+}
+
+std::vector<std::string> TomlReader::strings(std::string_view key) {
+  const toml::node& n = require(key);
+  const toml::array* a = n.as_array();
+  if (!a) wrong_type(key, "an array of strings");
+  std::vector<std::string> out;
+  for (const auto& e : *a) {
+    if (!e.is_string()) wrong_type(key, "an array of strings");
+    out.push_back(*e.value<std::string>());
+  }
+  return out;
+}
+
+std::optional<TomlReader> TomlReader::table(std::string_view key) {
+  const toml::node* n = find(key);
+  if (!n) return std::nullopt;
+  if (!n->is_table()) wrong_type(key, "a table");
+  return TomlReader(*n->as_table(), key_path(key), file_);
+}
+
+std::vector<TomlReader> TomlReader::tables(std::string_view key) {
+  std::vector<TomlReader> out;
+  const toml::node* n = find(key);
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables())
+    wrong_type(key, "an array of tables ([[" + std::string(key) + "]])");
+  for (std::size_t k = 0; k < a->size(); ++k)
+    out.emplace_back(*(*a)[k].as_table(), fmt::format("{}[{}]", key_path(key), k + 1), file_);
+  return out;
+}
+
+void TomlReader::finish() const {
+  for (auto&& [key, node] : *table_) {
+    if (read_.contains(key.str())) continue;
+    throw SceneError(fmt::format("{}: {}: unknown key (misspelt, or not valid here)",
+                                 position(file_, key.source()), key_path(key.str())));
+  }
+}
+
+} // namespace yuxi

@@ -1,0 +1,70 @@
+// Typed, validated access to one TOML table that remembers which keys were read, so that
+// finish() can reject the keys nobody asked for (a misspelt key is an error, not a silent
+// default). Every error names the file, line, column and the full key path.
+#pragma once
+
+#include "core/vec3.hpp"
+#include "io/scene_error.hpp"
+
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+#include <vector>
+
+namespace yuxi {
+
+class TomlReader {
+public:
+  TomlReader(const toml::table& table, std::string path, std::string file);
+
+  bool has(std::string_view key) const { return table_->contains(key); }
+
+  double number(std::string_view key);
+  double number(std::string_view key, double fallback);
+  double positive(std::string_view key);
+  double positive(std::string_view key, double fallback);
+  double non_negative(std::string_view key, double fallback);
+  std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t min,
+                       std::int64_t max);
+  bool boolean(std::string_view key, bool fallback);
+  std::string string(std::string_view key);
+  std::string string(std::string_view key, std::string fallback);
+  std::string choice(std::string_view key, std::initializer_list<std::string_view> options,
+                     std::string_view fallback);
+  Vec3 vec3(std::string_view key);
+  Vec3 vec3(std::string_view key, Vec3 fallback);
+  std::array<std::int64_t, 3> int3(std::string_view key, std::int64_t min);
+  std::vector<std::string> strings(std::string_view key);
+
+  std::optional<TomlReader> table(std::string_view key);
+  std::vector<TomlReader> tables(std::string_view key); // an array of tables ([[key]])
+
+  // Throws on the first key that was never read.
+  void finish() const;
+
+  // An error located at `key` (or at this table when the key is absent).
+  [[noreturn]] void fail(std::string_view key, std::string_view message) const;
+  std::string where(std::string_view key) const;
+  std::string key_path(std::string_view key) const;
+  const std::string& path() const { return path_; }
+
+private:
+  const toml::node& require(std::string_view key);
+  const toml::node* find(std::string_view key);
+  [[noreturn]] void wrong_type(std::string_view key, std::string_view expected) const;
+
+  const toml::table* table_;
+  std::string path_;
+  std::string file_;
+  std::set<std::string, std::less<>> read_;
+};
+
+// Parses a TOML document; syntax errors become SceneError with file:line:column.
+toml::table parse_toml(std::string_view text, const std::string& file);
+
+} // namespace yuxi

@@ -1,0 +1,29 @@
+// VTK XML output that ParaView opens: one .vtu (unstructured grid of vertex cells, appended raw
+// binary data) per snapshot, and a .pvd collection naming them with their times. The .pvd is
+// rewritten after each frame, so it is valid whenever the run stops.
+#pragma once
+
+#include "core/particle_store.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+// Writes the owned particles of `s` to `path` (.vtu).
+void write_vtu(const std::filesystem::path& path, const ParticleStore& s);
+
+class VtkSeries {
+public:
+  explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles");
+  // Writes frame `<stem>_<step>.vtu` and updates `<stem>.pvd`.
+  void write(const ParticleStore& s, std::int64_t step, double time);
+
+private:
+  std::filesystem::path folder_;
+  std::string stem_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+} // namespace yuxi

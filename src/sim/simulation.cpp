@@ -1,0 +1,320 @@
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace yuxi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Largest centre distance at which two listed particles can touch: grain-grain or grain-wall
+// (wall-wall pairs are never listed).
+double contact_reach(const ParticleStore& s) {
+  double grain = 0.0, wall = 0.0;
+  for (std::size_t i = 0; i < s.n_owned(); ++i) {
+    double& largest = s.is_grain(i) ? grain : wall;
+    largest = std::max(largest, s.radius[i]);
+  }
+  return std::max(2.0 * grain, grain + wall);
+}
+
+// Flat walls standing on the faces of Boundary::wall axes, normals pointing inwards.
+void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
+  for (int a = 0; a < 3; ++a) {
+    if (c.box.boundary[a] != Boundary::wall) continue;
+    PlaneWall lo, hi;
+    lo.point = c.box.lo;
+    hi.point = c.box.hi;
+    lo.normal = Vec3{};
+    hi.normal = Vec3{};
+    lo.normal[a] = 1.0;
+    hi.normal[a] = -1.0;
+    lo.material = hi.material = c.box_wall_material;
+    planes.push_back(lo);
+    planes.push_back(hi);
+  }
+}
+
+CellGrid make_grid(SimulationConfig& c, const ParticleStore& s) {
+  const double reach = contact_reach(s);
+  if (c.cell_size > 0.0) {
+    if (c.cell_size < reach)
+      throw std::invalid_argument(fmt::format(
+          "cell size {} is smaller than the largest contact distance {} (largest pair of radii)",
+          c.cell_size, reach));
+    c.skin = std::min(c.skin, c.cell_size - reach);
+  }
+  if (c.skin < 0.0) throw std::invalid_argument("skin must not be negative");
+  const double edge = std::max(c.cell_size, reach + c.skin);
+  return CellGrid(c.box, edge > 0.0 ? edge : 1.0);
+}
+
+} // namespace
+
+Simulation::Simulation(SimulationConfig config, ParticleStore particles,
+                       std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
+                       AnyContactLaw law)
+    : config_(std::move(config)), store_(std::move(particles)), planes_(std::move(planes)),
+      motions_(std::move(motions)), law_(std::move(law)),
+      forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
+      grid_(make_grid(config_, store_)) {
+  if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
+  if (motions_.empty()) motions_.push_back(StaticMotion{});
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    if (store_.motion[i] >= motions_.size())
+      throw std::invalid_argument(fmt::format("particle {} refers to wall motion {} of {}",
+                                              store_.gid[i], store_.motion[i], motions_.size()));
+  add_box_walls(config_, planes_);
+  range_ = config_.skin;
+  refresh();
+}
+
+void Simulation::refresh() {
+  place_walls(time_);
+  rebuild();
+  compute_forces();
+}
+
+std::size_t Simulation::n_grains() const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) n += store_.is_grain(i) ? 1 : 0;
+  return n;
+}
+
+void Simulation::place_walls(double t) {
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    if (store_.is_grain(i)) continue;
+    const PlacedState p = place(motions_[store_.motion[i]], store_.x_rest[i], t);
+    store_.x[i] = p.position;
+    store_.v[i] = p.velocity;
+  }
+}
+
+void Simulation::step() {
+  const double dt = config_.dt;
+  auto t0 = Clock::now();
+  // 1. Half kick and drift of the grains; walls to their prescribed place at t + dt.
+  const double limit2 = 0.25 * config_.skin * config_.skin;
+  bool must_rebuild = false;
+  const std::size_t n = store_.n_owned();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!store_.is_grain(i)) continue;
+    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
+    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
+    store_.x[i] += dt * store_.v[i];
+  }
+  time_ += dt;
+  ++step_;
+  place_walls(time_);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
+  timers_.integrate += seconds_since(t0);
+
+  // 2. Neighbour list or ghost refresh.
+  t0 = Clock::now();
+  if (must_rebuild) {
+    rebuild();
+    timers_.neighbor += seconds_since(t0);
+  } else {
+    halo_.forward(store_);
+    timers_.comm += seconds_since(t0);
+  }
+
+  // 3. Forces.
+  compute_forces();
+
+  // 4. Second half kick.
+  t0 = Clock::now();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!store_.is_grain(i)) continue;
+    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
+    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
+  }
+  timers_.integrate += seconds_since(t0);
+  dissipated_ += tally_.dissipated;
+  wall_work_ += tally_.wall_work;
+}
+
+void Simulation::rebuild() {
+  std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
+  handle_escapes();
+  // Wrap grains into the periodic box.
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    if (store_.is_grain(i)) store_.x[i] = config_.box.wrap(store_.x[i]);
+  // Sort owned particles by cell so that neighbours sit close in memory.
+  {
+    const std::size_t n = store_.n_owned();
+    std::vector<std::uint32_t> cell(n), count(grid_.n_cells() + 1, 0), order(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      cell[i] = static_cast<std::uint32_t>(grid_.cell_index(store_.x[i]));
+      ++count[cell[i] + 1];
+    }
+    for (std::size_t c = 0; c < grid_.n_cells(); ++c) count[c + 1] += count[c];
+    for (std::size_t i = 0; i < n; ++i) order[count[cell[i]]++] = static_cast<std::uint32_t>(i);
+    store_.permute_owned(order);
+  }
+  const Vec3 edge = grid_.edge();
+  const double cutoff = std::min({edge.x, edge.y, edge.z});
+  halo_.build(store_, config_.box, cutoff);
+  grid_.bin(store_.x);
+  build_neighbor_list(store_, grid_, range_, list_);
+  list_.planes.clear();
+  for (std::uint32_t i = 0; i < store_.n_owned(); ++i) {
+    if (!store_.is_grain(i)) continue;
+    for (std::uint32_t p = 0; p < planes_.size(); ++p)
+      if (planes_[p].distance_at_rest(store_.x[i]) <
+          store_.radius[i] + range_ + planes_[p].max_excursion())
+        list_.planes.push_back({i, p});
+  }
+  std::visit([&](auto& f) { f.history.restore(store_, list_); }, forces_);
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];
+  ++rebuilds_;
+}
+
+void Simulation::handle_escapes() {
+  const std::size_t n = store_.n_owned();
+  std::vector<std::uint8_t> gone(n, 0);
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!is_finite(store_.x[i]) || !is_finite(store_.v[i]) || !is_finite(store_.w[i]))
+      throw SimulationError(fmt::format("step {}, t = {}: non-finite state of {}", step_, time_,
+                                        describe_particle(i)));
+    if (!store_.is_grain(i) || config_.box.contains(store_.x[i])) continue;
+    if (config_.on_escape == EscapePolicy::stop)
+      throw SimulationError(fmt::format("step {}, t = {}: {} left the domain [{}, {}] x [{}, {}] "
+                                        "x [{}, {}] (set on_escape = \"remove\" to drop it)",
+                                        step_, time_, describe_particle(i), config_.box.lo.x,
+                                        config_.box.hi.x, config_.box.lo.y, config_.box.hi.y,
+                                        config_.box.lo.z, config_.box.hi.z));
+    gone[i] = 1;
+    removed_energy_ += mechanical_energy(i);
+    ++count;
+  }
+  if (count == 0) return;
+  store_.remove_owned(gone);
+  escaped_ += count;
+}
+
+void Simulation::compute_forces() {
+  auto t0 = Clock::now();
+  for (std::size_t i = 0; i < store_.size(); ++i) {
+    store_.f[i] = Vec3{};
+    store_.torque[i] = Vec3{};
+  }
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    if (store_.is_grain(i)) store_.f[i] = store_.mass[i] * config_.gravity;
+  tally_ = ContactTally{};
+  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, config_.dt, tally_); },
+             forces_);
+  timers_.pair += seconds_since(t0);
+  t0 = Clock::now();
+  halo_.reverse(store_);
+  timers_.comm += seconds_since(t0);
+  check_health();
+}
+
+void Simulation::check_health() const {
+  if (tally_.max_overlap_ratio > config_.max_overlap_ratio)
+    throw SimulationError(fmt::format(
+        "step {}, t = {}: overlap of {:.3g} times the smaller radius (limit {}) at {}; the time "
+        "step is too large for the contact stiffness or the impact speed",
+        step_, time_, tally_.max_overlap_ratio, config_.max_overlap_ratio,
+        describe_particle(tally_.worst_particle)));
+}
+
+std::string Simulation::describe_particle(std::size_t i) const {
+  const auto& s = store_;
+  std::string out = fmt::format(
+      "{} {} (radius {:.4g}) at ({:.6g}, {:.6g}, {:.6g}) with velocity ({:.6g}, {:.6g}, "
+      "{:.6g}), angular velocity ({:.6g}, {:.6g}, {:.6g})",
+      s.is_grain(i) ? "grain" : "wall particle", s.gid[i], s.radius[i], s.x[i].x, s.x[i].y,
+      s.x[i].z, s.v[i].x, s.v[i].y, s.v[i].z, s.w[i].x, s.w[i].y, s.w[i].z);
+  if (i < s.n_owned() && i + 1 < list_.offsets.size()) {
+    std::string contacts;
+    for (std::uint32_t p = list_.offsets[i]; p < list_.offsets[i + 1]; ++p) {
+      const std::uint32_t j = list_.partners[p];
+      if (j >= s.size()) continue;
+      const double overlap = s.radius[i] + s.radius[j] - norm(s.x[i] - s.x[j]);
+      if (overlap > 0) contacts += fmt::format(" {} (overlap {:.4g})", s.gid[j], overlap);
+    }
+    out += contacts.empty() ? ", listed contacts: none" : ", listed contacts:" + contacts;
+  }
+  return out;
+}
+
+EnergyReport Simulation::energies() const {
+  EnergyReport e;
+  e.step = step_;
+  e.time = time_;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    if (!store_.is_grain(i)) continue;
+    e.translational += 0.5 * store_.mass[i] * norm2(store_.v[i]);
+    e.rotational += 0.5 * norm2(store_.w[i]) / store_.inv_inertia[i];
+    e.gravitational -= store_.mass[i] * dot(config_.gravity, store_.x[i]);
+    ++e.grains;
+  }
+  e.elastic = tally_.elastic;
+  e.dissipated = dissipated_;
+  e.wall_work = wall_work_;
+  e.removed = removed_energy_;
+  e.contacts = tally_.touching;
+  e.escaped = escaped_;
+  return e;
+}
+
+double Simulation::mechanical_energy(std::size_t i) const {
+  return 0.5 * store_.mass[i] * norm2(store_.v[i]) +
+         0.5 * norm2(store_.w[i]) / store_.inv_inertia[i] -
+         store_.mass[i] * dot(config_.gravity, store_.x[i]);
+}
+
+StiffestContact Simulation::stiffest_contact() const {
+  // Smallest grain mass and radius per material, and which materials appear on walls.
+  const std::size_t n_mat =
+      std::visit([](const auto& f) { return f.law().coeffs.n_materials(); }, forces_);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> m_min(n_mat, inf), r_min(n_mat, inf);
+  std::vector<bool> on_wall(n_mat, false);
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    const auto k = store_.material[i];
+    if (k >= n_mat) continue;
+    if (store_.is_grain(i)) {
+      m_min[k] = std::min(m_min[k], store_.mass[i]);
+      r_min[k] = std::min(r_min[k], store_.radius[i]);
+    } else {
+      on_wall[k] = true;
+    }
+  }
+  for (const auto& p : planes_)
+    if (p.material < n_mat) on_wall[p.material] = true;
+  StiffestContact best{inf, 0, 0, 0};
+  std::visit(
+      [&](const auto& f) {
+        using M = typename std::decay_t<decltype(f.law())>::model_type;
+        const auto& table = f.law().coeffs;
+        for (std::size_t a = 0; a < n_mat; ++a)
+          for (std::size_t b = 0; b < n_mat; ++b) {
+            if (!table.has(a, b) || m_min[a] == inf) continue;
+            auto consider = [&](double m_eff, double r_eff) {
+              const double tc = M::contact_time(table(a, b), m_eff, r_eff, 1.0);
+              if (tc < best.contact_time)
+                best = {tc, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(b), m_eff};
+            };
+            if (m_min[b] < inf)
+              consider(m_min[a] * m_min[b] / (m_min[a] + m_min[b]),
+                       r_min[a] * r_min[b] / (r_min[a] + r_min[b]));
+            if (on_wall[b]) consider(m_min[a], r_min[a]);
+          }
+      },
+      forces_);
+  return best;
+}
+
+} // namespace yuxi

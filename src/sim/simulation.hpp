@@ -1,0 +1,128 @@
+// A DEM simulation: owns the particles, walls, neighbour list and contact model, and advances
+// them with velocity Verlet (Allen & Tildesley 3.2.1; rotation likewise for spheres, whose
+// inertia tensor is isotropic). One step, phase by phase (see step()):
+//   1. half kick and drift of grains; walls placed at t + dt by their prescribed motion
+//   2. neighbour list rebuilt if some particle moved more than skin/2 (history stashed by
+//      global ids, periodic wrap, particles sorted by cell, ghosts, list, history restored);
+//      otherwise ghosts refreshed
+//   3. forces: gravity, contacts with other particles and flat walls; ghost forces summed back
+//   4. second half kick
+#pragma once
+
+#include "analysis/energy_report.hpp"
+#include "contact/contact_model.hpp"
+#include "core/box.hpp"
+#include "core/cell_grid.hpp"
+#include "core/neighbor_list.hpp"
+#include "core/particle_store.hpp"
+#include "domain/periodic_halo.hpp"
+#include "scene/plane_wall.hpp"
+#include "scene/wall_motion.hpp"
+#include "sim/contact_forces.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace yuxi {
+
+// What to do with a grain that leaves the box through an open face.
+enum class EscapePolicy { stop, remove };
+
+struct SimulationConfig {
+  Box box;
+  Vec3 gravity;
+  double dt = 1e-4;
+  double skin = 0.2;      // Verlet skin [length]
+  double cell_size = 0.0; // linked-cell edge; 0 = the smallest valid (2 r_max + skin)
+  EscapePolicy on_escape = EscapePolicy::stop;
+  std::uint8_t box_wall_material = 0; // material of the flat walls on Boundary::wall faces
+  double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
+};
+
+// The run cannot go on; what() holds the diagnosis (step, grain, position, velocity).
+class SimulationError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// Wall-clock seconds spent in each phase.
+struct PhaseTimes {
+  double integrate = 0, neighbor = 0, pair = 0, comm = 0;
+  double total() const { return integrate + neighbor + pair + comm; }
+};
+
+// The contact that limits the time step.
+struct StiffestContact {
+  double contact_time = 0; // t_c [time]
+  std::uint8_t material_a = 0, material_b = 0;
+  double m_eff = 0;
+};
+
+class Simulation {
+public:
+  Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
+             std::vector<WallMotion> motions, AnyContactLaw law);
+
+  void step();
+  void run(std::int64_t n_steps) {
+    for (std::int64_t k = 0; k < n_steps; ++k) step();
+  }
+
+  double time() const { return time_; }
+  std::int64_t step_count() const { return step_; }
+  const SimulationConfig& config() const { return config_; }
+  const ParticleStore& particles() const { return store_; }
+  const std::vector<PlaneWall>& planes() const { return planes_; }
+  const NeighborList& neighbor_list() const { return list_; }
+  const CellGrid& grid() const { return grid_; }
+  const AnyContactLaw& contact_law() const { return law_; }
+  EnergyReport energies() const;
+  const ContactTally& last_tally() const { return tally_; }
+  const PhaseTimes& timers() const { return timers_; }
+  std::int64_t rebuilds() const { return rebuilds_; }
+  std::size_t escaped() const { return escaped_; }
+  std::size_t n_grains() const;
+  StiffestContact stiffest_contact() const;
+
+  // Test and setup access: changes to particles must be followed by refresh().
+  ParticleStore& particles_mutable() { return store_; }
+  // Rebuilds lists and recomputes forces after particles were changed from outside.
+  void refresh();
+
+private:
+  void place_walls(double t);
+  void rebuild();
+  void handle_escapes();
+  void compute_forces();
+  void check_health() const;
+  std::string describe_particle(std::size_t i) const;
+  double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
+
+  using Forces = std::variant<ContactForces<LinearSpringDashpot>>;
+
+  SimulationConfig config_;
+  ParticleStore store_;
+  std::vector<PlaneWall> planes_;
+  std::vector<WallMotion> motions_;
+  AnyContactLaw law_;
+  Forces forces_;
+  double range_ = 0.0; // neighbour range beyond touching (the skin)
+  CellGrid grid_;
+  NeighborList list_;
+  PeriodicHalo halo_;
+  ContactTally tally_;
+  double time_ = 0.0;
+  std::int64_t step_ = 0;
+  double dissipated_ = 0.0;
+  double wall_work_ = 0.0;
+  double removed_energy_ = 0.0;
+  std::int64_t rebuilds_ = 0;
+  std::size_t escaped_ = 0;
+  PhaseTimes timers_;
+};
+
+} // namespace yuxi

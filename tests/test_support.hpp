@@ -1,0 +1,65 @@
+// Small builders shared by the tests: a simulation of a few explicitly placed spheres.
+#pragma once
+
+#include "contact/contact_model.hpp"
+#include "sim/simulation.hpp"
+
+#include <vector>
+
+namespace yuxi::test {
+
+using Coeffs = LinearSpringDashpot::Coeffs;
+
+// One material, one set of linear coefficients for every pair.
+inline AnyContactLaw linear_law(const Coeffs& c, std::size_t n_materials = 1) {
+  ContactLaw<LinearSpringDashpot> law{PairTable<Coeffs>(n_materials)};
+  for (std::size_t a = 0; a < n_materials; ++a)
+    for (std::size_t b = a; b < n_materials; ++b) law.coeffs.set(a, b, c);
+  return law;
+}
+
+inline SimulationConfig open_box(double half_width, Vec3 gravity, double dt) {
+  SimulationConfig c;
+  c.box.lo = {-half_width, -half_width, -half_width};
+  c.box.hi = {half_width, half_width, half_width};
+  c.gravity = gravity;
+  c.dt = dt;
+  c.skin = 0.1;
+  return c;
+}
+
+inline ParticleSpec sphere(Vec3 x, double radius, double mass, Vec3 v = {}, Vec3 w = {}) {
+  ParticleSpec s;
+  s.position = x;
+  s.velocity = v;
+  s.angular_velocity = w;
+  s.radius = radius;
+  s.mass = mass;
+  return s;
+}
+
+inline ParticleStore store_of(const std::vector<ParticleSpec>& specs) {
+  ParticleStore s;
+  GlobalId id = 0;
+  for (const auto& p : specs) s.add(p, id++);
+  return s;
+}
+
+// Index of the owned particle with global id `id` (the simulation reorders particles).
+inline std::size_t index_of(const Simulation& sim, GlobalId id) {
+  const auto& s = sim.particles();
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (s.gid[i] == id) return i;
+  return s.size();
+}
+
+// A flat wall through `point` with inward `normal`.
+inline PlaneWall plane(Vec3 point, Vec3 normal, std::uint8_t material = 0) {
+  PlaneWall w;
+  w.point = point;
+  w.normal = normal / norm(normal);
+  w.material = material;
+  return w;
+}
+
+} // namespace yuxi::test

@@ -1,0 +1,173 @@
+// Scene files: the shipped scenes parse, the resolved echo reads back to the same scene, and
+// every kind of mistake gets one error naming the file, line, column and key.
+#include "io/scene_builder.hpp"
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+
+namespace yuxi {
+namespace {
+
+const char* const base_scene = R"(materials = ["grain", "wall"]
+
+[run]
+dt = 1.0e-4
+t_end = 0.01
+
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [10.0, 10.0, 10.0]
+boundary = ["periodic", "periodic", "wall"]
+gravity = [0.0, 0.0, -1.0]
+wall_material = "wall"
+
+[contact]
+model = "linear"
+
+[[contact.pair]]
+materials = ["grain", "grain"]
+k_n = 2.5e5
+k_t = 0.57e5
+gamma_n = 100.0
+mu_s = 0.8
+mu_d = 0.4
+
+[[contact.pair]]
+materials = ["grain", "wall"]
+k_n = 1.0e6
+
+[[particle]]
+position = [5.0, 5.0, 5.0]
+radius = 1.0
+mass = 1.0
+material = "grain"
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(SceneReader, BaseSceneIsValidAndBuilds) {
+  const Scene s = read_scene_text(base_scene, "base.toml");
+  EXPECT_EQ(s.run.name, "base");
+  EXPECT_EQ(s.particles.size(), 1u);
+  EXPECT_EQ(s.sim.box.boundary[0], Boundary::periodic);
+  auto sim = build_simulation(s, false);
+  EXPECT_EQ(sim->planes().size(), 2u); // the two z faces
+}
+
+TEST(SceneReader, ShippedScenesAreValid) {
+  for (const char* name : {"basin-small", "basin-paper", "basin-paper-m3"}) {
+    const Scene s = read_scene_file(std::string(YUXI_SCENES_DIR) + "/" + name + ".toml");
+    EXPECT_EQ(s.run.name, name);
+    ASSERT_TRUE(s.basin.has_value());
+  }
+}
+
+TEST(SceneReader, ResolvedSceneReadsBackIdentically) {
+  const Scene a = read_scene_file(std::string(YUXI_SCENES_DIR) + "/basin-small.toml");
+  const std::string echo = resolved_scene_toml(a);
+  const Scene b = read_scene_text(echo, "resolved.toml");
+  const auto body = [](const std::string& t) { return t.substr(t.find("\nmaterials")); };
+  EXPECT_EQ(body(resolved_scene_toml(b)), body(echo));
+  const Scene c =
+      read_scene_text(resolved_scene_toml(read_scene_text(base_scene, "base.toml")), "r.toml");
+  EXPECT_EQ(c.particles.size(), 1u);
+}
+
+struct BadScene {
+  const char* what;
+  std::string from, to;
+  std::string expected; // substring of the message
+  int line;             // expected line of the error (0: not checked)
+};
+
+class BadScenes : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadScenes, GiveOneClearError) {
+  const BadScene& c = GetParam();
+  const std::string text = replaced(base_scene, c.from, c.to);
+  try {
+    const Scene s = read_scene_text(text, "bad.toml");
+    build_simulation(s, false);
+    FAIL() << c.what << ": accepted";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(c.expected), std::string::npos) << c.what << ": " << msg;
+    if (c.line > 0) {
+      EXPECT_EQ(msg.rfind("bad.toml:" + std::to_string(c.line) + ":", 0), 0u)
+          << c.what << ": " << msg;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, BadScenes,
+    ::testing::Values(
+        BadScene{"syntax", "t_end = 0.01", "t_end = = 0.01", "syntax error", 5},
+        BadScene{"unknown key", "t_end = 0.01", "t_end = 0.01\ntend = 3", "run.tend: unknown key",
+                 6},
+        BadScene{"missing key", "dt = 1.0e-4\n", "", "[run]: missing key 'dt'", 3},
+        BadScene{"wrong type", "dt = 1.0e-4", "dt = \"small\"",
+                 "run.dt: expected a number, got a string", 4},
+        BadScene{"negative radius", "radius = 1.0", "radius = -1.0",
+                 "particle[1].radius: must be > 0", 31},
+        BadScene{"zero stiffness", "k_n = 1.0e6", "k_n = 0.0", "contact.pair[2].k_n: must be > 0",
+                 27},
+        BadScene{"zero mass", "mass = 1.0", "mass = 0", "particle[1].mass: must be > 0", 32},
+        BadScene{"mu_d above mu_s", "mu_d = 0.4", "mu_d = 0.9", "exceeds static friction", 23},
+        BadScene{"unknown material", "material = \"grain\"", "material = \"sand\"",
+                 "material \"sand\" is not in", 33},
+        BadScene{"missing pair",
+                 "[[contact.pair]]\nmaterials = [\"grain\", \"wall\"]\nk_n = 1.0e6\n", "",
+                 "no [[contact.pair]] for materials (\"grain\", \"wall\")", 0},
+        BadScene{"inverted domain", "hi = [10.0, 10.0, 10.0]", "hi = [10.0, -1.0, 10.0]",
+                 "domain.hi: must exceed 'lo'", 9},
+        BadScene{"bad boundary", "\"periodic\", \"periodic\", \"wall\"",
+                 "\"periodic\", \"loop\", \"wall\"", "unknown boundary \"loop\"", 10},
+        BadScene{"cell smaller than a grain", "wall_material = \"wall\"",
+                 "wall_material = \"wall\"\ncell_size = 1.5",
+                 "domain.cell_size: 1.5 is smaller than the largest contact distance 2", 13},
+        BadScene{"outside the domain", "position = [5.0, 5.0, 5.0]", "position = [5.0, 5.0, 50.0]",
+                 "particle[1].position", 30},
+        BadScene{"time step too large", "dt = 1.0e-4", "dt = 1.0e-3", "run.dt: 0.001 is", 4},
+        BadScene{"unknown model", "model = \"linear\"", "model = \"hooke\"",
+                 "contact.model: unknown value \"hooke\"", 15}),
+    [](const ::testing::TestParamInfo<BadScene>& param_info) {
+      std::string n = param_info.param.what;
+      for (auto& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return n;
+    });
+
+TEST(SceneReader, BasinLargerThanTheDomainIsRefused) {
+  std::string text = std::string(base_scene);
+  text = replaced(text, "[[particle]]",
+                  "[basin]\ncells = [24, 24, 16]\ngrain_material = \"grain\"\nwall_material = "
+                  "\"wall\"\n\n[[particle]]");
+  try {
+    read_scene_text(text, "bad.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("the container is larger than the domain"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneReader, MissingFileIsNamed) {
+  try {
+    read_scene_file("/nonexistent/scene.toml");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.toml: cannot open"),
+              std::string::npos);
+  }
+}
+
+} // namespace
+} // namespace yuxi
