@@ -102,7 +102,8 @@ void Simulation::step() {
   auto t0 = Clock::now();
   // 1. Half kick and drift of the grains; walls to their prescribed place at t + dt.
   const double limit2 = 0.25 * config_.skin * config_.skin;
-  bool must_rebuild = false;
+  bool must_rebuild = rebuild_requested_;
+  rebuild_requested_ = false;
   const std::size_t n = store_.n_owned();
   for (std::size_t i = 0; i < n; ++i) {
     if (!store_.is_grain(i)) continue;

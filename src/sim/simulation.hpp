@@ -88,9 +88,14 @@ public:
   std::size_t n_grains() const;
   StiffestContact stiffest_contact() const;
 
-  // Test and setup access: changes to particles must be followed by refresh().
+  // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
+  // criterion says; the trajectory must not change.
+  void request_rebuild() { rebuild_requested_ = true; }
+
+  // Setup access: changes to particles must be followed by refresh(), before the first step.
   ParticleStore& particles_mutable() { return store_; }
-  // Rebuilds lists and recomputes forces after particles were changed from outside.
+  // Rebuilds lists and evaluates forces for the current state. Evaluating contacts advances
+  // their history (tangential springs), so call it only after changing particles by hand.
   void refresh();
 
 private:
@@ -121,6 +126,7 @@ private:
   double wall_work_ = 0.0;
   double removed_energy_ = 0.0;
   std::int64_t rebuilds_ = 0;
+  bool rebuild_requested_ = false;
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };

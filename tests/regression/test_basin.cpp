@@ -18,6 +18,17 @@ TEST(FishBasin, PaperSizeCountsMatchThePaperWithinFivePercent) {
   EXPECT_NEAR(static_cast<double>(b.n_grains), 241550.0, 0.05 * 241550.0);
 }
 
+TEST(FishBasin, PaperSizeSceneRuns) {
+  const Scene scene = read_scene_file(std::string(YUXI_SCENES_DIR) + "/basin-paper.toml");
+  BuildReport report;
+  auto sim = build_simulation(scene, false, &report);
+  sim->run(20);
+  const auto e = sim->energies();
+  EXPECT_EQ(e.grains, report.grains);
+  EXPECT_GT(e.translational, 0.0); // falling
+  EXPECT_LT(std::abs(e.balance() - sim->energies().balance()), 1e-9);
+}
+
 TEST(FishBasin, GrainRadiiFollowTheTruncatedNormalAndMassesAverageOne) {
   FishBasinSpec spec;
   const BuiltParticles b = build_fish_basin(spec);
