@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
-  clang-format
+  clang-format zlib1g-dev
 )
 missing=()
 for p in "${packages[@]}"; do

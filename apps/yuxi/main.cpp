@@ -1,5 +1,6 @@
 // yuxi: 3-D soft-sphere DEM for granular matter.
 #include "run_command.hpp"
+#include "validate_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -24,8 +25,19 @@ int main(int argc, char** argv) {
   check->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);
   check->add_flag("--force", opt.force_dt, "Accept dt above t_c/10");
 
+  yuxi::ValidateOptions vopt{
+      {}, false, false, YUXI_SOURCE_DIR "/scenes", YUXI_SOURCE_DIR "/tests/validation/data"};
+  auto* validate = app.add_subcommand(
+      "validate", "Run the validation suite against published numbers and print a table");
+  validate->add_option("cases", vopt.cases, "Case ids (default: all quick cases)");
+  validate->add_flag("--long", vopt.include_long, "Include the long cases");
+  validate->add_flag("--list", vopt.list, "List the cases and their sources");
+  validate->add_option("--scenes", vopt.scenes_dir, "Folder of the shipped scenes");
+  validate->add_option("--reference", vopt.reference_dir, "Folder of the LAMMPS reference data");
+
   CLI11_PARSE(app, argc, argv);
   if (run->parsed()) return yuxi::run_command(opt);
   if (check->parsed()) return yuxi::check_command(opt);
+  if (validate->parsed()) return yuxi::validate_command(vopt);
   return 1;
 }

@@ -25,6 +25,18 @@ struct ContactGeometry {
   Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
 };
 
+// The contact-point velocity split into its normal component and tangential vector.
+struct SplitVelocity {
+  double normal;   // v_c . n (< 0 approaching)
+  Vec3 tangential; // v_c - (v_c . n) n
+};
+
+inline SplitVelocity split_contact_velocity(const ContactGeometry& g) {
+  const Vec3 vc = g.contact_velocity();
+  const double vn = dot(vc, g.n);
+  return {vn, vc - vn * g.n};
+}
+
 struct ContactResult {
   Vec3 force;            // on i; -force acts on j [force]
   Vec3 torque_i;         // on i about its centre [force length]
@@ -32,6 +44,15 @@ struct ContactResult {
   double elastic = 0;    // energy stored in the contact's springs after this step [energy]
   double dissipated = 0; // energy turned to heat during this step [energy]
   bool touching = false; // the contact carries load (its history must be kept)
+
+  // Adds a force normal_force n + f_t acting on i at the contact point (lever arm -a_i n on i,
+  // +a_j n on j where -F acts): torques -a_i n x f_t on i and -a_j n x f_t on j.
+  void add_contact_force(const ContactGeometry& g, double normal_force, const Vec3& f_t) {
+    force += normal_force * g.n + f_t;
+    const Vec3 nxf = cross(g.n, f_t);
+    torque_i -= g.a_i * nxf;
+    torque_j -= g.a_j * nxf;
+  }
 };
 
 } // namespace yuxi

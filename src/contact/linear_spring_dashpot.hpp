@@ -3,26 +3,33 @@
 // Silbert et al., PRE 64, 051302 (2001). Spec: fish_basin.md section 5.
 //
 //   F_n = k_n delta n - m_e gamma_n v_n                     (normal: spring + dashpot)
-//   s_t += v_t dt   (tangential spring, kept in the tangent plane as n turns, norm preserved)
-//   F_t = -k_t s_t - m_e gamma_t v_t   while sticking
-//   F_t = -mu_d |F_n| s_t/|s_t| - m_e gamma_t v_t, with k_t |s_t| = mu_d |F_n|, while sliding
+//   F_t = -k_t s_t - m_e gamma_t v_t, s_t the tangential spring (frictional_spring.hpp)
 //
-// Static/dynamic friction as a two-state law: a sticking contact starts to slide when the
-// spring force would exceed mu_s |F_n|; a sliding contact keeps sliding while the spring would
-// exceed mu_d |F_n| and sticks again only below it. Without this hysteresis the spring would
-// reload to mu_s after every step of steady sliding and the mean friction would exceed mu_d.
+// Conventions, each selectable (scene keys in brackets), defaults first:
+//  - Coulomb limit on the spring force alone, dashpot added after, as in the paper; or on
+//    spring + dashpot together, sliding at exactly mu |F_n| (LIGGGHTS); or that with LAMMPS
+//    gran/hooke/history's rescaling of the spring [friction_cap = spring|total|total_lammps];
+//  - spring carried into the turning tangent plane keeping its length (energy neutral); or
+//    projected without rescaling as in LAMMPS [tangential_carry = rotate|project];
+//  - static/dynamic friction as a two-state law: a sticking contact slides above mu_s |F_n|,
+//    a sliding one sticks again below mu_d |F_n|. Without this hysteresis the spring would
+//    reload to mu_s after every step of steady sliding. mu_s = mu_d gives one coefficient.
+// Always: m_e = m_i against wall particles and flat walls (LAMMPS: against frozen particles);
+// lever arm = radius; no clamp of the attractive dashpot force, so e = exp(-gamma_n t_c / 2)
+// exactly (validation.md L1).
 //
-// Energy: the springs store k_n delta^2/2 + k_t |s_t|^2/2; the dashpots dissipate
-// (m_e gamma_n v_n^2 + m_e gamma_t v_t^2) dt per step; sliding dissipates the work done into the
-// tangential spring less the rise of its energy; what the spring holds when the contact opens
-// is lost. No clamp of the attractive dashpot force: with it the restitution is
-// exactly e = exp(-gamma_n t_c / 2) (validation.md L1).
+// Optional rolling resistance (k_r > 0 or mu_r > 0): a spring-dashpot-slider on the rolling
+// displacement, u_r = -a (w_i - w_j) x n with a = a_i a_j / (a_i + a_j), torque a n x F_r on i
+// and the opposite on j, Coulomb limit mu_r |F_n| (Ai, Chen, Rotter & Ooi, Powder Technol. 206
+// (2011), model C; Luding 2008).
+//
+// Energy: springs store k_n delta^2/2 + k_t |s_t|^2/2 (+ k_r |s_r|^2/2); dashpots and sliding
+// dissipate as booked by the slider; the spring energy left when a contact opens is lost.
 #pragma once
 
 #include "contact/contact_geometry.hpp"
+#include "contact/frictional_spring.hpp"
 
-#include <cmath>
-#include <cstdint>
 #include <string_view>
 
 namespace yuxi {
@@ -37,24 +44,24 @@ struct LinearSpringDashpot {
     double gamma_t = 0; // tangential damping rate [1/time]
     double mu_s = 0;    // static friction coefficient [-]
     double mu_d = 0;    // dynamic friction coefficient [-], mu_d <= mu_s
+    double k_r = 0;     // rolling stiffness [mass/time^2]; 0 with mu_r = 0: no rolling resistance
+    double gamma_r = 0; // rolling damping rate [1/time]
+    double mu_r = 0;    // rolling friction coefficient [-]
+    CapOn friction_cap = CapOn::spring;
+    Carry carry = Carry::rotate;
+
+    bool rolling() const { return k_r > 0 || mu_r > 0; }
   };
 
-  struct State {
-    Vec3 spring;               // tangential spring s_t, in the tangent plane [length]
-    std::uint32_t sliding = 0; // 1 while the contact slides
-    bool operator==(const State&) const = default;
-    // The same contact seen from the partner: n and s_t change sign.
-    State mirrored() const { return {-spring, sliding}; }
-  };
+  using State = TangentialRollingState;
 
   // Contact time of a normal collision with effective mass m_eff (validation.md L1):
   // t_c = pi / sqrt(k_n/m_eff - gamma_n^2/4). Infinite when overdamped.
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
 
+  // A touching contact (overlap > 0); the pair loop calls release() when it opens.
   static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
-
-  // The contact has opened: resets the state and returns the elastic energy it still held,
-  // which is lost to the grains (booked as dissipated).
+  // The contact has opened: resets the state and returns the elastic energy it still held.
   static double release(const Coeffs& c, State& s);
 };
 

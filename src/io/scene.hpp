@@ -8,6 +8,7 @@
 #include "sim/simulation.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,22 @@ struct OutputSettings {
   bool lammps_dump = true;
 };
 
+// Elastic properties of a material, needed by models that mix them (Hertz-Mindlin). NaN where
+// the scene does not give them; youngs_modulus may be infinite (a rigid wall).
+struct MaterialProperties {
+  double youngs_modulus = std::numeric_limits<double>::quiet_NaN(); // E [force/length^2]
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();  // nu [-]
+  double density = std::numeric_limits<double>::quiet_NaN();        // [mass/length^3]
+};
+
+// Particles read from a LAMMPS data file (atom_style sphere).
+struct LammpsDataSpec {
+  std::string file;                        // as resolved against the scene's folder
+  std::vector<std::uint8_t> type_material; // material of each atom type (1-based types)
+  std::vector<bool> frozen;                // per type: frozen atoms become fixed wall particles
+  std::vector<std::int64_t> frozen_types;  // as given, for the echo
+};
+
 struct Scene {
   std::string source;      // file the scene was read from (for messages)
   std::string dt_location; // "file:line:column" of run.dt, for the time-step check
@@ -34,11 +51,15 @@ struct Scene {
   OutputSettings output;
   SimulationConfig sim;
   std::vector<std::string> materials;
+  std::vector<MaterialProperties> material_properties; // parallel to materials
   std::string contact_model = "linear";
+  std::string contact_preset = "paper";
   AnyContactLaw law;
   std::vector<PlaneWall> planes;
   std::optional<FishBasinSpec> basin;
-  std::vector<ParticleSpec> particles;
+  std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms
+  std::optional<LammpsDataSpec> lammps_data;
+  std::size_t n_lammps_atoms = 0;
 
   std::optional<std::uint8_t> material_index(const std::string& name) const {
     for (std::size_t k = 0; k < materials.size(); ++k)

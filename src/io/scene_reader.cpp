@@ -1,5 +1,8 @@
 #include "io/scene_reader.hpp"
 
+#include "core/units.hpp"
+#include "io/contact_fields.hpp"
+#include "io/lammps_data_reader.hpp"
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
@@ -9,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 namespace yuxi {
 namespace {
@@ -88,28 +92,98 @@ void read_materials(Scene& scene, TomlReader& root) {
     for (std::size_t b = a + 1; b < scene.materials.size(); ++b)
       if (scene.materials[a] == scene.materials[b])
         root.fail("materials", fmt::format("\"{}\" is listed twice", scene.materials[a]));
+  scene.material_properties.assign(scene.materials.size(), MaterialProperties{});
+  // Optional [material.<name>] tables with elastic properties.
+  auto props = root.table("material");
+  if (!props) return;
+  for (std::size_t k = 0; k < scene.materials.size(); ++k) {
+    auto m = props->table(scene.materials[k]);
+    if (!m) continue;
+    auto& p = scene.material_properties[k];
+    if (m->has("youngs_modulus")) p.youngs_modulus = m->positive_or_infinite("youngs_modulus");
+    if (m->has("poisson_ratio")) {
+      p.poisson_ratio = m->number("poisson_ratio");
+      if (!(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5))
+        m->fail("poisson_ratio", fmt::format("must be in (-1, 0.5) (got {})", p.poisson_ratio));
+    }
+    if (m->has("density")) p.density = m->positive("density");
+    m->finish();
+  }
+  props->finish();
 }
 
-LinearSpringDashpot::Coeffs read_linear(TomlReader& p) {
-  LinearSpringDashpot::Coeffs c;
-  c.k_n = p.positive("k_n");
-  c.k_t = p.non_negative("k_t", 0.0);
-  c.gamma_n = p.non_negative("gamma_n", 0.0);
-  c.gamma_t = p.non_negative("gamma_t", 0.0);
-  c.mu_s = p.non_negative("mu_s", 0.0);
-  c.mu_d = p.non_negative("mu_d", c.mu_s);
-  if (c.mu_d > c.mu_s)
-    p.fail("mu_d",
-           fmt::format("dynamic friction {} exceeds static friction mu_s = {}", c.mu_d, c.mu_s));
+// Reads one model's pair keys (contact_fields.hpp) from a [[contact.pair]] table.
+struct FieldReader {
+  TomlReader& t;
+  void required(std::string_view k, double& x) { x = t.positive(k); }
+  void optional(std::string_view k, double& x) { x = t.non_negative(k, x); }
+  void optional_or(std::string_view k, double& x, double fallback) {
+    x = t.non_negative(k, fallback);
+  }
+  void fraction(std::string_view k, double& x) {
+    x = t.number(k, x);
+    if (!(x > 0.0 && x <= 1.0)) t.fail(k, fmt::format("must be in (0, 1] (got {})", x));
+  }
+  template <class E>
+  void choice(std::string_view k, E& x,
+              std::initializer_list<std::pair<std::string_view, E>> options) {
+    if (!t.has(k)) return;
+    const std::string name = t.string(k);
+    std::vector<std::string_view> names;
+    for (const auto& [n, value] : options) {
+      if (n == name) {
+        x = value;
+        return;
+      }
+      names.push_back(n);
+    }
+    t.fail(k,
+           fmt::format("unknown value \"{}\" (expected one of: {})", name, fmt::join(names, ", ")));
+  }
+  void check(bool ok, std::string_view k, const std::string& message) {
+    if (!ok) t.fail(k, message);
+  }
+};
+
+// Coefficients of model M for the pair (a, b) from its table.
+template <class M>
+typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, std::uint8_t b) {
+  typename M::Coeffs c{};
+  if constexpr (std::is_same_v<M, LinearSpringDashpot>) {
+    if (scene.contact_preset == "lammps") { // gran/hooke/history conventions
+      c.friction_cap = CapOn::total_lammps;
+      c.carry = Carry::project;
+    }
+  }
+  FieldReader reader{p};
+  contact_fields(reader, c);
+  if constexpr (std::is_same_v<M, HertzMindlin>) {
+    for (std::uint8_t k : {a, b}) {
+      const auto& m = scene.material_properties[k];
+      if (std::isnan(m.youngs_modulus) || std::isnan(m.poisson_ratio))
+        p.fail("materials", fmt::format("hertz_mindlin needs youngs_modulus and poisson_ratio in "
+                                        "[material.{}]",
+                                        scene.materials[k]));
+    }
+    const auto& ma = scene.material_properties[a];
+    const auto& mb = scene.material_properties[b];
+    if (std::isinf(ma.youngs_modulus) && std::isinf(mb.youngs_modulus))
+      p.fail("materials", "both materials are rigid (youngs_modulus = inf)");
+    c = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio,
+                          c.restitution, c.friction);
+  }
   return c;
 }
 
 void read_contact(Scene& scene, TomlReader& root) {
   auto c = root.table("contact");
   if (!c) root.fail("", "missing table [contact]");
-  scene.contact_model = c->choice("model", {"linear"}, "linear");
-  const std::size_t n = scene.materials.size();
-  ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(n)};
+  scene.contact_model = c->choice(
+      "model", {contact_model_names[0], contact_model_names[1], contact_model_names[2]}, "linear");
+  scene.contact_preset = c->choice("preset", {"paper", "lammps"}, "paper");
+  if (scene.contact_preset == "lammps" && scene.contact_model != "linear")
+    c->fail("preset", "the lammps preset applies to the linear model only");
+  scene.law = make_contact_law(scene.contact_model, scene.materials.size());
   auto pairs = c->tables("pair");
   if (pairs.empty()) c->fail("pair", "no [[contact.pair]] given");
   for (auto& p : pairs) {
@@ -123,12 +197,17 @@ void read_contact(Scene& scene, TomlReader& root) {
                fmt::format("material \"{}\" is not in the top-level 'materials' list", names[k]));
       m[k] = *idx;
     }
-    if (law.coeffs.has(m[0], m[1]))
-      p.fail("materials", fmt::format("pair (\"{}\", \"{}\") is given twice", names[0], names[1]));
-    law.coeffs.set(m[0], m[1], read_linear(p));
+    std::visit(
+        [&](auto& law) {
+          using M = typename std::decay_t<decltype(law)>::model_type;
+          if (law.coeffs.has(m[0], m[1]))
+            p.fail("materials",
+                   fmt::format("pair (\"{}\", \"{}\") is given twice", names[0], names[1]));
+          law.coeffs.set(m[0], m[1], read_pair<M>(scene, p, m[0], m[1]));
+        },
+        scene.law);
     p.finish();
   }
-  scene.law = law;
   c->finish();
 }
 
@@ -224,6 +303,63 @@ void read_particles(Scene& scene, TomlReader& root) {
   }
 }
 
+// [lammps_data]: atoms of a LAMMPS data file, with a material per atom type.
+void read_lammps_data_section(Scene& scene, TomlReader& root) {
+  auto t = root.table("lammps_data");
+  if (!t) return;
+  LammpsDataSpec spec;
+  const std::string given = t->string("file");
+  const auto base = std::filesystem::path(scene.source).parent_path();
+  spec.file = std::filesystem::path(given).is_absolute() ? given : (base / given).string();
+  LammpsData data;
+  try {
+    data = read_lammps_data(spec.file);
+  } catch (const DataFileError& e) {
+    t->fail("file", e.what());
+  }
+  const auto names = t->strings("type_materials");
+  if (static_cast<int>(names.size()) != data.n_types)
+    t->fail("type_materials", fmt::format("the data file has {} atom types, {} materials given",
+                                          data.n_types, names.size()));
+  for (const auto& n : names) {
+    const auto k = scene.material_index(n);
+    if (!k)
+      t->fail("type_materials", fmt::format("material \"{}\" is not in the top-level "
+                                            "'materials' list",
+                                            n));
+    spec.type_material.push_back(*k);
+  }
+  spec.frozen.assign(static_cast<std::size_t>(data.n_types), false);
+  if (t->has("frozen_types")) {
+    spec.frozen_types = t->integers("frozen_types");
+    for (auto type : spec.frozen_types) {
+      if (type < 1 || type > data.n_types)
+        t->fail("frozen_types", fmt::format("type {} outside 1..{}", type, data.n_types));
+      spec.frozen[static_cast<std::size_t>(type - 1)] = true;
+    }
+  }
+  t->finish();
+  for (const auto& a : data.atoms) {
+    ParticleSpec p;
+    p.position = a.x;
+    p.velocity = a.v;
+    p.angular_velocity = a.w;
+    p.radius = 0.5 * a.diameter;
+    // as LAMMPS's atom_style sphere: rmass = density * 4/3 pi r^3
+    p.mass = a.density * (4.0 * pi / 3.0 * p.radius * p.radius * p.radius);
+    p.material = spec.type_material[static_cast<std::size_t>(a.type - 1)];
+    const bool frozen = spec.frozen[static_cast<std::size_t>(a.type - 1)];
+    p.kind = frozen ? Kind::wall : Kind::grain;
+    if (frozen) p.velocity = p.angular_velocity = Vec3{};
+    if (!scene.sim.box.contains(p.position))
+      t->fail("file", fmt::format("atom {} at ({}, {}, {}) is outside the domain", a.id, a.x.x,
+                                  a.x.y, a.x.z));
+    scene.particles.push_back(p);
+  }
+  scene.n_lammps_atoms = data.atoms.size();
+  scene.lammps_data = spec;
+}
+
 // Largest centre distance of a possible contact, and which materials grains and walls use.
 void check_consistency(Scene& scene, TomlReader& root) {
   double rg = 0.0, rw = 0.0;
@@ -260,11 +396,13 @@ void check_consistency(Scene& scene, TomlReader& root) {
                                 scene.sim.box.length(a)));
     }
   // Every pair that can touch needs coefficients.
-  const auto& law = std::get<ContactLaw<LinearSpringDashpot>>(scene.law);
+  const auto has_pair = [&](std::size_t a, std::size_t b) {
+    return std::visit([&](const auto& law) { return law.coeffs.has(a, b); }, scene.law);
+  };
   for (std::size_t a = 0; a < scene.materials.size(); ++a) {
     if (!grain_mat[a]) continue;
     for (std::size_t b = 0; b < scene.materials.size(); ++b)
-      if ((grain_mat[b] || other_mat[b]) && !law.coeffs.has(a, b)) {
+      if ((grain_mat[b] || other_mat[b]) && !has_pair(a, b)) {
         auto c = root.table("contact");
         c->fail("pair", fmt::format("no [[contact.pair]] for materials (\"{}\", \"{}\"), which "
                                     "can touch",
@@ -288,6 +426,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_contact(scene, root);
   read_planes(scene, root);
   read_basin(scene, root);
+  read_lammps_data_section(scene, root);
   read_particles(scene, root);
   root.finish();
   check_consistency(scene, root);

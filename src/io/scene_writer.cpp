@@ -1,5 +1,9 @@
 #include "io/scene_writer.hpp"
 
+#include "io/contact_fields.hpp"
+
+#include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -10,12 +14,21 @@ toml::array vec(const Vec3& v) {
   return toml::array{v.x, v.y, v.z};
 }
 
-toml::table linear_pair(const std::string& a, const std::string& b,
-                        const LinearSpringDashpot::Coeffs& c) {
-  return toml::table{
-      {"materials", toml::array{a, b}}, {"k_n", c.k_n},   {"k_t", c.k_t},  {"gamma_n", c.gamma_n},
-      {"gamma_t", c.gamma_t},           {"mu_s", c.mu_s}, {"mu_d", c.mu_d}};
-}
+// Writes one model's pair keys (contact_fields.hpp) into a table.
+struct FieldWriter {
+  toml::table& t;
+  void required(std::string_view k, double& x) { t.insert(k, x); }
+  void optional(std::string_view k, double& x) { t.insert(k, x); }
+  void optional_or(std::string_view k, double& x, double) { t.insert(k, x); }
+  void fraction(std::string_view k, double& x) { t.insert(k, x); }
+  template <class E>
+  void choice(std::string_view k, E& x,
+              std::initializer_list<std::pair<std::string_view, E>> options) {
+    for (const auto& [name, value] : options)
+      if (value == x) t.insert(k, std::string(name));
+  }
+  void check(bool, std::string_view, const std::string&) {}
+};
 
 } // namespace
 
@@ -49,12 +62,32 @@ std::string resolved_scene_toml(const Scene& s) {
   doc.insert("domain", domain);
 
   toml::array pairs;
-  const auto& law = std::get<ContactLaw<LinearSpringDashpot>>(s.law);
-  for (std::size_t i = 0; i < s.materials.size(); ++i)
-    for (std::size_t j = i; j < s.materials.size(); ++j)
-      if (law.coeffs.has(i, j))
-        pairs.push_back(linear_pair(s.materials[i], s.materials[j], law.coeffs(i, j)));
-  doc.insert("contact", toml::table{{"model", s.contact_model}, {"pair", pairs}});
+  std::visit(
+      [&](const auto& law) {
+        for (std::size_t i = 0; i < s.materials.size(); ++i)
+          for (std::size_t j = i; j < s.materials.size(); ++j) {
+            if (!law.coeffs.has(i, j)) continue;
+            toml::table pair{{"materials", toml::array{s.materials[i], s.materials[j]}}};
+            auto coeffs = law.coeffs(i, j);
+            FieldWriter writer{pair};
+            contact_fields(writer, coeffs);
+            pairs.push_back(pair);
+          }
+      },
+      s.law);
+  doc.insert(
+      "contact",
+      toml::table{{"model", s.contact_model}, {"preset", s.contact_preset}, {"pair", pairs}});
+  toml::table props;
+  for (std::size_t k = 0; k < s.materials.size(); ++k) {
+    const auto& p = s.material_properties[k];
+    toml::table m;
+    if (!std::isnan(p.youngs_modulus)) m.insert("youngs_modulus", p.youngs_modulus);
+    if (!std::isnan(p.poisson_ratio)) m.insert("poisson_ratio", p.poisson_ratio);
+    if (!std::isnan(p.density)) m.insert("density", p.density);
+    if (!m.empty()) props.insert(s.materials[k], m);
+  }
+  if (!props.empty()) doc.insert("material", props);
 
   if (!s.planes.empty()) {
     toml::array planes;
@@ -89,9 +122,19 @@ std::string resolved_scene_toml(const Scene& s) {
                                                       {"omega", k.excitation.omega},
                                                       {"t0", k.excitation.t0}}}});
   }
-  if (!s.particles.empty()) {
+  if (s.lammps_data) {
+    toml::array types, frozen;
+    for (auto m : s.lammps_data->type_material) types.push_back(s.materials[m]);
+    for (auto t : s.lammps_data->frozen_types) frozen.push_back(t);
+    doc.insert("lammps_data",
+               toml::table{{"file", std::filesystem::absolute(s.lammps_data->file).string()},
+                           {"type_materials", types},
+                           {"frozen_types", frozen}});
+  }
+  if (s.particles.size() > s.n_lammps_atoms) {
     toml::array parts;
-    for (const auto& p : s.particles)
+    for (std::size_t k = s.n_lammps_atoms; k < s.particles.size(); ++k) {
+      const auto& p = s.particles[k];
       parts.push_back(toml::table{{"position", vec(p.position)},
                                   {"velocity", vec(p.velocity)},
                                   {"angular_velocity", vec(p.angular_velocity)},
@@ -99,6 +142,7 @@ std::string resolved_scene_toml(const Scene& s) {
                                   {"mass", p.mass},
                                   {"material", s.materials[p.material]},
                                   {"kind", p.kind == Kind::wall ? "wall" : "grain"}});
+    }
     doc.insert("particle", parts);
   }
   std::ostringstream out;

@@ -97,6 +97,14 @@ double TomlReader::positive(std::string_view key, double fallback) {
   return has(key) ? positive(key) : fallback;
 }
 
+double TomlReader::positive_or_infinite(std::string_view key) {
+  const toml::node& n = require(key);
+  const auto v = n.value<double>();
+  if (!n.is_number() || !v) wrong_type(key, "a number");
+  if (!(*v > 0.0)) fail(key, fmt::format("must be > 0 (got {})", *v));
+  return *v;
+}
+
 double TomlReader::non_negative(std::string_view key, double fallback) {
   const double v = number(key, fallback);
   if (v < 0.0) fail(key, fmt::format("must be >= 0 (got {})", v));
@@ -179,6 +187,18 @@ std::vector<std::string> TomlReader::strings(std::string_view key) {
   for (const auto& e : *a) {
     if (!e.is_string()) wrong_type(key, "an array of strings");
     out.push_back(*e.value<std::string>());
+  }
+  return out;
+}
+
+std::vector<std::int64_t> TomlReader::integers(std::string_view key) {
+  const toml::node& n = require(key);
+  const toml::array* a = n.as_array();
+  if (!a) wrong_type(key, "an array of integers");
+  std::vector<std::int64_t> out;
+  for (const auto& e : *a) {
+    if (!e.is_integer()) wrong_type(key, "an array of integers");
+    out.push_back(*e.value<std::int64_t>());
   }
   return out;
 }

@@ -28,6 +28,7 @@ public:
   double number(std::string_view key, double fallback);
   double positive(std::string_view key);
   double positive(std::string_view key, double fallback);
+  double positive_or_infinite(std::string_view key); // > 0; inf allowed (a rigid body)
   double non_negative(std::string_view key, double fallback);
   std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t min,
                        std::int64_t max);
@@ -40,6 +41,7 @@ public:
   Vec3 vec3(std::string_view key, Vec3 fallback);
   std::array<std::int64_t, 3> int3(std::string_view key, std::int64_t min);
   std::vector<std::string> strings(std::string_view key);
+  std::vector<std::int64_t> integers(std::string_view key);
 
   std::optional<TomlReader> table(std::string_view key);
   std::vector<TomlReader> tables(std::string_view key); // an array of tables ([[key]])

@@ -79,7 +79,7 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
 void Simulation::refresh() {
   place_walls(time_);
   rebuild();
-  compute_forces();
+  compute_forces(false);
 }
 
 std::size_t Simulation::n_grains() const {
@@ -203,7 +203,7 @@ void Simulation::handle_escapes() {
   escaped_ += count;
 }
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces(bool advance_history) {
   auto t0 = Clock::now();
   for (std::size_t i = 0; i < store_.size(); ++i) {
     store_.f[i] = Vec3{};
@@ -212,8 +212,8 @@ void Simulation::compute_forces() {
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
     if (store_.is_grain(i)) store_.f[i] = store_.mass[i] * config_.gravity;
   tally_ = ContactTally{};
-  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, config_.dt, tally_); },
-             forces_);
+  const double dt = advance_history ? config_.dt : 0.0;
+  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, dt, tally_); }, forces_);
   timers_.pair += seconds_since(t0);
   t0 = Clock::now();
   halo_.reverse(store_);

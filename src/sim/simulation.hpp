@@ -102,12 +102,18 @@ private:
   void place_walls(double t);
   void rebuild();
   void handle_escapes();
-  void compute_forces();
+  // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
+  // spring is incremented and nothing is dissipated).
+  void compute_forces(bool advance_history = true);
   void check_health() const;
   std::string describe_particle(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
 
-  using Forces = std::variant<ContactForces<LinearSpringDashpot>>;
+  template <class> struct ForcesOf;
+  template <class... M> struct ForcesOf<std::variant<ContactLaw<M>...>> {
+    using type = std::variant<ContactForces<M>...>;
+  };
+  using Forces = typename ForcesOf<AnyContactLaw>::type;
 
   SimulationConfig config_;
   ParticleStore store_;

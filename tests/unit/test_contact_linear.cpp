@@ -45,6 +45,14 @@ ContactGeometry swapped(const ContactGeometry& g) {
   return s;
 }
 
+// A contact state whose tangential spring holds s (in the plane normal to n).
+Law::State with_spring(Vec3 s, const Vec3& n, const Law::Coeffs& c) {
+  Law::State st;
+  st.tangential.spring = s - dot(s, n) * n;
+  st.tangential.stored = 0.5 * c.k_t * norm2(st.tangential.spring);
+  return st;
+}
+
 void expect_near(const Vec3& a, const Vec3& b, double tol) {
   EXPECT_NEAR(a.x, b.x, tol);
   EXPECT_NEAR(a.y, b.y, tol);
@@ -55,15 +63,14 @@ TEST(LinearContact, NewtonsThirdLawWithHistory) {
   Random r(3);
   for (int k = 0; k < 200; ++k) {
     const ContactGeometry g = random_geometry(r);
-    Law::State s_ij{random_vec(r, 1e-3), 0};
-    s_ij.spring -= dot(s_ij.spring, g.n) * g.n;
+    Law::State s_ij = with_spring(random_vec(r, 1e-3), g.n, paper_grain_grain());
     Law::State s_ji = s_ij.mirrored();
     const auto f_ij = Law::evaluate(g, paper_grain_grain(), s_ij);
     const auto f_ji = Law::evaluate(swapped(g), paper_grain_grain(), s_ji);
     expect_near(f_ji.force, -f_ij.force, 1e-9 * norm(f_ij.force));
     expect_near(f_ji.torque_i, f_ij.torque_j, 1e-9 * norm(f_ij.force));
     expect_near(f_ji.torque_j, f_ij.torque_i, 1e-9 * norm(f_ij.force));
-    expect_near(s_ji.spring, -s_ij.spring, 1e-15);
+    expect_near(s_ji.tangential.spring, -s_ij.tangential.spring, 1e-15);
     EXPECT_NEAR(f_ij.elastic, f_ji.elastic, 1e-12 * f_ij.elastic);
   }
 }
@@ -84,20 +91,20 @@ TEST(LinearContact, ForceRotatesWithTheFrame) {
     ContactGeometry g = random_geometry(r);
     Vec3 axis = random_vec(r, 1.0);
     const Rotation rot{axis / norm(axis), r.uniform(0, 6.28)};
-    Law::State s{random_vec(r, 1e-3), 0};
-    s.spring -= dot(s.spring, g.n) * g.n;
+    Law::State s = with_spring(random_vec(r, 1e-3), g.n, paper_grain_grain());
     ContactGeometry gr = g;
     gr.n = rot(g.n);
     gr.v_rel = rot(g.v_rel);
     gr.w_i = rot(g.w_i);
     gr.w_j = rot(g.w_j);
-    Law::State sr{rot(s.spring), 0};
+    Law::State sr = s;
+    sr.tangential.spring = rot(s.tangential.spring);
     const auto f = Law::evaluate(g, paper_grain_grain(), s);
     const auto fr = Law::evaluate(gr, paper_grain_grain(), sr);
     const double tol = 1e-9 * norm(f.force);
     expect_near(fr.force, rot(f.force), tol);
     expect_near(fr.torque_i, rot(f.torque_i), tol);
-    expect_near(sr.spring, rot(s.spring), 1e-15);
+    expect_near(sr.tangential.spring, rot(s.tangential.spring), 1e-15);
   }
 }
 
@@ -121,13 +128,13 @@ TEST(LinearContact, SticksBelowMuStaticThenSlidesAtMuDynamic) {
   for (int k = 0; k < 400; ++k) {
     const auto r = Law::evaluate(g, c, s);
     const double ft = std::hypot(r.force.x, r.force.y);
-    if (s.sliding && first_slide < 0) first_slide = k;
+    if (s.tangential.sliding && first_slide < 0) first_slide = k;
     if (first_slide < 0) {
       EXPECT_NEAR(ft, c.k_t * g.dt * (k + 1), 1e-9); // linear loading of the spring
       peak = std::max(peak, ft);
     } else {
       EXPECT_NEAR(ft, c.mu_d * fn, 1e-9);
-      EXPECT_TRUE(s.sliding);
+      EXPECT_TRUE(s.tangential.sliding);
     }
   }
   ASSERT_GT(first_slide, 0);
@@ -136,18 +143,15 @@ TEST(LinearContact, SticksBelowMuStaticThenSlidesAtMuDynamic) {
   // Reversing the slip unloads the spring below mu_d: the contact sticks again.
   g.v_rel = {-1.0, 0, 0};
   Law::evaluate(g, c, s);
-  EXPECT_FALSE(s.sliding);
+  EXPECT_FALSE(s.tangential.sliding);
 }
 
-TEST(LinearContact, SeparatedContactForgetsItsSpring) {
-  Law::State s{{1e-3, 0, 0}, 1};
-  ContactGeometry g;
-  g.n = {0, 0, 1};
-  g.overlap = -1e-3;
-  const auto r = Law::evaluate(g, paper_grain_grain(), s);
+TEST(LinearContact, OpeningContactForgetsItsSpringAndLosesItsEnergy) {
+  Law::State s;
+  s.tangential = {{1e-3, 0, 0}, 0.5 * paper_grain_grain().k_t * 1e-6, 1};
+  const double lost = Law::release(paper_grain_grain(), s);
   EXPECT_EQ(s, Law::State{});
-  EXPECT_EQ(r.force, Vec3{});
-  EXPECT_FALSE(r.touching);
+  EXPECT_DOUBLE_EQ(lost, 0.5 * paper_grain_grain().k_t * 1e-6);
 }
 
 TEST(LinearContact, ContactTimeFormula) {

@@ -10,6 +10,7 @@
 #include "core/random.hpp"
 #include "core/units.hpp"
 #include "test_support.hpp"
+#include "validation/collision_probe.hpp"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -100,6 +101,27 @@ TEST(Energy, BooksCloseWithAVibratingFloor) {
   const auto e = sim.energies();
   ASSERT_GT(e.wall_work, 0.0);
   EXPECT_LT(err / (e.dissipated + std::abs(e.wall_work)), 5e-3);
+}
+
+TEST(Momentum, ConservedInAFrictionalDampedCollision) {
+  auto cfg = test::open_box(5.0, {}, 1e-5);
+  Simulation sim(
+      cfg,
+      test::store_of({test::sphere({0.3, 0.1, 0.6}, 0.6, 1.3, {-0.2, 0.4, -1.0}, {1, 2, 3}),
+                      test::sphere({0, 0, -0.5}, 0.5, 0.7, {0.1, 0, 0.8}, {-2, 0, 1})}),
+      {}, {}, test::linear_law({2e5, 5e4, 30.0, 10.0, 0.5, 0.3}));
+  auto momentum = [&] {
+    Vec3 p;
+    for (std::size_t i = 0; i < 2; ++i) p += sim.particles().mass[i] * sim.particles().v[i];
+    return p;
+  };
+  const Vec3 p0 = momentum();
+  const auto rec = test::collide(sim, 100000);
+  ASSERT_GT(rec.contact_time, 0);
+  const Vec3 p1 = momentum();
+  EXPECT_NEAR(p1.x, p0.x, 1e-12);
+  EXPECT_NEAR(p1.y, p0.y, 1e-12);
+  EXPECT_NEAR(p1.z, p0.z, 1e-12);
 }
 
 } // namespace

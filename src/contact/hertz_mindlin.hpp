@@ -1,0 +1,54 @@
+// Hertz-Mindlin contact with Tsuji-type damping, the model of Chung & Ooi (2011) and of most
+// DEM codes (EDEM, LIGGGHTS "hertz/tangential_history"). Spec: validation.md section 0.2 and 2.
+//
+//   normal:     F_n = (4/3) E* sqrt(R*) delta^{3/2} - eta_n v_n,
+//               eta_n = -2 sqrt(5/6) beta sqrt(S_n m*),  S_n = 2 E* sqrt(R* delta)
+//   tangential: s_t += v_t dt (kept in the tangent plane),  S_t = 8 G* sqrt(R* delta)
+//               F_t = -S_t s_t - eta_t v_t,  eta_t = -2 sqrt(5/6) beta sqrt(S_t m*)
+//               capped at mu max(F_n, 0): a sliding contact exerts mu F_n, carried by the
+//               spring; no friction while the dashpot pulls the surfaces together
+//   beta = ln(e) / sqrt(ln^2(e) + pi^2)
+// With this damping the normal restitution coefficient equals e at every impact speed
+// (Tsuji, Tanaka & Ishida 1992; validation.md Test 3, "attractive force allowed").
+//
+// Energy: stored (8/15) E* sqrt(R*) delta^{5/2} + S_t |s_t|^2 / 2. The tangential spring's
+// stiffness follows the overlap (Mindlin's no-slip law), which is not conservative by itself:
+// each step books as dissipated the work done into the spring, S_t (s_old + s_new)/2 . ds, less
+// the change of its stored energy, so the energy books close whatever the path.
+#pragma once
+
+#include "contact/contact_geometry.hpp"
+#include "contact/frictional_spring.hpp"
+
+#include <cstdint>
+#include <string_view>
+
+namespace yuxi {
+
+struct HertzMindlin {
+  static constexpr std::string_view name = "hertz_mindlin";
+
+  struct Coeffs {
+    double e_star = 0;      // E*, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 [force/length^2]
+    double g_star = 0;      // G*, 1/G* = (2-nu1)/G1 + (2-nu2)/G2 [force/length^2]
+    double restitution = 1; // e, speed-independent normal restitution [-]
+    double friction = 0;    // mu [-]
+    double beta = 0;        // ln e / sqrt(ln^2 e + pi^2), derived from e [-]
+  };
+
+  // Derived coefficients from the two materials (a rigid material has E = infinity).
+  static Coeffs mix(double youngs_1, double poisson_1, double youngs_2, double poisson_2,
+                    double restitution, double friction);
+
+  using State = TangentialRollingState;
+
+  // Hertz contact time at impact speed v (validation.md section 2): t_c = 2.94328 delta_max / v,
+  // delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^{2/5}.
+  static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
+
+  // A touching contact (overlap > 0); the pair loop calls release() when it opens.
+  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  static double release(const Coeffs&, State& s);
+};
+
+} // namespace yuxi
