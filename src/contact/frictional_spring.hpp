@@ -47,7 +47,7 @@ struct TangentialRollingState {
   SliderState rolling;
   bool operator==(const TangentialRollingState&) const = default;
   // The same contact seen from the partner: n turns over, so the tangential spring changes
-  // sign; the rolling displacement -a (w_i - w_j) x n does not.
+  // sign; the rolling displacement -a n x (w_i - w_j) does not.
   TangentialRollingState mirrored() const {
     TangentialRollingState m = *this;
     m.tangential.spring = -tangential.spring;

@@ -28,7 +28,7 @@ ContactResult LinearSpringDashpot::evaluate(const ContactGeometry& g, const Coef
   r.dissipated = g.m_eff * c.gamma_n * vn * vn * g.dt + t.dissipated;
 
   if (c.rolling()) {
-    const Vec3 u_r = -g.r_eff * cross(g.w_i - g.w_j, g.n);
+    const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
     const SliderLaw rolling{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total};
     const SliderResult rr =
         slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r, fn, rolling, g.dt);

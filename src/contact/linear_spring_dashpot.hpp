@@ -19,7 +19,7 @@
 // exactly (validation.md L1).
 //
 // Optional rolling resistance (k_r > 0 or mu_r > 0): a spring-dashpot-slider on the rolling
-// displacement, u_r = -a (w_i - w_j) x n with a = a_i a_j / (a_i + a_j), torque a n x F_r on i
+// displacement, u_r = -a n x (w_i - w_j) with a = a_i a_j / (a_i + a_j), torque a n x F_r on i
 // and the opposite on j, Coulomb limit mu_r |F_n| (Ai, Chen, Rotter & Ooi, Powder Technol. 206
 // (2011), model C; Luding 2008).
 //

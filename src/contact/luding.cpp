@@ -56,7 +56,7 @@ ContactResult Luding::evaluate(const ContactGeometry& g, const Coeffs& c, State&
   const SliderResult t =
       slide(s.tangential, carry_in_plane(s.tangential.spring, g.n), vt, pressing, tangential, g.dt);
   const Vec3 w_rel = g.w_i - g.w_j;
-  const Vec3 u_r = -a12 * cross(w_rel, g.n);
+  const Vec3 u_r = -a12 * cross(g.n, w_rel);
   const SliderLaw rolling{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total};
   const SliderResult rr =
       slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r, pressing, rolling, g.dt);

@@ -16,7 +16,7 @@
 // Tangential, rolling and torsion: spring-dashpot-sliders (frictional_spring.hpp) with limits
 // mu |f_n + kc delta| (adhesion presses the contact), Coulomb limit on spring + dashpot:
 //   tangential  u_t = v_c - (v_c . n) n,          torque -a_i n x F_t on i, -a_j n x F_t on j
-//   rolling     u_r = -a12 (w_i - w_j) x n,       torque  a12 n x F_r on i, the opposite on j
+//   rolling     u_r = -a12 n x (w_i - w_j),       torque  a12 n x F_r on i, the opposite on j
 //   torsion     u_o =  a12 ((w_i - w_j) . n) n,   torque  a12 F_o on i, the opposite on j
 // Lever arms are the radii, as for the other models (Luding uses a - delta/2; the difference is
 // of order delta/a, and velocity and torque use the same arm, so energy is consistent).

@@ -1,0 +1,169 @@
+// Every contact model keeps the energy books, and the optional parts behave as their closed
+// forms say: rolling resistance stops a rolling sphere at (5/7) mu_r g, Luding's adhesion
+// holds a contact open under tension.
+#include "core/random.hpp"
+#include "core/units.hpp"
+#include "test_support.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace yuxi {
+namespace {
+
+// 125 polydisperse grains with random velocities and spins in a walled box under gravity.
+Simulation gas(const AnyContactLaw& law, double dt) {
+  Random rng(7);
+  auto cfg = test::open_box(4.0, {0, 0, -1.0}, dt);
+  cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
+  std::vector<ParticleSpec> specs;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const double r = rng.uniform(0.35, 0.55);
+        specs.push_back(test::sphere({-3.2 + 1.6 * i, -3.2 + 1.6 * j, -3.2 + 1.6 * k}, r, r * r * r,
+                                     {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)},
+                                     {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)}));
+      }
+  return Simulation(cfg, test::store_of(specs), {}, {}, law);
+}
+
+double books_error(Simulation& sim, double duration) {
+  const double b0 = sim.energies().balance();
+  double worst = 0;
+  while (sim.time() < duration) {
+    sim.step();
+    worst = std::max(worst, std::abs(sim.energies().balance() - b0));
+  }
+  return worst;
+}
+
+AnyContactLaw hertz() {
+  ContactLaw<HertzMindlin> law{PairTable<HertzMindlin::Coeffs>(1)};
+  law.coeffs.set(0, 0, HertzMindlin::mix(1e5, 0.3, 1e5, 0.3, 0.7, 0.4));
+  return law;
+}
+
+AnyContactLaw luding() {
+  Luding::Coeffs c;
+  c.k1 = 5e3;
+  c.kp = 2e4;
+  c.kc = 1e3;
+  c.phi_f = 0.05;
+  c.gamma_n = 5;
+  c.k_t = 2e3;
+  c.gamma_t = 2;
+  c.mu_s = 0.6;
+  c.mu_d = 0.4;
+  c.k_r = 1e3;
+  c.gamma_r = 1;
+  c.mu_r = 0.1;
+  c.k_o = 1e3;
+  c.gamma_o = 1;
+  c.mu_o = 0.1;
+  ContactLaw<Luding> law{PairTable<Luding::Coeffs>(1)};
+  law.coeffs.set(0, 0, c);
+  return law;
+}
+
+AnyContactLaw linear_rolling() {
+  test::Coeffs c{1e4, 2.5e3, 20.0, 10.0, 0.5, 0.3};
+  c.k_r = 1e3;
+  c.gamma_r = 5;
+  c.mu_r = 0.1;
+  return test::linear_law(c);
+}
+
+struct ModelCase {
+  const char* name;
+  AnyContactLaw (*law)();
+  double dt;
+};
+
+class EnergyBooks : public ::testing::TestWithParam<ModelCase> {};
+
+// The books close to within 1 % of the energy dissipated at the step given, and better at
+// half the step (the dashpots are booked to first order).
+TEST_P(EnergyBooks, CloseForEveryModel) {
+  const auto& m = GetParam();
+  Simulation a = gas(m.law(), m.dt), b = gas(m.law(), m.dt / 2);
+  const double err_a = books_error(a, 2.0), err_b = books_error(b, 2.0);
+  const double dissipated = a.energies().dissipated;
+  ASSERT_GT(dissipated, 0.2 * a.energies().mechanical());
+  EXPECT_LT(err_a / dissipated, 1e-2);
+  EXPECT_LT(err_b, err_a);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, EnergyBooks,
+                         ::testing::Values(ModelCase{"hertz_mindlin", hertz, 1e-4},
+                                           ModelCase{"luding", luding, 2e-4},
+                                           ModelCase{"linear_rolling", linear_rolling, 2e-4}),
+                         [](const ::testing::TestParamInfo<ModelCase>& p) {
+                           return std::string(p.param.name);
+                         });
+
+// A sphere rolling without slip on a level plane with a saturated rolling slider feels the
+// torque mu_r m g a (a = R against a flat wall) and decelerates at (5/7) mu_r g.
+TEST(RollingResistance, StopsARollingSphereAtFiveSeventhsMuRG) {
+  test::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 30.0, 150.0, 0.8, 0.8};
+  c.k_r = 1e4;
+  c.mu_r = 0.05;
+  auto cfg = test::open_box(20, {0, 0, -1}, 0.02 * pi / std::sqrt(1e5));
+  const double v0 = 1.0;
+  Simulation sim(
+      cfg, test::store_of({test::sphere({0, 0, 1.0 - 1e-5}, 1.0, 1.0, {v0, 0, 0}, {0, v0, 0})}),
+      {test::plane({0, 0, 0}, {0, 0, 1})}, {}, test::linear_law(c));
+  const double b0 = sim.energies().balance();
+  sim.run(std::llround(1.0 / cfg.dt));
+  const double v1 = sim.particles().v[0].x, t1 = sim.time();
+  sim.run(std::llround(2.0 / cfg.dt));
+  const double decel = (v1 - sim.particles().v[0].x) / (sim.time() - t1);
+  EXPECT_NEAR(decel, 5.0 / 7.0 * c.mu_r, 2e-3 * c.mu_r);
+  EXPECT_NEAR(sim.particles().v[0].x - sim.particles().w[0].y, 0.0, 1e-4); // still rolling
+  // The rolling slider's dissipation is what the sphere lost.
+  const auto e = sim.energies();
+  ASSERT_GT(e.dissipated, 0.05);
+  EXPECT_LT(std::abs(e.balance() - b0), 1e-3 * e.dissipated);
+}
+
+// Luding's adhesion: pulled apart slowly, the contact holds until the tension reaches the
+// adhesive branch -kc delta; without kc it lets go at once.
+TEST(LudingAdhesion, HoldsTheContactUnderTension) {
+  auto make = [](double kc) {
+    Luding::Coeffs c;
+    c.k1 = 1e4;
+    c.kp = 5e4;
+    c.kc = kc;
+    c.phi_f = 1e-3;
+    ContactLaw<Luding> law{PairTable<Luding::Coeffs>(1)};
+    law.coeffs.set(0, 0, c);
+    return law;
+  };
+  for (double kc : {0.0, 2e4}) {
+    Luding::State s;
+    ContactGeometry g;
+    g.n = {0, 0, 1};
+    g.a_i = g.a_j = 1.0;
+    g.r_eff = 0.5;
+    g.m_eff = 0.5;
+    g.dt = 1e-4;
+    const ContactLaw<Luding> law = make(kc);
+    const Luding::Coeffs& c = law.coeffs(0, 0);
+    // load to 0.01, then unload in small steps and record the most tensile force
+    double most_tensile = 0;
+    for (int k = 1; k <= 200; ++k) {
+      g.overlap = k <= 100 ? 1e-4 * k : 1e-2 - 1e-4 * (k - 100);
+      if (g.overlap <= 0) break;
+      const auto r = Luding::evaluate(g, c, s);
+      most_tensile = std::min(most_tensile, r.force.z);
+    }
+    if (kc == 0) {
+      EXPECT_NEAR(most_tensile, 0.0, 1e-9);
+    } else {
+      EXPECT_LT(most_tensile, -1.0); // pulls
+    }
+  }
+}
+
+} // namespace
+} // namespace yuxi
