@@ -26,9 +26,15 @@ public:
   ContactHistory<State> history;
 
   void compute(ParticleStore& s, const NeighborList& list, const std::vector<PlaneWall>& planes,
-               double t, double dt, ContactTally& tally) {
-    compute_pairs(s, list, dt, tally);
-    compute_planes(s, list, planes, t, dt, tally);
+               double t, double dt, ContactTally& tally, ContactRecord& record) {
+    if (record.enabled) {
+      record.pair_force.assign(list.n_pairs(), Vec3{});
+      record.pair_elastic.assign(list.n_pairs(), 0.0);
+      record.plane_force.assign(list.planes.size(), Vec3{});
+      record.plane_elastic.assign(list.planes.size(), 0.0);
+    }
+    compute_pairs(s, list, dt, tally, record);
+    compute_planes(s, list, planes, t, dt, tally, record);
   }
 
 private:
@@ -47,7 +53,8 @@ private:
     tally.touching += r.touching ? 1 : 0;
   }
 
-  void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally) {
+  void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
+                     ContactRecord& record) {
     const State fresh{};
     for (std::uint32_t i = 0; i + 1 < list.offsets.size(); ++i) {
       const Vec3 xi = s.x[i];
@@ -83,6 +90,10 @@ private:
         s.torque[i] += r.torque_i;
         s.torque[j] += r.torque_j;
         book(r, tally);
+        if (record.enabled) {
+          record.pair_force[p] = r.force;
+          record.pair_elastic[p] = r.elastic;
+        }
         if (s.kind[j] == Kind::wall) tally.wall_work += dot(r.force, s.v[j]) * dt;
         if (s.kind[i] == Kind::wall) tally.wall_work -= dot(r.force, s.v[i]) * dt;
         track_overlap(g, std::min(ai, g.a_j), i, tally);
@@ -92,7 +103,7 @@ private:
 
   void compute_planes(ParticleStore& s, const NeighborList& list,
                       const std::vector<PlaneWall>& planes, double t, double dt,
-                      ContactTally& tally) {
+                      ContactTally& tally, ContactRecord& record) {
     const State fresh{};
     for (std::size_t k = 0; k < list.planes.size(); ++k) {
       const auto [i, plane_index] = list.planes[k];
@@ -122,6 +133,10 @@ private:
       s.f[i] += r.force;
       s.torque[i] += r.torque_i;
       book(r, tally);
+      if (record.enabled) {
+        record.plane_force[k] = r.force;
+        record.plane_elastic[k] = r.elastic;
+      }
       tally.wall_work += dot(r.force, v_wall) * dt;
       track_overlap(g, ai, i, tally);
     }

@@ -1,7 +1,10 @@
 // Sums over all contacts of one force evaluation.
 #pragma once
 
+#include "core/vec3.hpp"
+
 #include <cstddef>
+#include <vector>
 
 namespace yuxi {
 
@@ -12,6 +15,17 @@ struct ContactTally {
   std::size_t touching = 0;       // contacts carrying load
   double max_overlap_ratio = 0.0; // largest overlap / smaller radius (blow-up diagnosis)
   std::size_t worst_particle = 0; // owned particle of that contact
+};
+
+// Per-contact results of one force evaluation, recorded only on request (stress and per-grain
+// energy analyses): aligned with NeighborList::partners and NeighborList::planes. A contact
+// that does not touch has zero force and energy.
+struct ContactRecord {
+  bool enabled = false;
+  std::vector<Vec3> pair_force;     // force on the row particle i from its partner j
+  std::vector<double> pair_elastic; // energy stored in the contact
+  std::vector<Vec3> plane_force;    // force on the grain from the flat wall
+  std::vector<double> plane_elastic;
 };
 
 } // namespace yuxi

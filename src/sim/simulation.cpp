@@ -213,7 +213,8 @@ void Simulation::compute_forces(bool advance_history) {
     if (store_.is_grain(i)) store_.f[i] = store_.mass[i] * config_.gravity;
   tally_ = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
-  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, dt, tally_); }, forces_);
+  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, dt, tally_, record_); },
+             forces_);
   timers_.pair += seconds_since(t0);
   t0 = Clock::now();
   halo_.reverse(store_);

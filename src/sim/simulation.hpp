@@ -82,6 +82,10 @@ public:
   const AnyContactLaw& contact_law() const { return law_; }
   EnergyReport energies() const;
   const ContactTally& last_tally() const { return tally_; }
+  // Records every contact's force and stored energy at each force evaluation (costs memory
+  // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
+  void record_contacts(bool on) { record_.enabled = on; }
+  const ContactRecord& contact_record() const { return record_; }
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   std::size_t escaped() const { return escaped_; }
@@ -126,6 +130,7 @@ private:
   NeighborList list_;
   PeriodicHalo halo_;
   ContactTally tally_;
+  ContactRecord record_;
   double time_ = 0.0;
   std::int64_t step_ = 0;
   double dissipated_ = 0.0;

@@ -1,10 +1,12 @@
 // The LAMMPS chute benchmark (validation.md section 3): C1, 100 steps of data.chute against
 // LAMMPS itself (reference output and the command that made it: tests/validation/data).
+#include "core/units.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "validation/validation_case.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
@@ -107,12 +109,136 @@ CaseResult chute_c1(const Paths& paths) {
   return res;
 }
 
+// C2: steady chute flow (Silbert et al. 2001) on a 20 d x 10 d periodic slice of the LAMMPS
+// chute (about 7,800 flowing spheres over 228 frozen base spheres), tilted to 24 degrees, run for
+// YUXI_C2_TAU tau (default 1000) and averaged over its last fifth. Exact momentum balance in
+// steady flow: normal force on the base = N m g cos(theta) (0.5 %), basal shear / normal force =
+// tan(theta) (1 %), and sigma_xz / sigma_zz = tan(theta) at every depth of the bulk (2 %, 3 d
+// clear of base and surface); from the paper's ranges: packing fraction flat within 0.01 in the
+// bulk, and a Bagnold velocity profile v_x ~ H^1.5 - (H - z)^1.5 (fit R^2 >= 0.98).
+CaseResult chute_c2(const Paths& paths) {
+  CaseResult res;
+  Scene scene = read_scene_file((paths.scenes / "chute-lammps.toml").string());
+  const double theta = 24.0 * pi / 180;
+  scene.sim.gravity = {std::sin(theta), 0.0, -std::cos(theta)};
+  scene.sim.box.hi.x = 20.0;
+  scene.sim.box.hi.y = 10.0;
+  std::vector<ParticleSpec> slice;
+  for (const auto& p : scene.particles)
+    if (p.position.x < 20.0 && p.position.y < 10.0) slice.push_back(p);
+  scene.particles = slice;
+  scene.n_lammps_atoms = slice.size();
+  scene.sim.on_escape = EscapePolicy::remove;
+  auto sim = build_simulation(scene, false);
+  const char* env = std::getenv("YUXI_C2_TAU");
+  const double total = env ? std::atof(env) : 1000.0;
+  const double dt = scene.sim.dt;
+  sim->run(std::llround(0.8 * total / dt));
+
+  // Averages over the last fifth, sampled every 0.1 tau.
+  const double area = 20.0 * 10.0, layer = 1.0;
+  const int n_layers = 60;
+  std::vector<double> sxz(n_layers), szz(n_layers), volume_frac(n_layers), vx(n_layers),
+      count(n_layers);
+  Vec3 base_force;
+  double samples = 0, grains_weight = 0;
+  while (sim->time() < total) {
+    sim->run(std::llround(0.1 / dt) - 1);
+    sim->record_contacts(true); // only for the sampled step
+    sim->step();
+    sim->record_contacts(false);
+    const auto& s = sim->particles();
+    const auto& list = sim->neighbor_list();
+    samples += 1;
+    // Force on the base: contact forces on the frozen wall particles (gravity is not applied
+    // to them).
+    double weight = 0;
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+      if (!s.is_grain(i)) {
+        base_force += s.f[i];
+        continue;
+      }
+      weight += s.mass[i];
+      const int k = static_cast<int>(s.x[i].z / layer);
+      if (k < 0 || k >= n_layers) continue;
+      const double r = s.radius[i];
+      volume_frac[static_cast<std::size_t>(k)] += 4.0 / 3.0 * pi * r * r * r / (area * layer);
+      vx[static_cast<std::size_t>(k)] += s.v[i].x;
+      count[static_cast<std::size_t>(k)] += 1;
+    }
+    grains_weight += weight;
+    // Method of planes: contact forces acting across the plane z_k, on the material above it.
+    for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
+      for (auto p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
+        const std::size_t j = list.partners[p];
+        const Vec3 f = sim->contact_record().pair_force[p]; // on i
+        if (f == Vec3{}) continue;
+        const double hi = std::max(s.x[i].z, s.x[j].z), lo = std::min(s.x[i].z, s.x[j].z);
+        const Vec3 on_upper = s.x[i].z >= s.x[j].z ? f : -f;
+        for (int k = static_cast<int>(std::ceil(lo / layer)); k <= static_cast<int>(hi / layer);
+             ++k)
+          if (k >= 0 && k < n_layers) {
+            // traction on the material below from the material above: -on_upper
+            sxz[static_cast<std::size_t>(k)] += -on_upper.x / area;
+            szz[static_cast<std::size_t>(k)] += -on_upper.z / area;
+          }
+      }
+  }
+  const double g = 1.0, m_over_n = grains_weight / samples;
+  base_force = base_force / samples;
+  res.add_relative("normal force on the base / (N m g cos theta)", 1.0,
+                   -base_force.z / (m_over_n * g * std::cos(theta)), 0.005);
+  // The grains push the base down (-z) and drag it downhill (+x).
+  res.add_relative("basal shear / normal force = tan theta", std::tan(theta),
+                   -base_force.x / base_force.z, 0.01);
+  // Bulk: layers with grains, 3 d clear of the base and the surface.
+  int top = 0;
+  for (int k = 0; k < n_layers; ++k)
+    if (count[static_cast<std::size_t>(k)] / samples > 1.0) top = k;
+  double phi_min = 1, phi_max = 0, worst_ratio = 0;
+  std::vector<std::pair<double, double>> profile;
+  for (int k = 4; k <= top - 3; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    // Traction on the material below from the material above: compressive (-z) and dragged
+    // downhill (+x), so sigma_xz / sigma_zz = -tan(theta) in the tension-positive convention.
+    // Kinetic (streaming) stress is left out: in this dense flow it is three orders of
+    // magnitude below the contact stress in the bulk (Silbert et al. 2001).
+    const double ratio = -sxz[u] / szz[u];
+    worst_ratio = std::max(worst_ratio, std::abs(ratio / std::tan(theta) - 1));
+    phi_min = std::min(phi_min, volume_frac[u] / samples);
+    phi_max = std::max(phi_max, volume_frac[u] / samples);
+    profile.emplace_back((k + 0.5) * layer, vx[u] / count[u]);
+  }
+  res.add("bulk: largest |sigma_xz / (sigma_zz tan theta) - 1|", 0.0, worst_ratio, 0.02);
+  res.add("bulk: packing fraction spread (max - min)", 0.0, phi_max - phi_min, 0.02);
+  res.add("bulk: mean packing fraction (Silbert: 0.55-0.60)", 0.575, 0.5 * (phi_max + phi_min),
+          0.03);
+  // Bagnold fit v = A (H^1.5 - (H - z)^1.5) + v0, H = top of the flow.
+  const double h = top + 1.0;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+  for (auto [z, v] : profile) {
+    const double x = std::pow(h, 1.5) - std::pow(std::max(h - z, 0.0), 1.5);
+    sx += x, sy += v, sxx += x * x, sxy += x * v, n += 1;
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx), icpt = (sy - slope * sx) / n;
+  double ss_res = 0, ss_tot = 0;
+  for (auto [z, v] : profile) {
+    const double x = std::pow(h, 1.5) - std::pow(std::max(h - z, 0.0), 1.5);
+    ss_res += (v - slope * x - icpt) * (v - slope * x - icpt);
+    ss_tot += (v - sy / n) * (v - sy / n);
+  }
+  res.add("Bagnold profile fit R^2 (>= 0.98)", 1.0, 1 - ss_res / ss_tot, 0.02);
+  return res;
+}
+
 } // namespace
 
 std::vector<Case> chute_cases() {
   return {{"C1", "LAMMPS chute benchmark: 100 steps of data.chute against LAMMPS",
            "LAMMPS 29 Sep 2021 (Debian 20220106) on the same file, tests/validation/data", false,
-           chute_c1}};
+           chute_c1},
+          {"C2", "steady chute flow at 24 degrees: momentum balance, packing, Bagnold profile",
+           "exact momentum balance; Silbert et al., PRE 64, 051302 (2001)", true, chute_c2}};
 }
 
 } // namespace yuxi::validation
