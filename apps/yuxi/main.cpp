@@ -14,7 +14,12 @@ int main(int argc, char** argv) {
 
   yuxi::RunCommandOptions opt;
   auto* run = app.add_subcommand("run", "Run a scene (default: the built-in small fish basin)");
-  run->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);
+  auto* scene_opt =
+      run->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);
+  run->add_option("--resume", opt.resume,
+                  "Continue the run in this folder from its newest valid checkpoint")
+      ->check(CLI::ExistingDirectory)
+      ->excludes(scene_opt);
   run->add_option("-o,--output", opt.output_dir, "Output folder (default: runs/<scene name>)");
   run->add_flag("--overwrite", opt.overwrite, "Replace an existing output folder");
   run->add_flag("--force", opt.force_dt, "Run even if dt exceeds t_c/10 of the stiffest contact");

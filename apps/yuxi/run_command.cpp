@@ -1,12 +1,14 @@
 #include "run_command.hpp"
 
 #include "default_scene.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/progress.hpp"
 #include "io/run_driver.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 
+#include <csignal>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -84,21 +86,65 @@ int check_command(const RunCommandOptions& o) {
   return 0;
 }
 
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  stop_signal = sig;
+}
+
+// Loads the newest valid checkpoint of a run folder into a new simulation.
+bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim,
+            std::string& scene_text) {
+  std::vector<std::string> refused;
+  const auto data = CheckpointSet(o.resume).newest_valid(&refused);
+  for (const auto& r : refused)
+    fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
+  if (!data) {
+    fmt::print(stderr, "error: {}: no valid checkpoint to resume from\n",
+               (fs::path(o.resume) / "checkpoints").string());
+    return false;
+  }
+  try {
+    scene_text = data->scene_text;
+    scene = read_scene_text(scene_text, (fs::path(o.resume) / "scene.resolved.toml").string());
+    if (o.t_end) scene.run.t_end = *o.t_end;
+    BuildReport report;
+    sim = build_simulation(scene, true, &report);
+    apply_checkpoint(*data, *sim);
+    describe(scene, *sim, report);
+    spdlog::info("resuming from {} at step {}, t = {}", data->file.string(), data->step,
+                 data->time);
+    return true;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return false;
+  }
+}
+
 int run_command(const RunCommandOptions& o) {
   Scene scene;
   std::unique_ptr<Simulation> sim;
-  if (!prepare(o, scene, sim)) return 2;
+  std::string scene_text;
   fs::path dir;
-  try {
-    dir = prepare_output(o, scene); // only once the scene is known to be good
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+  if (!o.resume.empty()) {
+    if (!resume(o, scene, sim, scene_text)) return 2;
+    dir = o.resume;
+  } else {
+    if (!prepare(o, scene, sim)) return 2;
+    try {
+      dir = prepare_output(o, scene); // only once the scene is known to be good
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return 2;
+    }
+    scene_text = resolved_scene_toml(scene);
+    std::ofstream(dir / "scene.resolved.toml") << scene_text;
   }
-  std::ofstream(dir / "scene.resolved.toml") << resolved_scene_toml(scene);
   spdlog::info("writing to {}", dir.string());
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
 
-  RunOptions ro{dir, o.progress && Progress::stderr_is_terminal()};
+  RunOptions ro{dir, o.progress && Progress::stderr_is_terminal(), scene_text, !o.resume.empty(),
+                &stop_signal};
   const RunSummary s = run_to_end(scene, *sim, ro);
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
@@ -113,6 +159,13 @@ int run_command(const RunCommandOptions& o) {
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,
                e.contacts, e.grains, e.escaped);
+  if (s.interrupted) {
+    fmt::print(stderr,
+               "stopped by signal {} at step {}; checkpoint written. Continue with: yuxi "
+               "run --resume {}\n",
+               static_cast<int>(stop_signal), sim->step_count(), dir.string());
+    return 128 + static_cast<int>(stop_signal);
+  }
   if (s.failed) {
     fmt::print(stderr, "error: the simulation stopped: {}\n", s.failure);
     fmt::print(stderr, "its last state is in {}\n", (dir / "failure.vtu").string());

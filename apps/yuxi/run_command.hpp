@@ -9,6 +9,7 @@ namespace yuxi {
 struct RunCommandOptions {
   std::string scene_path; // empty: the built-in default basin
   std::string output_dir; // empty: runs/<scene name>
+  std::string resume;     // a run folder to continue from its newest valid checkpoint
   bool overwrite = false;
   bool force_dt = false;
   std::optional<double> t_end;

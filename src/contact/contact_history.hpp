@@ -39,19 +39,42 @@ public:
   std::vector<State> pair;  // aligned with NeighborList::partners
   std::vector<State> plane; // aligned with NeighborList::planes
 
-  // Moves every non-default state into the stash, keyed by global ids.
-  void stash(const ParticleStore& s, const NeighborList& list) {
-    stash_.clear();
+  struct Entry {
+    ContactKey key;
+    State state; // as seen from key.first
+  };
+
+  // Every non-default state, keyed by global ids, in neighbour-list order.
+  std::vector<Entry> entries(const ParticleStore& s, const NeighborList& list) const {
+    std::vector<Entry> out;
     const State fresh{};
     for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
         if (pair[p] == fresh) continue;
         const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
-        stash_.emplace(ContactKey{std::min(a, b), std::max(a, b)},
-                       a < b ? pair[p] : pair[p].mirrored());
+        out.push_back({{std::min(a, b), std::max(a, b)}, a < b ? pair[p] : pair[p].mirrored()});
       }
     for (std::size_t k = 0; k < list.planes.size(); ++k)
-      if (!(plane[k] == fresh)) stash_.emplace(plane_key(s, list.planes[k]), plane[k]);
+      if (!(plane[k] == fresh)) out.push_back({plane_key(s, list.planes[k]), plane[k]});
+    return out;
+  }
+
+  // Moves every non-default state into the stash, keyed by global ids.
+  void stash(const ParticleStore& s, const NeighborList& list) {
+    stash_.clear();
+    for (const auto& e : entries(s, list)) stash_.emplace(e.key, e.state);
+  }
+
+  // Saves the states of the current list, or loads them into the stash for the next restore().
+  template <class Archive>
+  void checkpoint(Archive& ar, const ParticleStore& s, const NeighborList& list) {
+    std::vector<Entry> all;
+    if constexpr (!Archive::loading) all = entries(s, list);
+    ar.vector(all);
+    if constexpr (Archive::loading) {
+      stash_.clear();
+      for (const auto& e : all) stash_.emplace(e.key, e.state);
+    }
   }
 
   // Gives each entry of the new list its stashed state (or a fresh one).

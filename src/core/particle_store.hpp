@@ -71,6 +71,18 @@ public:
   void remove_owned(std::span<const std::uint8_t> remove_flag);
 
   bool is_grain(std::size_t i) const { return kind[i] == Kind::grain; }
+
+  // Saves or loads the owned particles, in their order (ghosts are not part of the state).
+  template <class Archive> void checkpoint(Archive& ar) {
+    std::uint64_t n = n_owned_;
+    ar.value(n);
+    if constexpr (Archive::loading) {
+      ar.check_room(n, sizeof(Vec3));
+      resize_all(n);
+      n_owned_ = n;
+    }
+    for_each_field([&](auto& field) { ar.elements(field.data(), n); });
+  }
   double max_radius() const;
 
 private:

@@ -1,14 +1,37 @@
 #include "io/energy_csv.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace yuxi {
 
-EnergyCsv::EnergyCsv(const std::filesystem::path& path) : file_(std::fopen(path.c_str(), "w")) {
+EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64_t> resume_after)
+    : file_(nullptr) {
+  if (resume_after) {
+    // Keep the header and the complete rows up to the checkpoint; later ones (and a row cut
+    // short by a crash) belong to the lost run.
+    std::ifstream in(path);
+    std::string kept, line, header;
+    std::getline(in, header);
+    kept = header + '\n';
+    const auto fields = std::count(header.begin(), header.end(), ',');
+    while (std::getline(in, line)) {
+      if (in.eof() || std::count(line.begin(), line.end(), ',') != fields) break; // cut short
+      if (std::stoll(line.substr(0, line.find(','))) <= *resume_after) kept += line + '\n';
+    }
+    in.close();
+    std::ofstream(path, std::ios::trunc) << kept;
+    file_ = std::fopen(path.c_str(), "a");
+  } else {
+    file_ = std::fopen(path.c_str(), "w");
+  }
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  fmt::print(file_, "step,time,translational,rotational,elastic,gravitational,mechanical,"
-                    "dissipated,wall_work,removed,balance,grains,contacts,escaped\n");
+  if (!resume_after)
+    fmt::print(file_, "step,time,translational,rotational,elastic,gravitational,mechanical,"
+                      "dissipated,wall_work,removed,balance,grains,contacts,escaped\n");
 }
 
 EnergyCsv::~EnergyCsv() {

@@ -4,14 +4,19 @@
 
 #include "analysis/energy_report.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace yuxi {
 
 class EnergyCsv {
 public:
-  explicit EnergyCsv(const std::filesystem::path& path);
+  // A new file; or, with `resume_after`, the existing one cut back to the rows of steps up to
+  // it and continued.
+  explicit EnergyCsv(const std::filesystem::path& path,
+                     std::optional<std::int64_t> resume_after = std::nullopt);
   ~EnergyCsv();
   EnergyCsv(const EnergyCsv&) = delete;
   EnergyCsv& operator=(const EnergyCsv&) = delete;

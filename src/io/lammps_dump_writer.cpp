@@ -1,12 +1,37 @@
 #include "io/lammps_dump_writer.hpp"
 
 #include <fmt/format.h>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace yuxi {
 
-LammpsDumpWriter::LammpsDumpWriter(const std::filesystem::path& path, const Box& box)
-    : file_(std::fopen(path.c_str(), "w")), box_(box) {
+LammpsDumpWriter::LammpsDumpWriter(const std::filesystem::path& path, const Box& box,
+                                   std::optional<std::int64_t> resume_after)
+    : file_(nullptr), box_(box) {
+  if (resume_after && std::filesystem::exists(path)) {
+    // Find where the first frame after the checkpoint starts, and cut the file there.
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    std::uintmax_t offset = 0, cut = std::filesystem::file_size(path);
+    bool next_is_step = false;
+    std::uintmax_t frame_start = 0;
+    while (std::getline(in, line)) {
+      if (next_is_step && std::stoll(line) > *resume_after) {
+        cut = frame_start;
+        break;
+      }
+      next_is_step = line == "ITEM: TIMESTEP";
+      if (next_is_step) frame_start = offset;
+      offset += line.size() + 1;
+    }
+    in.close();
+    std::filesystem::resize_file(path, cut);
+    file_ = std::fopen(path.c_str(), "a");
+  } else {
+    file_ = std::fopen(path.c_str(), "w");
+  }
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
 }
 

@@ -6,14 +6,19 @@
 #include "core/box.hpp"
 #include "core/particle_store.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace yuxi {
 
 class LammpsDumpWriter {
 public:
-  LammpsDumpWriter(const std::filesystem::path& path, const Box& box);
+  // A new file; or, with `resume_after`, the existing one cut before the first frame of a later
+  // step, continued.
+  LammpsDumpWriter(const std::filesystem::path& path, const Box& box,
+                   std::optional<std::int64_t> resume_after = std::nullopt);
   ~LammpsDumpWriter();
   LammpsDumpWriter(const LammpsDumpWriter&) = delete;
   LammpsDumpWriter& operator=(const LammpsDumpWriter&) = delete;

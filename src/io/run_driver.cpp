@@ -1,5 +1,6 @@
 #include "io/run_driver.hpp"
 
+#include "io/checkpoint_file.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/progress.hpp"
@@ -29,12 +30,29 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   const std::int64_t energy_every = every(scene.output.energy_interval, dt);
   const std::int64_t snapshot_every = every(scene.output.snapshot_interval, dt);
 
-  EnergyCsv energies(dir / "energies.csv");
+  const std::optional<std::int64_t> resume =
+      options.resumed ? std::optional<std::int64_t>(first) : std::nullopt;
+  EnergyCsv energies(dir / "energies.csv", resume);
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
-  if (scene.output.vtk && snapshot_every) vtk = std::make_unique<VtkSeries>(dir, "particles");
+  if (scene.output.vtk && snapshot_every)
+    vtk = std::make_unique<VtkSeries>(dir, "particles", resume);
   if (scene.output.lammps_dump && snapshot_every)
-    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box);
+    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume);
+  CheckpointSet checkpoints(dir, scene.checkpoint.keep);
+  const auto& policy = scene.checkpoint;
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  const auto stop_requested = [&] { return options.stop && *options.stop != 0; };
+  // A checkpoint is written after a step that rebuilt the neighbour list (see
+  // Simulation::checkpoint), so whether one is due is decided before the step.
+  const auto checkpoint_due = [&](std::int64_t next) {
+    if (next == last || stop_requested()) return true;
+    if (policy.every_steps > 0 && next % policy.every_steps == 0) return true;
+    const double minutes =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() /
+        60.0;
+    return policy.every_minutes > 0 && minutes >= policy.every_minutes;
+  };
   auto snapshot = [&] {
     if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time());
     if (dump) dump->write(sim.particles(), sim.step_count());
@@ -44,15 +62,27 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   Progress progress(first, last, options.show_progress);
   const auto start = std::chrono::steady_clock::now();
   double particle_steps = 0.0;
-  energies.write(sim.energies());
-  snapshot();
+  if (!options.resumed) {
+    energies.write(sim.energies());
+    snapshot();
+  }
   try {
     while (sim.step_count() < last) {
+      const bool checkpoint_now = checkpoint_due(sim.step_count() + 1);
+      if (checkpoint_now) sim.request_rebuild();
       sim.step();
       particle_steps += static_cast<double>(sim.particles().n_owned());
       const std::int64_t k = sim.step_count();
       if (k % energy_every == 0 || k == last) energies.write(sim.energies());
       if (snapshot_every && (k % snapshot_every == 0 || k == last)) snapshot();
+      if (checkpoint_now) {
+        checkpoints.write(options.scene_text, sim);
+        last_checkpoint = std::chrono::steady_clock::now();
+        if (stop_requested()) {
+          summary.interrupted = true;
+          break;
+        }
+      }
       progress.update(k, sim.time());
     }
   } catch (const SimulationError& e) {

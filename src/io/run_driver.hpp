@@ -2,12 +2,15 @@
 //   energies.csv          the energy books every output.energy_interval
 //   particles.pvd + .vtu  VTK snapshots every output.snapshot_interval (ParaView)
 //   particles.lammpstrj   the same frames as a LAMMPS dump (OVITO)
+//   checkpoints/          the run's state every [checkpoint] interval, on SIGINT/SIGTERM and at
+//                         the end (checkpoint_file.hpp); a resumed run continues every file
 //   failure.txt, failure.vtu   if the run had to stop: the diagnosis and the last state
 #pragma once
 
 #include "io/scene.hpp"
 #include "sim/simulation.hpp"
 
+#include <csignal>
 #include <filesystem>
 #include <string>
 
@@ -16,6 +19,9 @@ namespace yuxi {
 struct RunOptions {
   std::filesystem::path output_dir;
   bool show_progress = false;
+  std::string scene_text; // the resolved scene, stored in every checkpoint
+  bool resumed = false;   // the simulation was loaded from a checkpoint: continue the files
+  const volatile std::sig_atomic_t* stop = nullptr; // set by a signal: checkpoint and return
 };
 
 struct RunSummary {
@@ -24,7 +30,8 @@ struct RunSummary {
   double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
   EnergyReport final_energies;
   bool failed = false;
-  std::string failure; // the diagnosis when failed
+  bool interrupted = false; // stopped by a signal after writing a checkpoint
+  std::string failure;      // the diagnosis when failed
 };
 
 RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options);

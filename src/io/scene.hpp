@@ -28,6 +28,12 @@ struct OutputSettings {
   bool lammps_dump = true;
 };
 
+struct CheckpointSettings {
+  std::int64_t every_steps = 0; // 0: not by step count
+  double every_minutes = 10.0;  // of wall time; 0: not by time
+  int keep = 3;                 // newest checkpoints kept
+};
+
 // Elastic properties of a material, needed by models that mix them (Hertz-Mindlin). NaN where
 // the scene does not give them; youngs_modulus may be infinite (a rigid wall).
 struct MaterialProperties {
@@ -49,6 +55,7 @@ struct Scene {
   std::string dt_location; // "file:line:column" of run.dt, for the time-step check
   RunSettings run;
   OutputSettings output;
+  CheckpointSettings checkpoint;
   SimulationConfig sim;
   std::vector<std::string> materials;
   std::vector<MaterialProperties> material_properties; // parallel to materials

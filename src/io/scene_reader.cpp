@@ -51,6 +51,17 @@ void read_output(Scene& scene, TomlReader& root) {
   out->finish();
 }
 
+void read_checkpoint_settings(Scene& scene, TomlReader& root) {
+  auto c = root.table("checkpoint");
+  if (!c) return;
+  auto& k = scene.checkpoint;
+  k.every_steps =
+      c->integer("every_steps", k.every_steps, 0, std::numeric_limits<std::int64_t>::max());
+  k.every_minutes = c->non_negative("every_minutes", k.every_minutes);
+  k.keep = static_cast<int>(c->integer("keep", k.keep, 1, 1000));
+  c->finish();
+}
+
 void read_domain(Scene& scene, TomlReader& root) {
   auto d = root.table("domain");
   if (!d) root.fail("", "missing table [domain]");
@@ -422,6 +433,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_materials(scene, root);
   read_run(scene, root);
   read_output(scene, root);
+  read_checkpoint_settings(scene, root);
   read_domain(scene, root);
   read_contact(scene, root);
   read_planes(scene, root);

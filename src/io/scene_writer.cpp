@@ -45,6 +45,9 @@ std::string resolved_scene_toml(const Scene& s) {
                                    {"snapshot_interval", s.output.snapshot_interval},
                                    {"vtk", s.output.vtk},
                                    {"lammps_dump", s.output.lammps_dump}});
+  doc.insert("checkpoint", toml::table{{"every_steps", s.checkpoint.every_steps},
+                                       {"every_minutes", s.checkpoint.every_minutes},
+                                       {"keep", s.checkpoint.keep}});
   const auto& b = s.sim.box.boundary;
   toml::table domain{
       {"lo", vec(s.sim.box.lo)},

@@ -100,13 +100,36 @@ void write_vtu(const std::filesystem::path& path, const ParticleStore& s) {
   if (!out) throw std::runtime_error(fmt::format("error while writing {}", path.string()));
 }
 
-VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem)
-    : folder_(std::move(folder)), stem_(std::move(stem)) {}
+VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem,
+                     std::optional<std::int64_t> resume_after)
+    : folder_(std::move(folder)), stem_(std::move(stem)) {
+  if (!resume_after) return;
+  // Frames are <stem>_<step>.vtu; the .pvd lists them with their times.
+  std::ifstream in(folder_ / (stem_ + ".pvd"));
+  std::string line;
+  const std::string prefix = stem_ + "_";
+  while (std::getline(in, line)) {
+    const auto t = line.find("timestep=\""), f = line.find("file=\"");
+    if (t == std::string::npos || f == std::string::npos) continue;
+    const double time = std::stod(line.substr(t + 10));
+    const std::string file = line.substr(f + 6, line.find('"', f + 6) - f - 6);
+    const std::int64_t step = std::stoll(file.substr(prefix.size()));
+    if (step <= *resume_after)
+      frames_.emplace_back(time, file);
+    else
+      std::filesystem::remove(folder_ / file);
+  }
+  write_collection();
+}
 
 void VtkSeries::write(const ParticleStore& s, std::int64_t step, double time) {
   const std::string name = fmt::format("{}_{:09d}.vtu", stem_, step);
   write_vtu(folder_ / name, s);
   frames_.emplace_back(time, name);
+  write_collection();
+}
+
+void VtkSeries::write_collection() {
   const auto pvd = folder_ / (stem_ + ".pvd");
   const auto tmp = folder_ / (stem_ + ".pvd.tmp");
   {

@@ -5,7 +5,9 @@
 
 #include "core/particle_store.hpp"
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,13 +18,17 @@ void write_vtu(const std::filesystem::path& path, const ParticleStore& s);
 
 class VtkSeries {
 public:
-  explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles");
+  // A new series; or, with `resume_after`, the existing one without the frames after that step
+  // (their files are deleted), continued.
+  explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles",
+                     std::optional<std::int64_t> resume_after = std::nullopt);
   // Writes frame `<stem>_<step>.vtu` and updates `<stem>.pvd`.
   void write(const ParticleStore& s, std::int64_t step, double time);
 
 private:
   std::filesystem::path folder_;
   std::string stem_;
+  void write_collection();
   std::vector<std::pair<double, std::string>> frames_;
 };
 

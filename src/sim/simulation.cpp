@@ -143,8 +143,16 @@ void Simulation::step() {
   wall_work_ += tally_.wall_work;
 }
 
-void Simulation::rebuild() {
-  std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
+void Simulation::rebuild_after_load() {
+  // The stored particles are sorted and wrapped as at the rebuild before the checkpoint, so
+  // this rebuild reproduces that list; the history comes from the checkpoint's stash.
+  const auto counted = rebuilds_;
+  rebuild(false);
+  rebuilds_ = counted;
+}
+
+void Simulation::rebuild(bool stash_history) {
+  if (stash_history) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
   handle_escapes();
   // Wrap grains into the periodic box.
   for (std::size_t i = 0; i < store_.n_owned(); ++i)

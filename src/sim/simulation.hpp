@@ -92,6 +92,26 @@ public:
   std::size_t n_grains() const;
   StiffestContact stiffest_contact() const;
 
+  // Saves or loads the whole dynamic state: time, step, particles in their order, contact
+  // history, the last forces and energy tally, and the energy books. Save only right after a
+  // step that rebuilt the neighbour list (request_rebuild() before it): loading then rebuilds
+  // the identical list, so a resumed run continues bit for bit. Loading keeps the stored forces
+  // (they were computed with the half-step velocities) and computes none.
+  template <class Archive> void checkpoint(Archive& ar) {
+    ar.value(time_);
+    ar.value(step_);
+    ar.value(dissipated_);
+    ar.value(wall_work_);
+    ar.value(removed_energy_);
+    ar.value(rebuilds_);
+    ar.value(escaped_);
+    ar.value(tally_);
+    if constexpr (Archive::loading) store_.clear_ghosts();
+    store_.checkpoint(ar);
+    std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
+    if constexpr (Archive::loading) rebuild_after_load();
+  }
+
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
   void request_rebuild() { rebuild_requested_ = true; }
@@ -104,7 +124,8 @@ public:
 
 private:
   void place_walls(double t);
-  void rebuild();
+  void rebuild(bool stash_history = true);
+  void rebuild_after_load();
   void handle_escapes();
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
   // spring is incremented and nothing is dissipated).

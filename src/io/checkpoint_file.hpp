@@ -1,0 +1,66 @@
+// Checkpoint files: a run's whole state, written atomically and checked when read.
+//
+// Layout: "YUXICKPT" | u32 format version | u32 byte-order mark 0x01020304 | u64 payload size |
+// payload | u32 CRC-32 of the payload (zlib). The payload holds the resolved scene (TOML), the
+// step and time, and Simulation::checkpoint(). Files are written to a temporary name, flushed
+// to disk (fsync) and renamed, so a crash at any moment leaves either the previous checkpoint
+// or the new one, never half of one.
+#pragma once
+
+#include "sim/simulation.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+inline constexpr std::uint32_t checkpoint_format_version = 1;
+
+class CheckpointError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes `file` atomically with the scene and the simulation's state.
+void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
+                      Simulation& sim);
+
+// A verified checkpoint, not yet applied to a simulation.
+struct CheckpointData {
+  std::filesystem::path file;
+  std::string scene_text;
+  std::int64_t step = 0;
+  double time = 0;
+  std::string payload;          // all of it
+  std::size_t state_offset = 0; // where Simulation::checkpoint's data starts
+};
+
+// Reads and verifies a checkpoint; throws CheckpointError naming the file and the problem.
+CheckpointData read_checkpoint(const std::filesystem::path& file);
+// Verifies checkpoint bytes (for the fuzzer and tests); `name` labels the messages.
+CheckpointData parse_checkpoint(std::string bytes, const std::string& name);
+// Loads the state into a simulation built from the checkpoint's scene.
+void apply_checkpoint(const CheckpointData& data, Simulation& sim);
+
+// The checkpoints of a run folder: `<run>/checkpoints/checkpoint_<step>.yxc`.
+class CheckpointSet {
+public:
+  explicit CheckpointSet(std::filesystem::path run_folder, int keep = 3);
+  std::filesystem::path path_for(std::int64_t step) const;
+  // Writes one and removes the oldest beyond `keep`.
+  void write(const std::string& scene_text, Simulation& sim);
+  // Files present, newest first.
+  std::vector<std::filesystem::path> list() const;
+  // The newest checkpoint that verifies; each refused one is reported through `warn`.
+  std::optional<CheckpointData> newest_valid(std::vector<std::string>* warnings) const;
+
+private:
+  std::filesystem::path folder_;
+  int keep_;
+};
+
+} // namespace yuxi

@@ -1,0 +1,152 @@
+// Checkpoints: a run of 2N steps and a run of N steps, saved, loaded and run N more reach the
+// same state byte for byte; damaged checkpoint files are refused with messages that name the
+// file and the problem, and the newest valid one is used.
+#include "core/archive.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/scene_builder.hpp"
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+namespace yuxi {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene reliability_scene() {
+  return read_scene_file(YUXI_RELIABILITY_DIR "/basin.toml");
+}
+
+// Steps to `target`, rebuilding before every multiple of `every` as the run driver does before
+// writing a checkpoint there.
+void run_to(Simulation& sim, std::int64_t target, std::int64_t every) {
+  while (sim.step_count() < target) {
+    if ((sim.step_count() + 1) % every == 0) sim.request_rebuild();
+    sim.step();
+  }
+}
+
+std::string state_bytes(Simulation& sim) {
+  ArchiveWriter ar;
+  sim.checkpoint(ar);
+  return ar.data();
+}
+
+TEST(Checkpoint, ResumedRunMatchesTheUninterruptedOneByteForByte) {
+  const Scene scene = reliability_scene();
+  const std::int64_t n = 17000, every = 1000; // mid-flight: falling, landing, shaken walls
+  auto straight = build_simulation(scene, false);
+  run_to(*straight, 2 * n, every);
+
+  auto first = build_simulation(scene, false);
+  run_to(*first, n, every);
+  ArchiveWriter saved;
+  first->checkpoint(saved);
+  auto resumed = build_simulation(scene, false);
+  ArchiveReader reader(saved.data());
+  resumed->checkpoint(reader);
+  EXPECT_TRUE(reader.at_end());
+  run_to(*resumed, 2 * n, every);
+
+  ASSERT_GT(straight->energies().dissipated, 0.0); // contacts have happened
+  EXPECT_EQ(state_bytes(*straight), state_bytes(*resumed));
+  EXPECT_EQ(straight->energies().balance(), resumed->energies().balance());
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("yuxi_ckpt_" + name + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+struct Damage {
+  const char* what;
+  std::string (*apply)(std::string);
+  const char* expected;
+};
+
+class DamagedCheckpoint : public ::testing::TestWithParam<Damage> {};
+
+TEST_P(DamagedCheckpoint, IsRefusedWithAClearMessage) {
+  const Scene scene = reliability_scene();
+  auto sim = build_simulation(scene, false);
+  run_to(*sim, 1000, 1000);
+  const auto dir = temp_dir("damage");
+  write_checkpoint(dir / "c.yxc", resolved_scene_toml(scene), *sim);
+  const std::string good = slurp(dir / "c.yxc");
+  EXPECT_NO_THROW(parse_checkpoint(good, "c.yxc"));
+  try {
+    parse_checkpoint(GetParam().apply(good), "c.yxc");
+    FAIL() << GetParam().what << ": accepted";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find(GetParam().expected), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("c.yxc: ", 0), 0u) << "names the file: " << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, DamagedCheckpoint,
+    ::testing::Values(
+        Damage{"truncated", [](std::string b) { return b.substr(0, b.size() / 2); },
+               "truncated: the header announces"},
+        Damage{"flipped bit",
+               [](std::string b) {
+                 b[b.size() / 2] ^= 0x10;
+                 return b;
+               },
+               "checksum mismatch: the file is corrupt"},
+        Damage{"wrong version",
+               [](std::string b) {
+                 b[8] = 7;
+                 return b;
+               },
+               "checkpoint format version 7; this yuxi reads version 1"},
+        Damage{"not a checkpoint", [](std::string) { return std::string("hello, world: no"); },
+               "not a yuxi checkpoint"},
+        Damage{"empty", [](std::string) { return std::string(); }, "not a yuxi checkpoint"},
+        Damage{"trailing bytes", [](std::string b) { return b + "xx"; }, "trailing bytes"}),
+    [](const ::testing::TestParamInfo<Damage>& p) {
+      std::string n = p.param.what;
+      for (auto& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return n;
+    });
+
+TEST(Checkpoint, ACorruptNewestCheckpointFallsBackToThePreviousOne) {
+  const Scene scene = reliability_scene();
+  auto sim = build_simulation(scene, false);
+  const auto dir = temp_dir("set");
+  CheckpointSet set(dir, 3);
+  for (int k = 1; k <= 4; ++k) {
+    run_to(*sim, 1000 * k, 1000);
+    set.write(resolved_scene_toml(scene), *sim);
+  }
+  ASSERT_EQ(set.list().size(), 3u); // keeps the newest three
+  {
+    std::fstream f(set.path_for(4000), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x5a');
+  }
+  std::vector<std::string> refused;
+  const auto data = set.newest_valid(&refused);
+  ASSERT_TRUE(data.has_value());
+  EXPECT_EQ(data->step, 3000);
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_NE(refused[0].find("checkpoint_000000004000.yxc: checksum mismatch"), std::string::npos)
+      << refused[0];
+  fs::remove_all(dir);
+}
+
+} // namespace
+} // namespace yuxi
