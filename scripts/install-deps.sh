@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
-  clang-format zlib1g-dev
+  clang-format zlib1g-dev clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,11 +1,23 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
-# errors), checks formatting, and runs every test with ctest.
+# errors), checks formatting, runs every test with ctest, then the unit, validation, CLI and
+# crash tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer for a
+# few seconds on its kept corpus. Long validation cases: ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh
-cmake --preset release >/dev/null
+cmake --preset release > /dev/null
 cmake --build --preset release
 scripts/check-format.sh
+
+echo "== sanitizers (ASan + UBSan)"
+cmake --preset asan > /dev/null
+cmake --build --preset asan
+ctest --preset asan -L "unit|validation|cli|reliability"
+
+echo "== fuzzers (bounded)"
+tests/fuzz/run.sh "${YUXI_FUZZ_SECONDS:-10}"
+
+echo "== release"
 ctest --preset release

@@ -139,6 +139,8 @@ void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
   } catch (const std::length_error&) {
     throw CheckpointError(
         fmt::format("{}: a size field is impossible (corrupt)", data.file.string()));
+  } catch (const std::invalid_argument& e) { // the loaded particles do not fit the scene
+    throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
   }
 }
 

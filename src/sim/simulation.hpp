@@ -105,6 +105,7 @@ public:
     ar.value(removed_energy_);
     ar.value(rebuilds_);
     ar.value(escaped_);
+    ar.value(initial_balance_);
     ar.value(tally_);
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
@@ -126,12 +127,15 @@ private:
   void place_walls(double t);
   void rebuild(bool stash_history = true);
   void rebuild_after_load();
+  void validate_loaded_particles() const;
   void handle_escapes();
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
   // spring is incremented and nothing is dissipated).
   void compute_forces(bool advance_history = true);
   void check_health() const;
+  void check_energy_books() const;
   std::string describe_particle(std::size_t i) const;
+  std::string describe_contacts(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
 
   template <class> struct ForcesOf;
@@ -157,6 +161,7 @@ private:
   double dissipated_ = 0.0;
   double wall_work_ = 0.0;
   double removed_energy_ = 0.0;
+  double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   std::size_t escaped_ = 0;
