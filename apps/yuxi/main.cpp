@@ -1,4 +1,8 @@
 // yuxi: 3-D soft-sphere DEM for granular matter.
+#ifdef YUXI_HAVE_MPI
+#include <mpi.h>
+#endif
+
 #include "run_command.hpp"
 #include "validate_command.hpp"
 
@@ -6,7 +10,34 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+namespace {
+
+// Initialises MPI for the run's lifetime when yuxi is built with it (a single process is a
+// group of one); non-root ranks stay quiet.
+struct MpiSession {
+  MpiSession(int& argc, char**& argv) {
+#ifdef YUXI_HAVE_MPI
+    MPI_Init(&argc, &argv);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank != 0) spdlog::set_level(spdlog::level::off);
+#else
+    (void)argc, (void)argv;
+#endif
+  }
+  ~MpiSession() {
+#ifdef YUXI_HAVE_MPI
+    MPI_Finalize();
+#endif
+  }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+} // namespace
+
 int main(int argc, char** argv) {
+  MpiSession mpi(argc, argv);
   CLI::App app{"yuxi: 3-D soft-sphere DEM simulation of granular matter"};
   app.set_version_flag("--version", std::string("yuxi ") + YUXI_VERSION);
   app.require_subcommand(1);

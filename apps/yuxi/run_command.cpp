@@ -106,7 +106,10 @@ bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
   try {
     scene_text = data->scene_text;
     scene = read_scene_text(scene_text, (fs::path(o.resume) / "scene.resolved.toml").string());
-    if (o.t_end) scene.run.t_end = *o.t_end;
+    if (o.t_end) {
+      scene.run.t_end = *o.t_end;
+      scene_text = resolved_scene_toml(scene); // later checkpoints carry the new end
+    }
     BuildReport report;
     sim = build_simulation(scene, true, &report);
     apply_checkpoint(*data, *sim);
@@ -130,14 +133,24 @@ int run_command(const RunCommandOptions& o) {
     dir = o.resume;
   } else {
     if (!prepare(o, scene, sim)) return 2;
-    try {
-      dir = prepare_output(o, scene); // only once the scene is known to be good
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
+    // Rank 0 checks and creates the folder (only once the scene is known to be good); every
+    // rank learns the outcome.
+    std::string error;
+    scene_text = resolved_scene_toml(scene);
+    dir = o.output_dir.empty() ? fs::path("runs") / scene.run.name : fs::path(o.output_dir);
+    if (sim->comm().root()) {
+      try {
+        dir = prepare_output(o, scene);
+        std::ofstream(dir / "scene.resolved.toml") << scene_text;
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+    error = sim->comm().first_error(error);
+    if (!error.empty()) {
+      if (sim->comm().root()) fmt::print(stderr, "error: {}\n", error);
       return 2;
     }
-    scene_text = resolved_scene_toml(scene);
-    std::ofstream(dir / "scene.resolved.toml") << scene_text;
   }
   spdlog::info("writing to {}", dir.string());
   std::signal(SIGINT, on_stop_signal);
@@ -145,16 +158,25 @@ int run_command(const RunCommandOptions& o) {
 
   RunOptions ro{dir, o.progress && Progress::stderr_is_terminal(), scene_text, !o.resume.empty(),
                 &stop_signal};
+  if (sim->comm().size() > 1)
+    spdlog::info("{} MPI ranks: {}; owned particles max/mean {:.3f}", sim->comm().size(),
+                 sim->decomposition().describe(), sim->imbalance());
   const RunSummary s = run_to_end(scene, *sim, ro);
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
+  const double imbalance = sim->imbalance(); // collective
+  if (!sim->comm().root())
+    return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
                s.wall_seconds, static_cast<double>(s.steps) / std::max(s.wall_seconds, 1e-9),
                s.particle_steps_per_second);
   spdlog::info("time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  "
-               "({} list builds)",
+               "({} list builds){}",
                100 * t.pair / t.total(), 100 * t.neighbor / t.total(), 100 * t.comm / t.total(),
-               100 * t.integrate / t.total(), sim->rebuilds());
+               100 * t.integrate / t.total(), sim->rebuilds(),
+               sim->comm().size() > 1
+                   ? fmt::format("; load max/mean {:.3f} (rank 0's times)", imbalance)
+                   : std::string());
   spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,

@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -62,6 +64,7 @@ public:
   // Moves every non-default state into the stash, keyed by global ids.
   void stash(const ParticleStore& s, const NeighborList& list) {
     stash_.clear();
+    by_owner_.clear();
     for (const auto& e : entries(s, list)) stash_.emplace(e.key, e.state);
   }
 
@@ -97,11 +100,40 @@ public:
 
   std::size_t stashed() const { return stash_.size(); }
 
+  // Migration between ranks: the stashed states owned by particle `gid` (the contacts whose
+  // lower global id it has), packed as bytes and removed from the stash; and the reverse.
+  std::string take_owned_by(GlobalId gid) {
+    if (by_owner_.empty() && !stash_.empty())
+      for (const auto& [key, state] : stash_) by_owner_[key.first].push_back(key);
+    std::string out;
+    const auto it = by_owner_.find(gid);
+    if (it == by_owner_.end()) return out;
+    for (const ContactKey& key : it->second) {
+      const auto st = stash_.find(key);
+      if (st == stash_.end()) continue;
+      const Entry e{key, st->second};
+      out.append(reinterpret_cast<const char*>(&e), sizeof e);
+      stash_.erase(st);
+    }
+    by_owner_.erase(it);
+    return out;
+  }
+  void give(const std::string& bytes) {
+    for (std::size_t at = 0; at + sizeof(Entry) <= bytes.size(); at += sizeof(Entry)) {
+      Entry e;
+      std::memcpy(&e, bytes.data() + at, sizeof e);
+      stash_.insert_or_assign(e.key, e.state);
+      if (!by_owner_.empty()) by_owner_[e.key.first].push_back(e.key); // may move on again
+    }
+  }
+  void forget_owner_index() { by_owner_.clear(); }
+
 private:
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
   std::unordered_map<ContactKey, State, ContactKeyHash> stash_;
+  std::unordered_map<GlobalId, std::vector<ContactKey>> by_owner_; // built on first migration
 };
 
 } // namespace yuxi

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace yuxi {
@@ -51,9 +52,26 @@ public:
   std::vector<std::uint8_t> material;
   std::vector<std::uint16_t> motion;
 
+  // The list of fields: the one place that names them all.
+  static constexpr auto fields =
+      std::make_tuple(&ParticleStore::x, &ParticleStore::v, &ParticleStore::w, &ParticleStore::f,
+                      &ParticleStore::torque, &ParticleStore::x_rest, &ParticleStore::x_build,
+                      &ParticleStore::radius, &ParticleStore::mass, &ParticleStore::inv_mass,
+                      &ParticleStore::inv_inertia, &ParticleStore::gid, &ParticleStore::kind,
+                      &ParticleStore::material, &ParticleStore::motion);
+
   template <class F> void for_each_field(F&& fn) {
-    fn(x), fn(v), fn(w), fn(f), fn(torque), fn(x_rest), fn(x_build), fn(radius), fn(mass),
-        fn(inv_mass), fn(inv_inertia), fn(gid), fn(kind), fn(material), fn(motion);
+    std::apply([&](auto... member) { (fn(this->*member), ...); }, fields);
+  }
+  template <class F> void for_each_field(F&& fn) const {
+    std::apply([&](auto... member) { (fn(this->*member), ...); }, fields);
+  }
+  // Appends a copy of particle i of `other` as an owned particle (only while there are no
+  // ghosts).
+  void append_copy(const ParticleStore& other, std::size_t i) {
+    std::apply([&](auto... member) { ((this->*member).push_back((other.*member)[i]), ...); },
+               fields);
+    n_owned_ = size();
   }
 
   std::size_t size() const { return x.size(); }
@@ -74,6 +92,7 @@ public:
 
   // Saves or loads the owned particles, in their order (ghosts are not part of the state).
   template <class Archive> void checkpoint(Archive& ar) {
+    static_assert(!std::is_const_v<Archive>);
     std::uint64_t n = n_owned_;
     ar.value(n);
     if constexpr (Archive::loading) {

@@ -69,6 +69,10 @@ void write_atomically(const std::filesystem::path& file, const std::string& byte
 
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim) {
+  ArchiveWriter mine;
+  sim.checkpoint(mine);
+  std::vector<std::string> sections = sim.comm().gather(mine.data());
+  if (!sim.comm().root()) return;
   ArchiveWriter ar;
   std::string scene = scene_text;
   ar.string(scene);
@@ -76,7 +80,9 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
   double time = sim.time();
   ar.value(step);
   ar.value(time);
-  sim.checkpoint(ar);
+  std::uint64_t n = sections.size();
+  ar.value(n);
+  for (auto& sec : sections) ar.string(sec);
   const std::string& payload = ar.data();
   std::string bytes(magic, sizeof magic);
   put(bytes, checkpoint_format_version);
@@ -108,13 +114,17 @@ CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
   if (crc_of(bytes, header_size, size) != stored) fail("checksum mismatch: the file is corrupt");
   CheckpointData d;
   d.file = name;
-  d.payload = bytes.substr(header_size, size);
   try {
-    ArchiveReader ar(d.payload);
+    ArchiveReader ar(std::string_view(bytes).substr(header_size, size));
     ar.string(d.scene_text);
     ar.value(d.step);
     ar.value(d.time);
-    d.state_offset = sizeof(std::uint64_t) + d.scene_text.size() + sizeof d.step + sizeof d.time;
+    std::uint64_t n = 0;
+    ar.value(n);
+    ar.check_room(n, sizeof(std::uint64_t));
+    d.sections.resize(n);
+    for (auto& sec : d.sections) ar.string(sec);
+    if (!ar.at_end()) fail("unread data after the last section (corrupt)");
   } catch (const ArchiveError& e) {
     fail(e.what());
   }
@@ -130,8 +140,13 @@ CheckpointData read_checkpoint(const std::filesystem::path& file) {
 }
 
 void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
+  const auto ranks = static_cast<std::size_t>(sim.comm().size());
+  if (data.sections.size() != ranks)
+    throw CheckpointError(
+        fmt::format("{}: written by a run on {} rank(s); this run has {}. Resume on {} rank(s)",
+                    data.file.string(), data.sections.size(), ranks, data.sections.size()));
   try {
-    ArchiveReader ar(std::string_view(data.payload).substr(data.state_offset));
+    ArchiveReader ar(data.sections[static_cast<std::size_t>(sim.comm().rank())]);
     sim.checkpoint(ar);
     if (!ar.at_end()) throw ArchiveError("unread data after the state");
   } catch (const ArchiveError& e) {
@@ -152,10 +167,13 @@ std::filesystem::path CheckpointSet::path_for(std::int64_t step) const {
 }
 
 void CheckpointSet::write(const std::string& scene_text, Simulation& sim) {
-  std::filesystem::create_directories(folder_);
-  for (const auto& e : std::filesystem::directory_iterator(folder_)) // left by a crash mid-write
-    if (e.path().extension() == ".tmp") std::filesystem::remove(e.path());
+  if (sim.comm().root()) {
+    std::filesystem::create_directories(folder_);
+    for (const auto& e : std::filesystem::directory_iterator(folder_)) // left by a crash
+      if (e.path().extension() == ".tmp") std::filesystem::remove(e.path());
+  }
   write_checkpoint(path_for(sim.step_count()), scene_text, sim);
+  if (!sim.comm().root()) return;
   const auto files = list();
   for (std::size_t k = static_cast<std::size_t>(keep_); k < files.size(); ++k)
     std::filesystem::remove(files[k]);

@@ -2,9 +2,11 @@
 //
 // Layout: "YUXICKPT" | u32 format version | u32 byte-order mark 0x01020304 | u64 payload size |
 // payload | u32 CRC-32 of the payload (zlib). The payload holds the resolved scene (TOML), the
-// step and time, and Simulation::checkpoint(). Files are written to a temporary name, flushed
-// to disk (fsync) and renamed, so a crash at any moment leaves either the previous checkpoint
-// or the new one, never half of one.
+// step and time, and one section per MPI rank with that rank's Simulation::checkpoint(); rank 0
+// gathers the sections and writes the file. A run resumes on the same number of ranks, each
+// taking its own section, and so continues bit for bit. Files are written to a temporary name,
+// flushed to disk (fsync) and renamed, so a crash at any moment leaves either the previous
+// checkpoint or the new one, never half of one.
 #pragma once
 
 #include "sim/simulation.hpp"
@@ -18,14 +20,14 @@
 
 namespace yuxi {
 
-inline constexpr std::uint32_t checkpoint_format_version = 1;
+inline constexpr std::uint32_t checkpoint_format_version = 2;
 
 class CheckpointError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
 
-// Writes `file` atomically with the scene and the simulation's state.
+// Writes `file` atomically with the scene and every rank's state (collective).
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim);
 
@@ -35,15 +37,14 @@ struct CheckpointData {
   std::string scene_text;
   std::int64_t step = 0;
   double time = 0;
-  std::string payload;          // all of it
-  std::size_t state_offset = 0; // where Simulation::checkpoint's data starts
+  std::vector<std::string> sections; // Simulation::checkpoint of each rank
 };
 
 // Reads and verifies a checkpoint; throws CheckpointError naming the file and the problem.
 CheckpointData read_checkpoint(const std::filesystem::path& file);
 // Verifies checkpoint bytes (for the fuzzer and tests); `name` labels the messages.
 CheckpointData parse_checkpoint(std::string bytes, const std::string& name);
-// Loads the state into a simulation built from the checkpoint's scene.
+// Loads this rank's section into a simulation built from the checkpoint's scene.
 void apply_checkpoint(const CheckpointData& data, Simulation& sim);
 
 // The checkpoints of a run folder: `<run>/checkpoints/checkpoint_<step>.yxc`.

@@ -32,17 +32,25 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
 
   const std::optional<std::int64_t> resume =
       options.resumed ? std::optional<std::int64_t>(first) : std::nullopt;
-  EnergyCsv energies(dir / "energies.csv", resume);
+  // Files are written by rank 0, from energies reduced over ranks and gathered particles.
+  const bool root = sim.comm().root();
+  std::unique_ptr<EnergyCsv> energies;
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
-  if (scene.output.vtk && snapshot_every)
+  if (root) energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume);
+  if (root && scene.output.vtk && snapshot_every)
     vtk = std::make_unique<VtkSeries>(dir, "particles", resume);
-  if (scene.output.lammps_dump && snapshot_every)
+  if (root && scene.output.lammps_dump && snapshot_every)
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume);
+  const auto write_energies = [&] {
+    const EnergyReport e = sim.energies(); // collective
+    if (energies) energies->write(e);
+  };
   CheckpointSet checkpoints(dir, scene.checkpoint.keep);
   const auto& policy = scene.checkpoint;
   auto last_checkpoint = std::chrono::steady_clock::now();
-  const auto stop_requested = [&] { return options.stop && *options.stop != 0; };
+  // A signal reaches one rank or all; every rank must stop at the same step.
+  const auto stop_requested = [&] { return sim.comm().any(options.stop && *options.stop != 0); };
   // A checkpoint is written after a step that rebuilt the neighbour list (see
   // Simulation::checkpoint), so whether one is due is decided before the step.
   const auto checkpoint_due = [&](std::int64_t next) {
@@ -51,29 +59,33 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     const double minutes =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() /
         60.0;
-    return policy.every_minutes > 0 && minutes >= policy.every_minutes;
+    return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
   };
   auto snapshot = [&] {
-    if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time());
-    if (dump) dump->write(sim.particles(), sim.step_count());
+    if (!scene.output.vtk && !scene.output.lammps_dump) return;
+    const ParticleStore all = sim.gather_particles(); // collective
+    if (vtk) vtk->write(all, sim.step_count(), sim.time());
+    if (dump) dump->write(all, sim.step_count());
   };
 
   RunSummary summary;
-  Progress progress(first, last, options.show_progress);
+  Progress progress(first, last, options.show_progress && sim.comm().root());
+  const double n_particles =
+      static_cast<double>(sim.comm().sum(static_cast<std::int64_t>(sim.particles().n_owned())));
   const auto start = std::chrono::steady_clock::now();
   double particle_steps = 0.0;
   if (!options.resumed) {
-    energies.write(sim.energies());
-    snapshot();
+    write_energies();
+    if (snapshot_every) snapshot();
   }
   try {
     while (sim.step_count() < last) {
       const bool checkpoint_now = checkpoint_due(sim.step_count() + 1);
       if (checkpoint_now) sim.request_rebuild();
       sim.step();
-      particle_steps += static_cast<double>(sim.particles().n_owned());
+      particle_steps += n_particles;
       const std::int64_t k = sim.step_count();
-      if (k % energy_every == 0 || k == last) energies.write(sim.energies());
+      if (k % energy_every == 0 || k == last) write_energies();
       if (snapshot_every && (k % snapshot_every == 0 || k == last)) snapshot();
       if (checkpoint_now) {
         checkpoints.write(options.scene_text, sim);
@@ -89,8 +101,11 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     progress.finish();
     summary.failed = true;
     summary.failure = e.what();
-    std::ofstream(dir / "failure.txt") << e.what() << "\n";
-    write_vtu(dir / "failure.vtu", sim.particles());
+    const ParticleStore all = sim.gather_particles(); // every rank stopped together
+    if (root) {
+      std::ofstream(dir / "failure.txt") << e.what() << "\n";
+      write_vtu(dir / "failure.vtu", all);
+    }
   }
   progress.finish();
   summary.wall_seconds =

@@ -18,7 +18,9 @@ struct BuildReport {
 
 // Throws SceneError if dt > t_c / 10 for the stiffest contact, unless the scene sets
 // run.allow_large_dt or `force_dt` is given.
+// `comm`: the ranks that share the simulation (all of them by default).
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt,
-                                             BuildReport* report = nullptr);
+                                             BuildReport* report = nullptr,
+                                             Comm comm = Comm::world());
 
 } // namespace yuxi

@@ -89,6 +89,12 @@ void read_domain(Scene& scene, TomlReader& root) {
                     ? EscapePolicy::remove
                     : EscapePolicy::stop;
   c.max_overlap_ratio = d->positive("max_overlap_ratio", c.max_overlap_ratio);
+  if (d->has("ranks")) {
+    const auto r = d->int3("ranks", 0);
+    for (int a = 0; a < 3; ++a) c.ranks[a] = static_cast<int>(r[a]);
+  }
+  c.rebalance_every =
+      static_cast<int>(d->integer("rebalance_every", c.rebalance_every, 0, 1 << 30));
   const bool has_wall_faces = std::any_of(c.box.boundary.begin(), c.box.boundary.end(),
                                           [](Boundary b) { return b == Boundary::wall; });
   if (has_wall_faces) c.box_wall_material = material_of(scene, *d, "wall_material");

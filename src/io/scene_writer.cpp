@@ -149,8 +149,7 @@ std::string resolved_scene_toml(const Scene& s) {
     doc.insert("particle", parts);
   }
   std::ostringstream out;
-  out << "# Resolved scene: the input with every default filled in. Runs as it stands.\n"
-      << "# Source: " << s.source << "\n\n"
+  out << "# Resolved scene: the input with every default filled in. Runs as it stands.\n\n"
       << doc << "\n";
   return out.str();
 }

@@ -1,5 +1,7 @@
 #include "sim/simulation.hpp"
 
+#include "core/archive.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -42,7 +44,7 @@ void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
   }
 }
 
-CellGrid make_grid(SimulationConfig& c, const ParticleStore& s) {
+double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
   const double reach = contact_reach(s);
   if (c.cell_size > 0.0) {
     if (c.cell_size < reach)
@@ -53,18 +55,19 @@ CellGrid make_grid(SimulationConfig& c, const ParticleStore& s) {
   }
   if (c.skin < 0.0) throw std::invalid_argument("skin must not be negative");
   const double edge = std::max(c.cell_size, reach + c.skin);
-  return CellGrid(c.box, edge > 0.0 ? edge : 1.0);
+  return edge > 0.0 ? edge : 1.0;
 }
 
 } // namespace
 
 Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                        std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
-                       AnyContactLaw law)
-    : config_(std::move(config)), store_(std::move(particles)), planes_(std::move(planes)),
-      motions_(std::move(motions)), law_(std::move(law)),
+                       AnyContactLaw law, Comm comm)
+    : config_(std::move(config)), comm_(comm), decomp_(config_.box, comm_, config_.ranks),
+      store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
+      law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
-      grid_(make_grid(config_, store_)) {
+      cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   if (motions_.empty()) motions_.push_back(StaticMotion{});
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
@@ -73,6 +76,18 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                                               store_.gid[i], store_.motion[i], motions_.size()));
   add_box_walls(config_, planes_);
   range_ = config_.skin;
+  decomp_.set_min_slab(cell_edge_);
+  if (comm_.size() > 1) {
+    // Every rank holds every particle here: cut by particle count (unless balancing is off),
+    // keep this sub-domain's.
+    if (config_.rebalance_every > 0)
+      decomp_.balance(store_.x, std::vector<double>(store_.n_owned(), 1.0), comm_);
+    std::vector<std::uint8_t> elsewhere(store_.n_owned());
+    for (std::size_t i = 0; i < store_.n_owned(); ++i)
+      elsewhere[i] = decomp_.owns(config_.box.wrap(store_.x[i])) ? 0 : 1;
+    store_.remove_owned(elsewhere);
+    grid_ = CellGrid(decomp_.local_box(), cell_edge_);
+  }
   refresh();
   initial_balance_ = energies().balance();
 }
@@ -84,9 +99,9 @@ void Simulation::refresh() {
 }
 
 std::size_t Simulation::n_grains() const {
-  std::size_t n = 0;
+  std::int64_t n = 0;
   for (std::size_t i = 0; i < store_.n_owned(); ++i) n += store_.is_grain(i) ? 1 : 0;
-  return n;
+  return static_cast<std::size_t>(comm_.sum(n));
 }
 
 void Simulation::place_walls(double t) {
@@ -118,6 +133,9 @@ void Simulation::step() {
   for (std::size_t i = 0; i < n; ++i)
     if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
   timers_.integrate += seconds_since(t0);
+  t0 = Clock::now();
+  must_rebuild = comm_.any(must_rebuild);
+  timers_.comm += seconds_since(t0);
 
   // 2. Neighbour list or ghost refresh.
   t0 = Clock::now();
@@ -125,16 +143,16 @@ void Simulation::step() {
     rebuild();
     timers_.neighbor += seconds_since(t0);
   } else {
-    halo_.forward(store_);
+    halo_.forward(store_, comm_);
     timers_.comm += seconds_since(t0);
   }
 
   // 3. Forces.
   compute_forces();
 
-  // 4. Second half kick.
+  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
   t0 = Clock::now();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
     store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
@@ -178,10 +196,20 @@ void Simulation::rebuild_after_load() {
 
 void Simulation::rebuild(bool stash_history) {
   if (stash_history) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
+  if (comm_.size() > 1 && config_.rebalance_every > 0 && rebuilds_ > 0 &&
+      rebuilds_ % config_.rebalance_every == 0)
+    rebalance();
   handle_escapes();
-  // Wrap grains into the periodic box.
-  for (std::size_t i = 0; i < store_.n_owned(); ++i)
-    if (store_.is_grain(i)) store_.x[i] = config_.box.wrap(store_.x[i]);
+  // Wrap grains into the periodic box along axes that one rank spans; across ranks the
+  // migration shifts them.
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    if (!store_.is_grain(i)) continue;
+    Vec3 wrapped = config_.box.wrap(store_.x[i]);
+    for (int a = 0; a < 3; ++a)
+      if (decomp_.dims()[a] > 1) wrapped[a] = store_.x[i][a];
+    store_.x[i] = wrapped;
+  }
+  if (comm_.size() > 1) migrate();
   // Sort owned particles by cell so that neighbours sit close in memory.
   {
     const std::size_t n = store_.n_owned();
@@ -194,9 +222,7 @@ void Simulation::rebuild(bool stash_history) {
     for (std::size_t i = 0; i < n; ++i) order[count[cell[i]]++] = static_cast<std::uint32_t>(i);
     store_.permute_owned(order);
   }
-  const Vec3 edge = grid_.edge();
-  const double cutoff = std::min({edge.x, edge.y, edge.z});
-  halo_.build(store_, config_.box, cutoff);
+  halo_.build(store_, decomp_, comm_, cell_edge_);
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
   list_.planes.clear();
@@ -211,6 +237,70 @@ void Simulation::rebuild(bool stash_history) {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];
   ++rebuilds_;
   if (step_ > 0) check_energy_books();
+}
+
+void Simulation::migrate() {
+  // Particles go to the rank that owns their place now, each with the contact history it owns
+  // (the contacts whose lower global id it has); repeated until every rank holds only its own
+  // (one round unless the cut planes have just moved).
+  for (int round = 0; round < 64; ++round) {
+    std::visit(
+        [&](auto& f) {
+          Halo::migrate(
+              store_, decomp_, comm_,
+              [&](std::size_t i) { return f.history.take_owned_by(store_.gid[i]); },
+              [&](std::size_t, const std::string& bytes) { f.history.give(bytes); });
+        },
+        forces_);
+    bool stray = false;
+    for (std::size_t i = 0; i < store_.n_owned() && !stray; ++i) stray = !decomp_.owns(store_.x[i]);
+    if (!comm_.any(stray)) break;
+  }
+  std::visit([&](auto& f) { f.history.forget_owner_index(); }, forces_);
+}
+
+void Simulation::rebalance() {
+  // Cost of a particle: itself plus the pairs in its neighbour-list row.
+  std::vector<double> cost(store_.n_owned(), 1.0);
+  for (std::size_t i = 0; i + 1 < list_.offsets.size() && i < cost.size(); ++i)
+    cost[i] += list_.offsets[i + 1] - list_.offsets[i];
+  decomp_.balance(
+      std::vector<Vec3>(store_.x.begin(),
+                        store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),
+      cost, comm_);
+  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
+}
+
+void Simulation::stop_together(const std::string& local_error) const {
+  const std::string error = comm_.first_error(local_error);
+  if (!error.empty()) throw SimulationError(error);
+}
+
+double Simulation::imbalance() const {
+  const double n = static_cast<double>(store_.n_owned());
+  const double mean = comm_.sum(n) / comm_.size();
+  return mean > 0 ? comm_.max(n) / mean : 1.0;
+}
+
+ParticleStore Simulation::gather_particles() const {
+  ArchiveWriter out;
+  ParticleStore mine = store_; // owned only, for the archive
+  mine.clear_ghosts();
+  mine.checkpoint(out);
+  const auto parts = comm_.gather(out.data());
+  ParticleStore all;
+  if (!comm_.root()) return all;
+  std::vector<ParticleStore> stores(parts.size());
+  std::vector<std::pair<GlobalId, std::pair<std::size_t, std::size_t>>> order;
+  for (std::size_t r = 0; r < parts.size(); ++r) {
+    ArchiveReader in(parts[r]);
+    stores[r].checkpoint(in);
+    for (std::size_t i = 0; i < stores[r].n_owned(); ++i)
+      order.push_back({stores[r].gid[i], {r, i}});
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [gid, where] : order) all.append_copy(stores[where.first], where.second);
+  return all;
 }
 
 void Simulation::check_energy_books() const {
@@ -239,6 +329,16 @@ void Simulation::check_energy_books() const {
 }
 
 void Simulation::handle_escapes() {
+  std::string error;
+  try {
+    handle_escapes_here();
+  } catch (const SimulationError& e) {
+    error = e.what();
+  }
+  stop_together(error);
+}
+
+void Simulation::handle_escapes_here() {
   const std::size_t n = store_.n_owned();
   std::vector<std::uint8_t> gone(n, 0);
   std::size_t count = 0;
@@ -277,14 +377,15 @@ void Simulation::compute_forces(bool advance_history) {
              forces_);
   timers_.pair += seconds_since(t0);
   t0 = Clock::now();
-  halo_.reverse(store_);
+  halo_.reverse(store_, comm_);
   timers_.comm += seconds_since(t0);
   check_health();
 }
 
 void Simulation::check_health() const {
+  std::string error;
   if (tally_.max_overlap_ratio > config_.max_overlap_ratio)
-    throw SimulationError(fmt::format(
+    error = (fmt::format(
         "step {}, t = {}: overlap of {:.3g} times the smaller radius (limit {}) at {}; the time "
         "step is too large for the contact stiffness or the impact speed",
         step_, time_, tally_.max_overlap_ratio, config_.max_overlap_ratio,
@@ -331,12 +432,22 @@ EnergyReport Simulation::energies() const {
     e.gravitational -= store_.mass[i] * dot(config_.gravity, store_.x[i]);
     ++e.grains;
   }
-  e.elastic = tally_.elastic;
-  e.dissipated = dissipated_;
-  e.wall_work = wall_work_;
-  e.removed = removed_energy_;
-  e.contacts = tally_.touching;
-  e.escaped = escaped_;
+  double sums[] = {e.translational,
+                   e.rotational,
+                   e.gravitational,
+                   tally_.elastic,
+                   dissipated_,
+                   wall_work_,
+                   removed_energy_,
+                   static_cast<double>(e.grains),
+                   static_cast<double>(tally_.touching),
+                   static_cast<double>(escaped_)};
+  comm_.sum(sums, 10);
+  e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
+  e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
+  e.grains = static_cast<std::size_t>(sums[7]);
+  e.contacts = static_cast<std::size_t>(sums[8]);
+  e.escaped = static_cast<std::size_t>(sums[9]);
   return e;
 }
 
@@ -365,6 +476,11 @@ StiffestContact Simulation::stiffest_contact() const {
   }
   for (const auto& p : planes_)
     if (p.material < n_mat) on_wall[p.material] = true;
+  for (std::size_t k = 0; k < n_mat; ++k) { // over all ranks
+    m_min[k] = -comm_.max(-m_min[k]);
+    r_min[k] = -comm_.max(-r_min[k]);
+    on_wall[k] = comm_.any(on_wall[k]);
+  }
   StiffestContact best{inf, 0, 0, 0};
   std::visit(
       [&](const auto& f) {

@@ -15,11 +15,14 @@
 #include "core/cell_grid.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/particle_store.hpp"
-#include "domain/periodic_halo.hpp"
+#include "domain/comm.hpp"
+#include "domain/decomposition.hpp"
+#include "domain/halo.hpp"
 #include "scene/plane_wall.hpp"
 #include "scene/wall_motion.hpp"
 #include "sim/contact_forces.hpp"
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <stdexcept>
@@ -41,6 +44,8 @@ struct SimulationConfig {
   EscapePolicy on_escape = EscapePolicy::stop;
   std::uint8_t box_wall_material = 0; // material of the flat walls on Boundary::wall faces
   double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
+  std::array<int, 3> ranks{0, 0, 0};  // MPI ranks per axis; 0 = chosen automatically
+  int rebalance_every = 50;           // move the cut planes every this many rebuilds (0: never)
 };
 
 // The run cannot go on; what() holds the diagnosis (step, grain, position, velocity).
@@ -64,8 +69,10 @@ struct StiffestContact {
 
 class Simulation {
 public:
+  // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
+  // of ranks that share the simulation (a group of one: serial).
   Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
-             std::vector<WallMotion> motions, AnyContactLaw law);
+             std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world());
 
   void step();
   void run(std::int64_t n_steps) {
@@ -75,10 +82,18 @@ public:
   double time() const { return time_; }
   std::int64_t step_count() const { return step_; }
   const SimulationConfig& config() const { return config_; }
+  // This rank's particles (all of them when serial).
   const ParticleStore& particles() const { return store_; }
+  // Every rank's owned particles, sorted by global id, on rank 0 (empty elsewhere). Collective.
+  ParticleStore gather_particles() const;
+  const Comm& comm() const { return comm_; }
+  const Decomposition& decomposition() const { return decomp_; }
+  // Owned particles per rank, max over mean (1 when serial). Collective.
+  double imbalance() const;
   const std::vector<PlaneWall>& planes() const { return planes_; }
   const NeighborList& neighbor_list() const { return list_; }
   const CellGrid& grid() const { return grid_; }
+  double cell_edge() const { return cell_edge_; }
   const AnyContactLaw& contact_law() const { return law_; }
   EnergyReport energies() const;
   const ContactTally& last_tally() const { return tally_; }
@@ -107,6 +122,11 @@ public:
     ar.value(escaped_);
     ar.value(initial_balance_);
     ar.value(tally_);
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> cuts = decomp_.cuts(a);
+      ar.vector(cuts);
+      if constexpr (Archive::loading) decomp_.set_cuts(a, cuts);
+    }
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
     std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
@@ -126,9 +146,13 @@ public:
 private:
   void place_walls(double t);
   void rebuild(bool stash_history = true);
+  void migrate();
+  void rebalance();
+  void stop_together(const std::string& local_error) const;
   void rebuild_after_load();
   void validate_loaded_particles() const;
   void handle_escapes();
+  void handle_escapes_here();
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
   // spring is incremented and nothing is dissipated).
   void compute_forces(bool advance_history = true);
@@ -145,15 +169,18 @@ private:
   using Forces = typename ForcesOf<AnyContactLaw>::type;
 
   SimulationConfig config_;
+  Comm comm_;
+  Decomposition decomp_;
   ParticleStore store_;
   std::vector<PlaneWall> planes_;
   std::vector<WallMotion> motions_;
   AnyContactLaw law_;
   Forces forces_;
-  double range_ = 0.0; // neighbour range beyond touching (the skin)
+  double cell_edge_ = 0.0; // linked-cell edge >= largest contact distance + skin
   CellGrid grid_;
+  double range_ = 0.0; // neighbour range beyond touching (the skin)
   NeighborList list_;
-  PeriodicHalo halo_;
+  Halo halo_;
   ContactTally tally_;
   ContactRecord record_;
   double time_ = 0.0;

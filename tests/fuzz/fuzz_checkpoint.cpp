@@ -52,8 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   auto sim = yuxi::build_simulation(scene, false);
   yuxi::CheckpointData d;
   d.file = "fuzz.yxc";
-  d.payload = bytes;
-  d.state_offset = 0;
+  d.sections = {bytes};
   try {
     yuxi::apply_checkpoint(d, *sim);
     sim->run(2);

@@ -13,8 +13,11 @@ mkdir -p "$work"
 "$yuxi" run "$scene" -o "$work/reference" --no-progress > "$work/reference.log" 2>&1
 
 RANDOM=2008 # reproducible kill moments
+# A run can be killed before its first checkpoint is complete (only a .tmp exists): then there
+# is nothing to resume from and it starts again.
+has_checkpoint() { compgen -G "$work/killed/checkpoints/*.yxc" > /dev/null; }
 for k in $(seq 1 "$kills"); do
-  if [[ -n "$(ls "$work/killed/checkpoints" 2> /dev/null)" ]]; then
+  if has_checkpoint; then
     cmd=("$yuxi" run --resume "$work/killed" --no-progress)
   else # killed before its first checkpoint: nothing to resume, start again
     cmd=("$yuxi" run "$scene" -o "$work/killed" --overwrite --no-progress)
@@ -26,7 +29,7 @@ for k in $(seq 1 "$kills"); do
   wait "$pid" 2> /dev/null || true
   echo "kill $k: $(ls "$work/killed/checkpoints" 2> /dev/null | tail -1)"
 done
-if [[ -n "$(ls "$work/killed/checkpoints" 2> /dev/null)" ]]; then
+if has_checkpoint; then
   "$yuxi" run --resume "$work/killed" --no-progress > "$work/final.log" 2>&1
 else
   "$yuxi" run "$scene" -o "$work/killed" --overwrite --no-progress > "$work/final.log" 2>&1

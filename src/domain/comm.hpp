@@ -1,0 +1,50 @@
+// The process group a simulation runs on: the one place where MPI calls are made. Built
+// without MPI (or run on one rank) it is a group of one, and every operation is local.
+//
+// Everything that crosses ranks is bytes: particles, ghost fields and contact histories are
+// packed by their owners (the domain layer never depends on contact models).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+class Comm {
+public:
+  // The whole job (MPI_COMM_WORLD), or a group of one if MPI is not initialised or not built.
+  static Comm world();
+  // A group of one (MPI_COMM_SELF): a serial run inside an MPI job.
+  static Comm self();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+
+  double sum(double v) const;
+  void sum(double* values, int n) const;
+  std::int64_t sum(std::int64_t v) const;
+  double max(double v) const;
+  bool any(bool v) const;
+  // Sends `out` to `dest` and receives from `source` (either may be this rank).
+  std::string send_receive(int dest, const std::string& out, int source, int tag) const;
+  // Rank 0 gets every rank's bytes, in rank order; the others get nothing.
+  std::vector<std::string> gather(const std::string& mine) const;
+  // Every rank gets every rank's bytes.
+  std::vector<std::string> all_gather(const std::string& mine) const;
+  // Rank 0's bytes on every rank.
+  std::string broadcast(const std::string& from_root) const;
+  // The message of the lowest rank whose message is not empty ("" if none): lets every rank
+  // stop together with one diagnosis.
+  std::string first_error(const std::string& mine) const;
+
+private:
+  static Comm from_handle(std::intptr_t handle); // reads rank and size from MPI
+  Comm(std::intptr_t handle, int rank, int size) : handle_(handle), rank_(rank), size_(size) {}
+  std::intptr_t handle_; // MPI_Comm stored as an integer (0: no MPI)
+  int rank_;
+  int size_;
+};
+
+} // namespace yuxi

@@ -1,0 +1,163 @@
+#include "domain/halo.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+namespace yuxi {
+namespace {
+
+template <class T> void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T> T take(const std::string& in, std::size_t& at) {
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return v;
+}
+
+// Every field of particle i, shifted.
+void pack_particle(const ParticleStore& s, std::size_t i, const Vec3& shift, std::string& out) {
+  s.for_each_field([&](const auto& field) {
+    auto value = field[i];
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Vec3>) {
+      if (&field == &s.x || &field == &s.x_rest || &field == &s.x_build) value += shift;
+    }
+    put(out, value);
+  });
+}
+
+void unpack_particle(ParticleStore& s, const std::string& in, std::size_t& at, std::size_t i) {
+  s.for_each_field([&](auto& field) {
+    using T = std::decay_t<decltype(field[0])>;
+    field[i] = take<T>(in, at);
+  });
+}
+
+int tag_of(int axis, int dir) {
+  return 100 + 4 * axis + (dir > 0 ? 2 : 0);
+}
+
+} // namespace
+
+void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff) {
+  s.clear_ghosts();
+  swaps_.clear();
+  const Vec3 lo = d.local_box().lo, hi = d.local_box().hi;
+  for (int a = 0; a < 3; ++a) {
+    if (d.dims()[a] > 1 || d.box().periodic(a)) {
+      if (d.min_width(a) < cutoff)
+        throw std::invalid_argument("a sub-domain is narrower than the interaction cutoff: use "
+                                    "fewer ranks along that axis");
+    }
+    const std::size_t n_now = s.size();
+    for (int dir : {-1, +1}) {
+      Swap w;
+      w.send_to = d.neighbor(a, dir);
+      w.receive_from = d.neighbor(a, -dir);
+      if (w.send_to < 0 && w.receive_from < 0) continue;
+      if (d.wraps(a, dir)) w.shift[a] = -dir * d.box().length(a);
+      std::string out;
+      if (w.send_to >= 0)
+        for (std::uint32_t k = 0; k < n_now; ++k) {
+          const bool near = dir < 0 ? s.x[k][a] < lo[a] + cutoff : s.x[k][a] >= hi[a] - cutoff;
+          if (!near) continue;
+          w.sends.push_back(k);
+          pack_particle(s, k, w.shift, out);
+        }
+      const std::string in = comm.send_receive(w.send_to, out, w.receive_from, tag_of(a, dir));
+      w.first = static_cast<std::uint32_t>(s.size());
+      std::size_t at = 0;
+      while (at < in.size()) {
+        const std::size_t g = s.size();
+        s.add_ghost(0, {}); // grows every field; overwritten next
+        unpack_particle(s, in, at, g);
+      }
+      w.count = static_cast<std::uint32_t>(s.size() - w.first);
+      swaps_.push_back(std::move(w));
+    }
+  }
+  n_ghosts_ = s.n_ghost();
+}
+
+void Halo::forward(ParticleStore& s, const Comm& comm) const {
+  for (std::size_t k = 0; k < swaps_.size(); ++k) {
+    const Swap& w = swaps_[k];
+    std::string out;
+    out.reserve(w.sends.size() * 3 * sizeof(Vec3));
+    for (auto i : w.sends) {
+      put(out, s.x[i] + w.shift);
+      put(out, s.v[i]);
+      put(out, s.w[i]);
+    }
+    const std::string in =
+        comm.send_receive(w.send_to, out, w.receive_from, 200 + 2 * static_cast<int>(k));
+    std::size_t at = 0;
+    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {
+      s.x[g] = take<Vec3>(in, at);
+      s.v[g] = take<Vec3>(in, at);
+      s.w[g] = take<Vec3>(in, at);
+    }
+  }
+}
+
+void Halo::reverse(ParticleStore& s, const Comm& comm) const {
+  for (std::size_t k = swaps_.size(); k-- > 0;) {
+    const Swap& w = swaps_[k];
+    std::string out;
+    out.reserve(w.count * 2 * sizeof(Vec3));
+    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {
+      put(out, s.f[g]);
+      put(out, s.torque[g]);
+    }
+    // back the way the ghosts came: to the rank they were received from
+    const std::string in =
+        comm.send_receive(w.receive_from, out, w.send_to, 400 + 2 * static_cast<int>(k));
+    std::size_t at = 0;
+    for (auto i : w.sends) {
+      s.f[i] += take<Vec3>(in, at);
+      s.torque[i] += take<Vec3>(in, at);
+    }
+  }
+}
+
+void Halo::migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
+                   const std::function<std::string(std::size_t)>& payload,
+                   const std::function<void(std::size_t, const std::string&)>& arrived) {
+  s.clear_ghosts();
+  const Vec3 lo = d.lo(), hi = d.hi();
+  for (int a = 0; a < 3; ++a) {
+    if (d.dims()[a] == 1) continue; // periodic wrap alone is done by the caller
+    for (int dir : {-1, +1}) {
+      const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
+      std::string out;
+      std::vector<std::uint8_t> leaving(s.n_owned(), 0);
+      Vec3 shift;
+      if (d.wraps(a, dir)) shift[a] = -dir * d.box().length(a);
+      if (to >= 0)
+        for (std::size_t i = 0; i < s.n_owned(); ++i) {
+          const bool out_here = dir < 0 ? s.x[i][a] < lo[a] : s.x[i][a] >= hi[a];
+          if (!out_here) continue;
+          leaving[i] = 1;
+          pack_particle(s, i, shift, out);
+          const std::string p = payload(i);
+          put(out, static_cast<std::uint64_t>(p.size()));
+          out += p;
+        }
+      s.remove_owned(leaving);
+      const std::string in = comm.send_receive(to, out, from, 600 + 4 * a + (dir > 0 ? 2 : 0));
+      std::size_t at = 0;
+      while (at < in.size()) {
+        ParticleSpec dummy;
+        const std::size_t i = s.add(dummy, 0);
+        unpack_particle(s, in, at, i);
+        const auto n = take<std::uint64_t>(in, at);
+        arrived(i, in.substr(at, n));
+        at += n;
+      }
+    }
+  }
+}
+
+} // namespace yuxi
