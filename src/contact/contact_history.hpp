@@ -127,6 +127,15 @@ public:
     }
   }
   void forget_owner_index() { by_owner_.clear(); }
+  // Every stashed state as bytes (for give()).
+  std::string stashed_bytes() const {
+    std::string out;
+    for (const auto& [key, state] : stash_) {
+      const Entry e{key, state};
+      out.append(reinterpret_cast<const char*>(&e), sizeof e);
+    }
+    return out;
+  }
 
 private:
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {

@@ -141,11 +141,12 @@ CheckpointData read_checkpoint(const std::filesystem::path& file) {
 
 void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
   const auto ranks = static_cast<std::size_t>(sim.comm().size());
-  if (data.sections.size() != ranks)
-    throw CheckpointError(
-        fmt::format("{}: written by a run on {} rank(s); this run has {}. Resume on {} rank(s)",
-                    data.file.string(), data.sections.size(), ranks, data.sections.size()));
   try {
+    if (data.sections.empty()) throw ArchiveError("no rank's state in the file");
+    if (data.sections.size() != ranks) { // written on another number of ranks: redistribute
+      sim.load_redistributed(data.sections);
+      return;
+    }
     ArchiveReader ar(data.sections[static_cast<std::size_t>(sim.comm().rank())]);
     sim.checkpoint(ar);
     if (!ar.at_end()) throw ArchiveError("unread data after the state");

@@ -3,10 +3,11 @@
 // Layout: "YUXICKPT" | u32 format version | u32 byte-order mark 0x01020304 | u64 payload size |
 // payload | u32 CRC-32 of the payload (zlib). The payload holds the resolved scene (TOML), the
 // step and time, and one section per MPI rank with that rank's Simulation::checkpoint(); rank 0
-// gathers the sections and writes the file. A run resumes on the same number of ranks, each
-// taking its own section, and so continues bit for bit. Files are written to a temporary name,
-// flushed to disk (fsync) and renamed, so a crash at any moment leaves either the previous
-// checkpoint or the new one, never half of one.
+// gathers the sections and writes the file. A run resumed on the same number of ranks takes
+// each rank's own section and continues bit for bit; on another number the particles and
+// contact states are redistributed (Simulation::load_redistributed): correct, not bitwise. Files
+// are written to a temporary name, flushed to disk (fsync) and renamed, so a crash at any moment
+// leaves either the previous checkpoint or the new one, never half of one.
 #pragma once
 
 #include "sim/simulation.hpp"

@@ -185,6 +185,40 @@ void Simulation::validate_loaded_particles() const {
     throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
 }
 
+void Simulation::load_redistributed(const std::vector<std::string>& sections) {
+  ParticleStore pool;
+  std::string states;
+  double books[4] = {0, 0, 0, 0}; // dissipated, wall work, removed, escaped
+  ContactTally tally;
+  merging_ = true;
+  for (const auto& section : sections) {
+    ArchiveReader ar(section);
+    checkpoint(ar);
+    if (!ar.at_end()) throw ArchiveError("unread data after a section");
+    for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
+    std::visit([&](auto& f) { states += f.history.stashed_bytes(); }, forces_);
+    books[0] += dissipated_, books[1] += wall_work_, books[2] += removed_energy_;
+    books[3] += static_cast<double>(escaped_);
+    tally.elastic += tally_.elastic;
+    tally.touching += tally_.touching;
+  }
+  merging_ = false;
+  // This run's own decomposition: cut by particle count, keep this sub-domain's particles.
+  if (comm_.size() > 1) decomp_.balance(pool.x, std::vector<double>(pool.n_owned(), 1.0), comm_);
+  store_ = ParticleStore{};
+  for (std::size_t i = 0; i < pool.n_owned(); ++i)
+    if (comm_.size() == 1 || decomp_.owns(config_.box.wrap(pool.x[i]))) store_.append_copy(pool, i);
+  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
+  std::visit([&](auto& f) { f.history.give(states); }, forces_);
+  const bool root = comm_.root();
+  dissipated_ = root ? books[0] : 0;
+  wall_work_ = root ? books[1] : 0;
+  removed_energy_ = root ? books[2] : 0;
+  escaped_ = root ? static_cast<std::size_t>(books[3]) : 0;
+  tally_ = root ? tally : ContactTally{};
+  rebuild_after_load();
+}
+
 void Simulation::rebuild_after_load() {
   validate_loaded_particles();
   // The stored particles are sorted and wrapped as at the rebuild before the checkpoint, so

@@ -125,13 +125,21 @@ public:
     for (int a = 0; a < 3; ++a) {
       std::vector<double> cuts = decomp_.cuts(a);
       ar.vector(cuts);
-      if constexpr (Archive::loading) decomp_.set_cuts(a, cuts);
+      if constexpr (Archive::loading)
+        if (!merging_) decomp_.set_cuts(a, cuts);
     }
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
     std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
-    if constexpr (Archive::loading) rebuild_after_load();
+    if constexpr (Archive::loading)
+      if (!merging_) rebuild_after_load();
   }
+
+  // Loads the sections of a checkpoint written by another number of ranks: every rank reads
+  // them all and keeps its sub-domain's particles (cut afresh by particle count) and the
+  // contact states; rank 0 carries the energy books. A correct continuation, not a bitwise one
+  // (the summation order changes with the decomposition).
+  void load_redistributed(const std::vector<std::string>& sections);
 
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
@@ -191,6 +199,7 @@ private:
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
+  bool merging_ = false; // load_redistributed() is reading sections
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };
