@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
-# errors), checks formatting, runs every test with ctest, then the unit, validation, CLI and
-# crash tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer for a
-# few seconds on its kept corpus. Long validation cases: ctest --preset long.
+# errors), checks formatting, runs the unit, validation, CLI, crash and MPI tests under
+# AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer for a
+# few seconds on its kept corpus, then every test in Release. Long validation cases:
+# ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,7 +15,7 @@ scripts/check-format.sh
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null
 cmake --build --preset asan
-ctest --preset asan -L "unit|validation|cli|reliability"
+ctest --preset asan -L "unit|validation|cli|reliability|mpi"
 
 echo "== fuzzers (bounded)"
 tests/fuzz/run.sh "${YUXI_FUZZ_SECONDS:-10}"

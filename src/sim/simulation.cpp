@@ -230,8 +230,10 @@ void Simulation::rebuild_after_load() {
 
 void Simulation::rebuild(bool stash_history) {
   if (stash_history) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
-  if (comm_.size() > 1 && config_.rebalance_every > 0 && rebuilds_ > 0 &&
-      rebuilds_ % config_.rebalance_every == 0)
+  // Rebalance by measured cost at the first rebuild after the start (the start could only
+  // count particles), then every rebalance_every rebuilds.
+  if (comm_.size() > 1 && config_.rebalance_every > 0 &&
+      (rebuilds_ == 1 || (rebuilds_ > 0 && rebuilds_ % config_.rebalance_every == 0)))
     rebalance();
   handle_escapes();
   // Wrap grains into the periodic box along axes that one rank spans; across ranks the
