@@ -47,6 +47,7 @@ public:
       }
       if (w.size() == 2 && w[1] == "atoms") {
         n_atoms = integer(w[0], "number of atoms");
+        if (n_atoms < 0) fail("the number of atoms must not be negative");
       } else if (w.size() == 3 && w[1] == "atom" && w[2] == "types") {
         d.n_types = static_cast<int>(integer(w[0], "number of atom types"));
       } else if (w.size() == 4 && w[2].size() == 3 && w[2].substr(1) == "lo" && w[3].size() == 3 &&
@@ -118,6 +119,8 @@ private:
       if (!next(line)) fail(fmt::format("{} ends after {} of {} lines", name, read, count));
       const auto w = words(line);
       if (w.empty()) continue;
+      if (is_section(w))
+        fail(fmt::format("{} holds {} lines; the header announces {} atoms", name, read, count));
       each(w);
       ++read;
     }
@@ -125,7 +128,8 @@ private:
 
   void read_atoms(LammpsData& d, std::int64_t n,
                   std::unordered_map<std::int64_t, std::size_t>& index) {
-    d.atoms.reserve(static_cast<std::size_t>(n));
+    // The header's count is not trusted for memory: an Atoms line takes at least 14 bytes.
+    d.atoms.reserve(std::min(static_cast<std::size_t>(n), text_.size() / 14 + 1));
     body(n, "Atoms", [&](const std::vector<std::string_view>& w) {
       if (w.size() != 7 && w.size() != 10)
         fail(fmt::format("an Atoms line of atom_style sphere has 7 or 10 columns (id type "

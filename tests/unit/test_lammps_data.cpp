@@ -65,6 +65,10 @@ TEST_P(BrokenData, IsRefusedWithFileAndLine) {
 INSTANTIATE_TEST_SUITE_P(
     Table, BrokenData,
     ::testing::Values(
+        Broken{"huge atom count (fuzzer finding)", "3 atoms", "320032000 atoms",
+               "small.data:14: Atoms holds 3 lines; the header announces 320032000 atoms"},
+        Broken{"negative atom count", "3 atoms", "-3 atoms",
+               "the number of atoms must not be negative"},
         Broken{"bad number", "1 2 0.5 2.0 4 4 1", "1 2 0.5 2.0 4 x 1",
                "small.data:11: position \"x\" is not a finite number"},
         Broken{"missing column", "1 2 0.5 2.0 4 4 1", "1 2 0.5 2.0 4 4",
