@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
 # errors), checks formatting, runs the unit, validation, CLI, crash and MPI tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer for a
-# few seconds on its kept corpus, then every test in Release. Long validation cases:
+# AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer on its kept
+# corpus for a fixed number of inputs from a fixed seed, then every test in Release. Long validation cases:
 # ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +18,7 @@ cmake --build --preset asan
 ctest --preset asan -L "unit|validation|cli|reliability|mpi"
 
 echo "== fuzzers (bounded)"
-tests/fuzz/run.sh "${YUXI_FUZZ_SECONDS:-10}"
+tests/fuzz/run.sh --runs "${YUXI_FUZZ_RUNS:-20000}"
 
 echo "== release"
 ctest --preset release

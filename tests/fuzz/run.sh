@@ -1,20 +1,33 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer) and runs
-# each for a bounded time on its kept corpus (tests/fuzz/corpus/<target>), adding what it finds
-# to the corpus. A crash, leak or sanitizer report fails the script and leaves the reproducer in
-# build/fuzz/artifacts/.
-# usage: tests/fuzz/run.sh [SECONDS_PER_TARGET]   (default 60)
+# each for a bounded time on its kept corpus (tests/fuzz/corpus/<target>). A crash, leak or
+# sanitizer report fails the script and leaves the reproducer in build/fuzz/artifacts/; fixed
+# findings are kept in the corpus as regression-* inputs.
+# usage: tests/fuzz/run.sh [SECONDS_PER_TARGET]   (default 60: explore, corpus grows)
+#        tests/fuzz/run.sh --runs N                 (N inputs per target from a fixed seed:
+#                                                    reproducible, as CI runs it)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-seconds=${1:-60}
+seconds=60
+limit=()
+if [[ "${1:-}" == "--runs" ]]; then
+  limit=(-runs="$2" -seed=2008)
+  seconds=0
+elif [[ -n "${1:-}" ]]; then
+  seconds=$1
+fi
+if ((seconds > 0)); then limit=(-max_total_time="$seconds"); fi
 cmake --preset fuzz > /dev/null
 cmake --build --preset fuzz --target fuzz_scene fuzz_lammps_data fuzz_checkpoint
 mkdir -p build/fuzz/artifacts
 status=0
 for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint; do
   corpus=tests/fuzz/corpus/${target#fuzz_}
-  echo "== $target: ${seconds} s on $(ls "$corpus" | wc -l) corpus files"
-  if ! build/fuzz/tests/fuzz/$target "$corpus" -max_total_time="$seconds" -max_len=65536 \
+  echo "== $target: ${limit[*]} on $(ls "$corpus" | wc -l) corpus files"
+  # New inputs go to a scratch folder; the kept corpus is only read. To keep what a run found:
+  # build/fuzz/tests/fuzz/<target> -merge=1 tests/fuzz/corpus/<name> build/fuzz/new/<target>
+  mkdir -p "build/fuzz/new/$target"
+  if ! build/fuzz/tests/fuzz/$target "build/fuzz/new/$target" "$corpus" "${limit[@]}" -max_len=65536 \
       -rss_limit_mb=4096 -timeout=20 -artifact_prefix=build/fuzz/artifacts/$target- \
       -print_final_stats=1 > "build/fuzz/$target.log" 2>&1; then
     echo "FINDING in $target:"
