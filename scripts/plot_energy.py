@@ -39,8 +39,9 @@ def main(src, dst):
     books.plot(t, col["dissipated"], label="dissipated (cumulative)")
     books.plot(t, col["wall_work"], label="work of moving walls (cumulative)")
     books.plot(t, col["removed"], label="carried off by removed grains")
+    books.plot(t, col["gravity_work"], label="work of gravity along periodic axes")
     books.plot(t, [b - col["balance"][0] for b in col["balance"]],
-               label="books: mechanical + dissipated + removed - wall work (change)", color="k")
+               label="books: mechanical + dissipated + removed - wall work - gravity work (change)", color="k")
     books.set_xlabel("time [tau]")
     books.set_ylabel("energy")
     books.legend(loc="best", fontsize=8)

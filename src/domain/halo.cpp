@@ -84,6 +84,16 @@ void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, dou
 void Halo::forward(ParticleStore& s, const Comm& comm) const {
   for (std::size_t k = 0; k < swaps_.size(); ++k) {
     const Swap& w = swaps_[k];
+    if (w.send_to == comm.rank() && w.receive_from == comm.rank()) {
+      // A periodic image of our own particles: copy, no message.
+      for (std::uint32_t n = 0; n < w.count; ++n) {
+        const std::uint32_t i = w.sends[n], g = w.first + n;
+        s.x[g] = s.x[i] + w.shift;
+        s.v[g] = s.v[i];
+        s.w[g] = s.w[i];
+      }
+      continue;
+    }
     std::string out;
     out.reserve(w.sends.size() * 3 * sizeof(Vec3));
     for (auto i : w.sends) {
@@ -105,6 +115,14 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
 void Halo::reverse(ParticleStore& s, const Comm& comm) const {
   for (std::size_t k = swaps_.size(); k-- > 0;) {
     const Swap& w = swaps_[k];
+    if (w.send_to == comm.rank() && w.receive_from == comm.rank()) {
+      for (std::uint32_t n = 0; n < w.count; ++n) {
+        const std::uint32_t i = w.sends[n], g = w.first + n;
+        s.f[i] += s.f[g];
+        s.torque[i] += s.torque[g];
+      }
+      continue;
+    }
     std::string out;
     out.reserve(w.count * 2 * sizeof(Vec3));
     for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {

@@ -23,15 +23,19 @@ EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64
       if (std::stoll(line.substr(0, line.find(','))) <= *resume_after) kept += line + '\n';
     }
     in.close();
-    std::ofstream(path, std::ios::trunc) << kept;
+    // Replaced atomically: a crash here must not lose the rows up to the checkpoint.
+    const auto tmp = path.string() + ".tmp";
+    std::ofstream(tmp, std::ios::trunc) << kept;
+    std::filesystem::rename(tmp, path);
     file_ = std::fopen(path.c_str(), "a");
   } else {
     file_ = std::fopen(path.c_str(), "w");
   }
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
   if (!resume_after)
-    fmt::print(file_, "step,time,translational,rotational,elastic,gravitational,mechanical,"
-                      "dissipated,wall_work,removed,balance,grains,contacts,escaped\n");
+    fmt::print(file_,
+               "step,time,translational,rotational,elastic,gravitational,mechanical,"
+               "dissipated,wall_work,gravity_work,removed,balance,grains,contacts,escaped\n");
 }
 
 EnergyCsv::~EnergyCsv() {
@@ -40,11 +44,11 @@ EnergyCsv::~EnergyCsv() {
 
 void EnergyCsv::write(const EnergyReport& e) {
   fmt::print(file_,
-             "{},{:.10g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{}"
-             ",{},{}\n",
+             "{},{:.10g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},"
+             "{:.12g},{},{},{}\n",
              e.step, e.time, e.translational, e.rotational, e.elastic, e.gravitational,
-             e.mechanical(), e.dissipated, e.wall_work, e.removed, e.balance(), e.grains,
-             e.contacts, e.escaped);
+             e.mechanical(), e.dissipated, e.wall_work, e.gravity_work, e.removed, e.balance(),
+             e.grains, e.contacts, e.escaped);
   if (std::fflush(file_) != 0) throw std::runtime_error("error while writing energies.csv");
 }
 

@@ -11,20 +11,31 @@ LammpsDumpWriter::LammpsDumpWriter(const std::filesystem::path& path, const Box&
                                    std::optional<std::int64_t> resume_after)
     : file_(nullptr), box_(box) {
   if (resume_after && std::filesystem::exists(path)) {
-    // Find where the first frame after the checkpoint starts, and cut the file there.
+    // Keep the complete frames of steps up to the checkpoint; cut the file where the first
+    // other frame starts (a later step, or a frame cut short by a crash).
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    std::uintmax_t offset = 0, cut = std::filesystem::file_size(path);
-    bool next_is_step = false;
-    std::uintmax_t frame_start = 0;
+    std::uintmax_t offset = 0, cut = 0;
     while (std::getline(in, line)) {
-      if (next_is_step && std::stoll(line) > *resume_after) {
-        cut = frame_start;
-        break;
+      if (line != "ITEM: TIMESTEP") {
+        offset += line.size() + 1;
+        continue;
       }
-      next_is_step = line == "ITEM: TIMESTEP";
-      if (next_is_step) frame_start = offset;
       offset += line.size() + 1;
+      std::string step_line, item, count_line;
+      if (!std::getline(in, step_line) || in.eof()) break;
+      offset += step_line.size() + 1;
+      if (std::stoll(step_line) > *resume_after) break;
+      if (!std::getline(in, item) || !std::getline(in, count_line) || in.eof()) break;
+      offset += item.size() + count_line.size() + 2;
+      const long long atoms = std::stoll(count_line);
+      bool complete = true;
+      for (long long k = 0; k < atoms + 5 && complete; ++k) { // bounds (4) and header (1)
+        complete = static_cast<bool>(std::getline(in, line)) && !in.eof();
+        if (complete) offset += line.size() + 1;
+      }
+      if (!complete) break;
+      cut = offset; // this frame is whole
     }
     in.close();
     std::filesystem::resize_file(path, cut);

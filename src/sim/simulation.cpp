@@ -121,12 +121,16 @@ void Simulation::step() {
   bool must_rebuild = rebuild_requested_;
   rebuild_requested_ = false;
   const std::size_t n = store_.n_owned();
+  const Vec3 g_periodic = periodic_gravity();
+  double gravity_work = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!store_.is_grain(i)) continue;
     store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
     store_.x[i] += dt * store_.v[i];
+    gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt; // m g_p . dx
   }
+  gravity_work_ += gravity_work;
   time_ += dt;
   ++step_;
   place_walls(time_);
@@ -188,7 +192,7 @@ void Simulation::validate_loaded_particles() const {
 void Simulation::load_redistributed(const std::vector<std::string>& sections) {
   ParticleStore pool;
   std::string states;
-  double books[4] = {0, 0, 0, 0}; // dissipated, wall work, removed, escaped
+  double books[5] = {0, 0, 0, 0, 0}; // dissipated, wall work, removed, escaped
   ContactTally tally;
   merging_ = true;
   for (const auto& section : sections) {
@@ -198,6 +202,7 @@ void Simulation::load_redistributed(const std::vector<std::string>& sections) {
     for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
     std::visit([&](auto& f) { states += f.history.stashed_bytes(); }, forces_);
     books[0] += dissipated_, books[1] += wall_work_, books[2] += removed_energy_;
+    books[4] += gravity_work_;
     books[3] += static_cast<double>(escaped_);
     tally.elastic += tally_.elastic;
     tally.touching += tally_.touching;
@@ -214,6 +219,7 @@ void Simulation::load_redistributed(const std::vector<std::string>& sections) {
   dissipated_ = root ? books[0] : 0;
   wall_work_ = root ? books[1] : 0;
   removed_energy_ = root ? books[2] : 0;
+  gravity_work_ = root ? books[4] : 0;
   escaped_ = root ? static_cast<std::size_t>(books[3]) : 0;
   tally_ = root ? tally : ContactTally{};
   rebuild_after_load();
@@ -458,6 +464,7 @@ std::string Simulation::describe_contacts(std::size_t i) const {
 }
 
 EnergyReport Simulation::energies() const {
+  const Vec3 g_potential = potential_gravity();
   EnergyReport e;
   e.step = step_;
   e.time = time_;
@@ -465,7 +472,7 @@ EnergyReport Simulation::energies() const {
     if (!store_.is_grain(i)) continue;
     e.translational += 0.5 * store_.mass[i] * norm2(store_.v[i]);
     e.rotational += 0.5 * norm2(store_.w[i]) / store_.inv_inertia[i];
-    e.gravitational -= store_.mass[i] * dot(config_.gravity, store_.x[i]);
+    e.gravitational -= store_.mass[i] * dot(g_potential, store_.x[i]);
     ++e.grains;
   }
   double sums[] = {e.translational,
@@ -477,8 +484,10 @@ EnergyReport Simulation::energies() const {
                    removed_energy_,
                    static_cast<double>(e.grains),
                    static_cast<double>(tally_.touching),
-                   static_cast<double>(escaped_)};
-  comm_.sum(sums, 10);
+                   static_cast<double>(escaped_),
+                   gravity_work_};
+  comm_.sum(sums, 11);
+  e.gravity_work = sums[10];
   e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
   e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
   e.grains = static_cast<std::size_t>(sums[7]);
@@ -490,7 +499,14 @@ EnergyReport Simulation::energies() const {
 double Simulation::mechanical_energy(std::size_t i) const {
   return 0.5 * store_.mass[i] * norm2(store_.v[i]) +
          0.5 * norm2(store_.w[i]) / store_.inv_inertia[i] -
-         store_.mass[i] * dot(config_.gravity, store_.x[i]);
+         store_.mass[i] * dot(potential_gravity(), store_.x[i]);
+}
+
+Vec3 Simulation::periodic_gravity() const {
+  Vec3 g;
+  for (int a = 0; a < 3; ++a)
+    if (config_.box.periodic(a)) g[a] = config_.gravity[a];
+  return g;
 }
 
 StiffestContact Simulation::stiffest_contact() const {

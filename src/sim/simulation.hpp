@@ -118,6 +118,7 @@ public:
     ar.value(dissipated_);
     ar.value(wall_work_);
     ar.value(removed_energy_);
+    ar.value(gravity_work_);
     ar.value(rebuilds_);
     ar.value(escaped_);
     ar.value(initial_balance_);
@@ -169,6 +170,9 @@ private:
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
+  // Gravity's components along periodic axes (no potential) and along the others.
+  Vec3 periodic_gravity() const;
+  Vec3 potential_gravity() const { return config_.gravity - periodic_gravity(); }
 
   template <class> struct ForcesOf;
   template <class... M> struct ForcesOf<std::variant<ContactLaw<M>...>> {
@@ -196,6 +200,7 @@ private:
   double dissipated_ = 0.0;
   double wall_work_ = 0.0;
   double removed_energy_ = 0.0;
+  double gravity_work_ = 0.0;    // work of gravity along periodic axes
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
