@@ -185,6 +185,14 @@ void Simulation::validate_loaded_particles() const {
           "radius, mass or a non-finite value)",
           i));
   }
+  // The scalar state: finite energies and times, counts a run can have.
+  const double scalars[] = {time_,         dissipated_,      wall_work_,    removed_energy_,
+                            gravity_work_, initial_balance_, tally_.elastic};
+  for (double x : scalars)
+    if (!std::isfinite(x)) throw std::invalid_argument("the checkpoint holds a non-finite energy");
+  constexpr std::size_t limit = std::size_t{1} << 48;
+  if (step_ < 0 || rebuilds_ < 0 || escaped_ > limit || tally_.touching > limit)
+    throw std::invalid_argument("the checkpoint holds an impossible step or count");
   if (store_.radius.empty() ? false : contact_reach(store_) > grid_.edge().x + 1e-12)
     throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
 }
@@ -490,9 +498,10 @@ EnergyReport Simulation::energies() const {
   e.gravity_work = sums[10];
   e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
   e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
-  e.grains = static_cast<std::size_t>(sums[7]);
-  e.contacts = static_cast<std::size_t>(sums[8]);
-  e.escaped = static_cast<std::size_t>(sums[9]);
+  // Counts are summed as integers (the doubles above only carried them along).
+  e.grains = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(e.grains)));
+  e.contacts = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(tally_.touching)));
+  e.escaped = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(escaped_)));
   return e;
 }
 
