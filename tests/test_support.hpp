@@ -2,8 +2,11 @@
 #pragma once
 
 #include "contact/contact_model.hpp"
+#include "core/random.hpp"
 #include "sim/simulation.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace yuxi::test {
@@ -51,6 +54,33 @@ inline std::size_t index_of(const Simulation& sim, GlobalId id) {
   for (std::size_t i = 0; i < s.n_owned(); ++i)
     if (s.gid[i] == id) return i;
   return s.size();
+}
+
+// 125 polydisperse grains (radius 0.35-0.55, density 1) on a 5 x 5 x 5 lattice in [-3.2, 3.2]^3,
+// with random velocities and spins drawn from `seed`.
+inline std::vector<ParticleSpec> gas_grains(std::uint64_t seed) {
+  Random rng(seed);
+  std::vector<ParticleSpec> specs;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const double r = rng.uniform(0.35, 0.55);
+        specs.push_back(sphere({-3.2 + 1.6 * i, -3.2 + 1.6 * j, -3.2 + 1.6 * k}, r, r * r * r,
+                               {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)},
+                               {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)}));
+      }
+  return specs;
+}
+
+// Largest |balance(t) - balance(0)| of the energy books over a run to `duration`, every step.
+inline double books_drift(Simulation& sim, double duration) {
+  const double b0 = sim.energies().balance();
+  double worst = 0;
+  while (sim.time() < duration) {
+    sim.step();
+    worst = std::max(worst, std::abs(sim.energies().balance() - b0));
+  }
+  return worst;
 }
 
 // A flat wall through `point` with inward `normal`.

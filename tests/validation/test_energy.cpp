@@ -20,19 +20,10 @@ namespace {
 
 // 125 polydisperse grains with random velocities in a closed box (flat walls on every face).
 Simulation gas(const test::Coeffs& c, double dt, double floor_amplitude = 0.0) {
-  Random rng(42);
   auto cfg = test::open_box(4.0, {0, 0, -1.0}, dt);
   cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
   cfg.skin = 0.2;
-  std::vector<ParticleSpec> specs;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j)
-      for (int k = 0; k < 5; ++k) {
-        const double r = rng.uniform(0.35, 0.55);
-        specs.push_back(test::sphere({-3.2 + 1.6 * i, -3.2 + 1.6 * j, -3.2 + 1.6 * k}, r, r * r * r,
-                                     {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)},
-                                     {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)}));
-      }
+  const auto specs = test::gas_grains(42);
   std::vector<PlaneWall> planes;
   if (floor_amplitude > 0) {
     cfg.box.boundary[2] = Boundary::open;
@@ -45,17 +36,6 @@ Simulation gas(const test::Coeffs& c, double dt, double floor_amplitude = 0.0) {
   return Simulation(cfg, test::store_of(specs), planes, {}, test::linear_law(c));
 }
 
-// Largest |balance(t) - balance(0)| over a run of duration T, sampled every step.
-double ledger_error(Simulation& sim, double duration) {
-  const double b0 = sim.energies().balance();
-  double worst = 0;
-  while (sim.time() < duration) {
-    sim.step();
-    worst = std::max(worst, std::abs(sim.energies().balance() - b0));
-  }
-  return worst;
-}
-
 // t_c of the stiffest contact here: a light grain (m = 0.35^3) against a wall.
 double contact_time(double k_n) {
   return pi / std::sqrt(k_n / (0.35 * 0.35 * 0.35));
@@ -66,7 +46,7 @@ TEST(Energy, ConservedToSecondOrderWithoutDampingOrFriction) {
   const double dt = contact_time(c.k_n) / 40;
   Simulation a = gas(c, dt), b = gas(c, dt / 2);
   const double e0 = a.energies().mechanical();
-  const double err_a = ledger_error(a, 2.0), err_b = ledger_error(b, 2.0);
+  const double err_a = test::books_drift(a, 2.0), err_b = test::books_drift(b, 2.0);
   EXPECT_LT(err_a / e0, 2e-3);
   EXPECT_GT(err_a / err_b, 3.0) << "error must fall like dt^2";
   EXPECT_LT(err_a / err_b, 5.5);
@@ -76,7 +56,7 @@ TEST(Energy, CoulombSlidingIsBookedToSecondOrder) {
   const test::Coeffs c{1e4, 2.5e3, 0.0, 0.0, 0.5, 0.3};
   const double dt = contact_time(c.k_n) / 50;
   Simulation a = gas(c, dt), b = gas(c, dt / 2);
-  const double err_a = ledger_error(a, 2.0), err_b = ledger_error(b, 2.0);
+  const double err_a = test::books_drift(a, 2.0), err_b = test::books_drift(b, 2.0);
   EXPECT_LT(err_a / a.energies().dissipated, 2e-3);
   EXPECT_GT(err_a / err_b, 3.0);
 }
@@ -85,8 +65,8 @@ TEST(Energy, BooksCloseWithDampingAndFriction) {
   const test::Coeffs c{1e4, 2.5e3, 20.0, 10.0, 0.5, 0.3};
   const double dt = contact_time(c.k_n) / 50;
   Simulation a = gas(c, dt), b = gas(c, dt / 2);
-  const double err_a = ledger_error(a, 2.0);
-  const double err_b = ledger_error(b, 2.0);
+  const double err_a = test::books_drift(a, 2.0);
+  const double err_b = test::books_drift(b, 2.0);
   const double dissipated = a.energies().dissipated;
   ASSERT_GT(dissipated, 0.3 * a.energies().mechanical()); // the test means something
   EXPECT_LT(err_a / dissipated, 5e-3);
@@ -97,7 +77,7 @@ TEST(Energy, BooksCloseWithAVibratingFloor) {
   const test::Coeffs c{1e4, 2.5e3, 20.0, 10.0, 0.5, 0.3};
   const double dt = contact_time(c.k_n) / 50;
   Simulation sim = gas(c, dt, 0.2);
-  const double err = ledger_error(sim, 3.0);
+  const double err = test::books_drift(sim, 3.0);
   const auto e = sim.energies();
   ASSERT_GT(e.wall_work, 0.0);
   EXPECT_LT(err / (e.dissipated + std::abs(e.wall_work)), 5e-3);

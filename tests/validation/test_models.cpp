@@ -13,29 +13,10 @@ namespace {
 
 // 125 polydisperse grains with random velocities and spins in a walled box under gravity.
 Simulation gas(const AnyContactLaw& law, double dt) {
-  Random rng(7);
   auto cfg = test::open_box(4.0, {0, 0, -1.0}, dt);
   cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
-  std::vector<ParticleSpec> specs;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j)
-      for (int k = 0; k < 5; ++k) {
-        const double r = rng.uniform(0.35, 0.55);
-        specs.push_back(test::sphere({-3.2 + 1.6 * i, -3.2 + 1.6 * j, -3.2 + 1.6 * k}, r, r * r * r,
-                                     {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)},
-                                     {rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)}));
-      }
+  const auto specs = test::gas_grains(7);
   return Simulation(cfg, test::store_of(specs), {}, {}, law);
-}
-
-double books_error(Simulation& sim, double duration) {
-  const double b0 = sim.energies().balance();
-  double worst = 0;
-  while (sim.time() < duration) {
-    sim.step();
-    worst = std::max(worst, std::abs(sim.energies().balance() - b0));
-  }
-  return worst;
 }
 
 AnyContactLaw hertz() {
@@ -87,7 +68,7 @@ class EnergyBooks : public ::testing::TestWithParam<ModelCase> {};
 TEST_P(EnergyBooks, CloseForEveryModel) {
   const auto& m = GetParam();
   Simulation a = gas(m.law(), m.dt), b = gas(m.law(), m.dt / 2);
-  const double err_a = books_error(a, 2.0), err_b = books_error(b, 2.0);
+  const double err_a = test::books_drift(a, 2.0), err_b = test::books_drift(b, 2.0);
   const double dissipated = a.energies().dissipated;
   ASSERT_GT(dissipated, 0.2 * a.energies().mechanical());
   EXPECT_LT(err_a / dissipated, 1e-2);
