@@ -43,6 +43,7 @@ struct ContactResult {
   Vec3 torque_j;         // on j about its centre [force length]
   double elastic = 0;    // energy stored in the contact's springs after this step [energy]
   double dissipated = 0; // energy turned to heat during this step [energy]
+  double relaxation = 0; // energy held in the contact's relaxation buffer (thermodynamic model)
   bool touching = false; // the contact carries load (its history must be kept)
 
   // Adds a force normal_force n + f_t acting on i at the contact point (lever arm -a_i n on i,

@@ -13,6 +13,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/luding.hpp"
 #include "contact/pair_table.hpp"
+#include "contact/thermodynamic.hpp"
 
 #include <string_view>
 #include <type_traits>
@@ -25,15 +26,23 @@ template <class Model> struct ContactLaw {
   PairTable<typename Model::Coeffs> coeffs;
 };
 
-using AnyContactLaw =
-    std::variant<ContactLaw<LinearSpringDashpot>, ContactLaw<HertzMindlin>, ContactLaw<Luding>>;
+using AnyContactLaw = std::variant<ContactLaw<LinearSpringDashpot>, ContactLaw<HertzMindlin>,
+                                   ContactLaw<Luding>, ContactLaw<Thermodynamic>>;
 
 // The names a scene may give as [contact] model, in the order of AnyContactLaw.
-inline constexpr std::string_view contact_model_names[] = {LinearSpringDashpot::name,
-                                                           HertzMindlin::name, Luding::name};
+inline constexpr std::string_view contact_model_names[] = {
+    LinearSpringDashpot::name, HertzMindlin::name, Luding::name, Thermodynamic::name};
 
 // An empty law of the named model for n materials (throws std::out_of_range if unknown).
 AnyContactLaw make_contact_law(std::string_view model, std::size_t n_materials);
+
+// Models whose dissipative forces act on the predicted end-of-step velocity v + dt F/m rather
+// than the half-step velocity of velocity Verlet (thermo_contact_model.md section 7, step 4):
+// their energy books then close to second order in dt. The others keep the half-step velocity,
+// as LAMMPS does.
+template <class Model> inline constexpr bool uses_predicted_velocity = requires {
+  requires Model::predicts_velocity;
+};
 
 template <class Model>
 concept ContactModel = requires(const ContactGeometry& g, const typename Model::Coeffs& c,
@@ -49,5 +58,6 @@ concept ContactModel = requires(const ContactGeometry& g, const typename Model::
 static_assert(ContactModel<LinearSpringDashpot>);
 static_assert(ContactModel<HertzMindlin>);
 static_assert(ContactModel<Luding>);
+static_assert(ContactModel<Thermodynamic>);
 
 } // namespace yuxi

@@ -24,7 +24,7 @@ std::size_t ParticleStore::add(const ParticleSpec& s, GlobalId id) {
   mass[i] = s.mass;
   const bool wall = s.kind == Kind::wall;
   inv_mass[i] = wall ? 0.0 : 1.0 / s.mass;
-  inv_inertia[i] = wall ? 0.0 : 1.0 / solid_sphere_inertia(s.mass, s.radius);
+  inv_inertia[i] = wall || !s.spins ? 0.0 : 1.0 / solid_sphere_inertia(s.mass, s.radius);
   gid[i] = id;
   kind[i] = s.kind;
   material[i] = s.material;

@@ -31,6 +31,7 @@ struct ParticleSpec {
   Kind kind = Kind::grain;
   std::uint8_t material = 0;
   std::uint16_t motion = 0; // index into the scene's wall motions (wall particles only)
+  bool spins = true;        // false: infinite moment of inertia (rotation locked)
 };
 
 class ParticleStore {

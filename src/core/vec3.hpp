@@ -57,6 +57,9 @@ constexpr double norm2(const Vec3& a) {
 inline double norm(const Vec3& a) {
   return std::sqrt(norm2(a));
 }
+inline Vec3 normalized(const Vec3& a) {
+  return a / norm(a);
+}
 inline bool is_finite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }

@@ -68,4 +68,20 @@ template <class V> void contact_fields(V& v, Luding::Coeffs& c) {
   slider_fields(v, "k_o", c.k_o, "gamma_o", c.gamma_o, "mu_o", c.mu_o);
 }
 
+// The example model of the thermodynamic law in dimensionless numbers (thermodynamic.hpp);
+// E* comes from the materials.
+template <class V> void contact_fields(V& v, Thermodynamic::Coeffs& c) {
+  v.optional("friction", c.friction);
+  v.check(c.friction > 0, "friction",
+          "must be positive: it fixes xi = 2 / friction^2 of the elastic energy");
+  v.fraction("gear", c.gear);
+  v.optional("eta_hat", c.eta_hat);
+  v.optional("eta_power", c.eta_power);
+  v.optional("lambda_hat", c.lambda_hat);
+  v.optional("tau_hat", c.tau_hat);
+  v.check(c.tau_hat > 0, "tau_hat", "the decay time of the relaxation energy must be positive");
+  v.choice("viscosity_to", c.viscosity_to,
+           {{"relaxation", ViscosityChannel::relaxation}, {"heat", ViscosityChannel::heat}});
+}
+
 } // namespace yuxi

@@ -174,20 +174,25 @@ typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, 
   }
   FieldReader reader{p};
   contact_fields(reader, c);
-  if constexpr (std::is_same_v<M, HertzMindlin>) {
+  if constexpr (std::is_same_v<M, HertzMindlin> || std::is_same_v<M, Thermodynamic>) {
     for (std::uint8_t k : {a, b}) {
       const auto& m = scene.material_properties[k];
       if (std::isnan(m.youngs_modulus) || std::isnan(m.poisson_ratio))
-        p.fail("materials", fmt::format("hertz_mindlin needs youngs_modulus and poisson_ratio in "
+        p.fail("materials", fmt::format("{} needs youngs_modulus and poisson_ratio in "
                                         "[material.{}]",
-                                        scene.materials[k]));
+                                        M::name, scene.materials[k]));
     }
     const auto& ma = scene.material_properties[a];
     const auto& mb = scene.material_properties[b];
     if (std::isinf(ma.youngs_modulus) && std::isinf(mb.youngs_modulus))
       p.fail("materials", "both materials are rigid (youngs_modulus = inf)");
-    c = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio,
-                          c.restitution, c.friction);
+    if constexpr (std::is_same_v<M, HertzMindlin>)
+      c = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                            mb.poisson_ratio, c.restitution, c.friction);
+    else // the thermodynamic model's spring constant k = (4/3) E* sqrt(R*)
+      c.e_star = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                                   mb.poisson_ratio, 1.0, 0.0)
+                     .e_star;
   }
   return c;
 }
@@ -195,8 +200,10 @@ typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, 
 void read_contact(Scene& scene, TomlReader& root) {
   auto c = root.table("contact");
   if (!c) root.fail("", "missing table [contact]");
-  scene.contact_model = c->choice(
-      "model", {contact_model_names[0], contact_model_names[1], contact_model_names[2]}, "linear");
+  scene.contact_model = c->choice("model",
+                                  {contact_model_names[0], contact_model_names[1],
+                                   contact_model_names[2], contact_model_names[3]},
+                                  "linear");
   scene.contact_preset = c->choice("preset", {"paper", "lammps"}, "paper");
   if (scene.contact_preset == "lammps" && scene.contact_model != "linear")
     c->fail("preset", "the lammps preset applies to the linear model only");

@@ -50,6 +50,7 @@ private:
   static void book(const ContactResult& r, ContactTally& tally) {
     tally.elastic += r.elastic;
     tally.dissipated += r.dissipated;
+    tally.relaxation += r.relaxation;
     tally.touching += r.touching ? 1 : 0;
   }
 

@@ -67,7 +67,12 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
       law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
-      cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_) {
+      cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_),
+      predict_velocity_(std::visit(
+          [](const auto& f) {
+            return uses_predicted_velocity<typename std::decay_t<decltype(f.law())>::model_type>;
+          },
+          forces_)) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   if (motions_.empty()) motions_.push_back(StaticMotion{});
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
@@ -129,6 +134,10 @@ void Simulation::step() {
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
     store_.x[i] += dt * store_.v[i];
     gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt; // m g_p . dx
+    if (predict_velocity_) { // v + dt F/m: the contact forces see the predicted end velocity
+      store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
+      store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
+    }
   }
   gravity_work_ += gravity_work;
   time_ += dt;
@@ -154,12 +163,15 @@ void Simulation::step() {
   // 3. Forces.
   compute_forces();
 
-  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
+  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away; the
+  // old forces migrated with them).
   t0 = Clock::now();
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
-    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
-    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
+    const Vec3 df = predict_velocity_ ? store_.f[i] - old_force_[i] : store_.f[i];
+    const Vec3 dtau = predict_velocity_ ? store_.torque[i] - old_torque_[i] : store_.torque[i];
+    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * df;
+    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * dtau;
   }
   timers_.integrate += seconds_since(t0);
   dissipated_ += tally_.dissipated;
@@ -186,8 +198,8 @@ void Simulation::validate_loaded_particles() const {
           i));
   }
   // The scalar state: finite energies and times, counts a run can have.
-  const double scalars[] = {time_,         dissipated_,      wall_work_,    removed_energy_,
-                            gravity_work_, initial_balance_, tally_.elastic};
+  const double scalars[] = {time_,         dissipated_,      wall_work_,     removed_energy_,
+                            gravity_work_, initial_balance_, tally_.elastic, tally_.relaxation};
   for (double x : scalars)
     if (!std::isfinite(x)) throw std::invalid_argument("the checkpoint holds a non-finite energy");
   constexpr std::size_t limit = std::size_t{1} << 48;
@@ -213,6 +225,7 @@ void Simulation::load_redistributed(const std::vector<std::string>& sections) {
     books[4] += gravity_work_;
     books[3] += static_cast<double>(escaped_);
     tally.elastic += tally_.elastic;
+    tally.relaxation += tally_.relaxation;
     tally.touching += tally_.touching;
   }
   merging_ = false;
@@ -415,6 +428,11 @@ void Simulation::handle_escapes_here() {
 
 void Simulation::compute_forces(bool advance_history) {
   auto t0 = Clock::now();
+  if (predict_velocity_) {
+    old_force_.assign(store_.f.begin(), store_.f.begin() + std::ptrdiff_t(store_.n_owned()));
+    old_torque_.assign(store_.torque.begin(),
+                       store_.torque.begin() + std::ptrdiff_t(store_.n_owned()));
+  }
   for (std::size_t i = 0; i < store_.size(); ++i) {
     store_.f[i] = Vec3{};
     store_.torque[i] = Vec3{};
@@ -479,7 +497,7 @@ EnergyReport Simulation::energies() const {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
     e.translational += 0.5 * store_.mass[i] * norm2(store_.v[i]);
-    e.rotational += 0.5 * norm2(store_.w[i]) / store_.inv_inertia[i];
+    e.rotational += rotational_energy(i);
     e.gravitational -= store_.mass[i] * dot(g_potential, store_.x[i]);
     ++e.grains;
   }
@@ -493,9 +511,11 @@ EnergyReport Simulation::energies() const {
                    static_cast<double>(e.grains),
                    static_cast<double>(tally_.touching),
                    static_cast<double>(escaped_),
-                   gravity_work_};
-  comm_.sum(sums, 11);
+                   gravity_work_,
+                   tally_.relaxation};
+  comm_.sum(sums, 12);
   e.gravity_work = sums[10];
+  e.relaxation = sums[11];
   e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
   e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
   // Counts are summed as integers (the doubles above only carried them along).
@@ -506,9 +526,14 @@ EnergyReport Simulation::energies() const {
 }
 
 double Simulation::mechanical_energy(std::size_t i) const {
-  return 0.5 * store_.mass[i] * norm2(store_.v[i]) +
-         0.5 * norm2(store_.w[i]) / store_.inv_inertia[i] -
+  return 0.5 * store_.mass[i] * norm2(store_.v[i]) + rotational_energy(i) -
          store_.mass[i] * dot(potential_gravity(), store_.x[i]);
+}
+
+double Simulation::rotational_energy(std::size_t i) const {
+  // A grain whose rotation is locked (infinite inertia) keeps its spin and its energy.
+  const double inv = store_.inv_inertia[i];
+  return inv > 0 ? 0.5 * norm2(store_.w[i]) / inv : 0.0;
 }
 
 Vec3 Simulation::periodic_gravity() const {

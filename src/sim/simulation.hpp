@@ -170,6 +170,7 @@ private:
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
+  double rotational_energy(std::size_t i) const; // J w^2 / 2 of one grain (0 when locked)
   // Gravity's components along periodic axes (no potential) and along the others.
   Vec3 periodic_gravity() const;
   Vec3 potential_gravity() const { return config_.gravity - periodic_gravity(); }
@@ -205,6 +206,10 @@ private:
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   bool merging_ = false; // load_redistributed() is reading sections
+  // The contact model acts on predicted velocities: the kick undoes the prediction with the
+  // forces of the previous step, kept here for the owned particles.
+  bool predict_velocity_ = false;
+  std::vector<Vec3> old_force_, old_torque_;
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };

@@ -43,6 +43,7 @@ Simulation make_simulation(const Impact& setup) {
     s.mass = b.mass;
     s.material = b.material;
     s.kind = b.kind;
+    s.spins = b.spins;
     store.add(s, id++);
   }
   return Simulation(cfg, std::move(store), setup.planes, {}, setup.law);

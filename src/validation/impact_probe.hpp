@@ -16,6 +16,7 @@ struct Body {
   double mass = 1.0;
   std::uint8_t material = 0;
   Kind kind = Kind::grain;
+  bool spins = true; // false: rotation locked (infinite inertia)
 };
 
 struct Impact {

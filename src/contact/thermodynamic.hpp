@@ -1,0 +1,92 @@
+// The thermodynamic contact model of Jiang & Liu (2018) in the DEM engine, 3-D with rotation:
+// thermo_contact_model.md sections 2.2, 3, 4 and 7. A reconstruction: the paper's equations are
+// lost; the formulas carry the spec's labels (thermodynamic_law.hpp), and the default parameter
+// set is the spec's REF, not the paper's numbers.
+//
+// Per contact the state holds the springs' own deformations u_n <= 0 and u_t (a vector in the
+// tangent plane), the relaxation energy w_R, and the normal and overlap of the previous step.
+// One step (spec section 7, step 3), at the half-step velocities of velocity Verlet:
+//   a. carry u_t from the previous tangent plane to the new one by the minimal rotation
+//      (energy neutral, objective under rigid rotation);
+//   b. gearbox (30)-(31): u_n -= gear (Phi(delta) - Phi(delta_prev)), u_t += G(delta_mid) v_t dt;
+//   c. relaxation (40): u_t *= exp(-lambda_t kappa dt), lambda_t = Lambda sqrt(w_R), exact for
+//      fixed u_n, kappa = (2k/xi)(-u_n)^{1/2};
+//   d. yield (41) by return mapping: |u_t| <= sqrt(2 xi)(-u_n); c and d release elastic energy
+//      into heat;
+//   e. w_R decays exactly, w_R *= exp(-dt/tau), into heat (22);
+// then the force (28)-(29): f_n = G pi_n - eta v_n, f_t = G pi_t - eta v_t, and the viscous
+// power eta (v_n^2 + |v_t|^2) fills w_R (the relaxation channel of (39); heat if so chosen).
+// Velocities are the predicted end-of-step ones (spec 7, step 4), and each step's viscous energy
+// is booked half at once and half at the next step, as the force acts in the two half kicks
+// of velocity Verlet (spec 7, steps 1 and 5): the books then close to second order in dt.
+// Lever arms are Luding's branch lengths a' = a - delta/2 (spec 2.2), so a rigid rotation of
+// the pair moves no spring (test T11).
+//
+// The Heaviside step is sharp in the DEM engine: a contact is created at touching with
+// u_n = u_t = w_R = 0 and, when it opens, the elastic and relaxation energy it still holds goes
+// to heat (spec section 7, "contact life cycle"), so the energy books stay exact. The smoothed
+// step is available in the two-grain solver.
+//
+// Spring constant: k = (4/3) E* sqrt(R*) per contact, so the model is Hertz at u_t = 0 (T1).
+// One xi fixes both the friction mu = sqrt(2/xi) and k_t/k_n = 4/(3 xi) (spec 4).
+#pragma once
+
+#include "contact/contact_geometry.hpp"
+#include "contact/thermodynamic_law.hpp"
+
+#include <cstdint>
+#include <string_view>
+
+namespace yuxi {
+
+enum class ViscosityChannel : std::uint8_t { relaxation, heat };
+
+struct Thermodynamic {
+  static constexpr std::string_view name = "thermodynamic";
+  // Forces at the predicted velocity (spec 7, step 4): second-order energy books.
+  static constexpr bool predicts_velocity = true;
+
+  struct Coeffs {
+    double e_star = 0;      // E* of the pair (as for Hertz-Mindlin) [force/length^2]
+    double friction = 0.5;  // mu = sqrt(2/xi) (36) [-]
+    double gear = 1;        // G inside the contact (38) [-]
+    double eta_hat = 0.3;   // viscosity (39), in units of sqrt(m k d^{1/2}) [-]
+    double eta_power = 0.5; // overlap exponent of the viscosity (39) [-]
+    double lambda_hat = 10; // tangential relaxation by w_R (40) [-]
+    double tau_hat = 5;     // decay time of w_R in units of t0 (22) [-]
+    ViscosityChannel viscosity_to = ViscosityChannel::relaxation;
+
+    thermo::ExampleModel model() const;
+  };
+
+  struct State {
+    double un = 0;         // normal spring deformation u_n <= 0 [length]
+    Vec3 ut;               // tangential spring deformation, in the tangent plane [length]
+    double w_relax = 0;    // relaxation energy w_R >= 0 [energy]
+    double stored = 0;     // elastic energy w_el(u_n, u_t) after the last step [energy]
+    Vec3 n_prev;           // normal at the last step (zero: a new contact)
+    double delta_prev = 0; // overlap at the last step [length]
+    double owed = 0;       // second half of the last step's viscous energy, booked next step
+    bool operator==(const State&) const = default;
+    // Seen from the partner, n turns over and with it the tangential spring.
+    State mirrored() const {
+      State m = *this;
+      m.ut = -ut;
+      m.n_prev = -n_prev;
+      return m;
+    }
+  };
+
+  // The example coefficients of one contact: k = (4/3) E* sqrt(R*), d = a_i + a_j (2 a_i against
+  // a flat wall), reference mass 2 m*.
+  static thermo::ExampleCoefficients coefficients(const Coeffs& c, double m_eff, double r_eff,
+                                                  double d);
+
+  // Hertz contact time (T1): t_c = 2.9432 (5 m* / (4 k G^{5/2}))^{2/5} v^{-1/5}.
+  static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
+  // A touching contact (overlap > 0); the pair loop calls release() when it opens.
+  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  static double release(const Coeffs& c, State& s);
+};
+
+} // namespace yuxi
