@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev
+  libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy
