@@ -3,6 +3,7 @@
 #include <mpi.h>
 #endif
 
+#include "collide_command.hpp"
 #include "run_command.hpp"
 #include "validate_command.hpp"
 
@@ -71,7 +72,31 @@ int main(int argc, char** argv) {
   validate->add_option("--scenes", vopt.scenes_dir, "Folder of the shipped scenes");
   validate->add_option("--reference", vopt.reference_dir, "Folder of the LAMMPS reference data");
 
+  yuxi::CollideOptions copt;
+  auto* collide = app.add_subcommand(
+      "collide", "Collision study: restitution against impact speed and obliquity, any model");
+  collide->add_option("-o,--output", copt.output_dir, "Output folder")->capture_default_str();
+  collide->add_flag("--overwrite", copt.overwrite, "Replace an existing output folder");
+  collide->add_option("--scene", copt.scene_path, "Take the contact law of this scene's first pair")
+      ->check(CLI::ExistingFile);
+  collide->add_option("--models", copt.models, "Built-in parameter sets (default: all models)")
+      ->check(CLI::IsMember({"linear", "hertz_mindlin", "luding", "thermodynamic"}))
+      ->excludes("--scene");
+  collide->add_option("--radius", copt.radius, "Grain radius")->capture_default_str();
+  collide->add_option("--mass", copt.mass, "Grain mass")->capture_default_str();
+  collide->add_option("--v0-min", copt.v0_min, "Smallest speed of each grain")
+      ->capture_default_str();
+  collide->add_option("--v0-max", copt.v0_max, "Largest speed of each grain")
+      ->capture_default_str();
+  collide->add_option("--per-decade", copt.per_decade, "Speeds per decade")->capture_default_str();
+  collide->add_option("--obliquity", copt.obliquities, "Impact parameters b/d of the oblique runs")
+      ->capture_default_str();
+  collide->add_option("--steps-per-contact", copt.steps_per_contact, "t_c / dt")
+      ->capture_default_str();
+  collide->add_flag("!--no-plots", copt.plots, "Do not draw the PNG plots");
+
   CLI11_PARSE(app, argc, argv);
+  if (collide->parsed()) return yuxi::collide_command(copt);
   if (run->parsed()) return yuxi::run_command(opt);
   if (check->parsed()) return yuxi::check_command(opt);
   if (validate->parsed()) return yuxi::validate_command(vopt);

@@ -16,8 +16,10 @@
 //                reverse the friction force for a few steps; use it only to match LAMMPS.
 //
 // Energy, exact for any stiffness history: each step the work done into the spring,
-// k (s_old + s_new)/2 . ds, less the rise of its stored energy k |s|^2 / 2, is dissipated
-// (zero while sticking at constant k), plus the dashpot's eta |u|^2 dt.
+// (k_old s_old + k_new s_new)/2 . ds (the forces of the two half kicks of velocity Verlet),
+// less the rise of its stored energy k |s|^2 / 2, is dissipated (zero while sticking at
+// constant k), plus the dashpot's eta |u|^2 dt. Using the old stiffness for the old force
+// matters where k changes fast, as Mindlin's k_t ~ delta^{1/2} does just before separation.
 #pragma once
 
 #include "core/vec3.hpp"
@@ -38,6 +40,7 @@ struct SliderState {
   Vec3 spring;               // s [length]
   double stored = 0.0;       // k |s|^2 / 2 after the last step [energy]
   std::uint32_t sliding = 0; // 1 while sliding
+  double k = 0.0;            // the stiffness at the last step [force/length]
   bool operator==(const SliderState&) const = default;
 };
 
@@ -113,11 +116,12 @@ inline SliderResult slide(SliderState& st, const Vec3& carried, const Vec3& u, d
     st.sliding = 0;
   }
   const double stored = 0.5 * law.k * norm2(spring);
-  const double work_in = law.k * dot(0.5 * (carried + spring), increment);
+  const double work_in = dot(0.5 * (st.k * carried + law.k * spring), increment);
   r.dissipated = work_in - (stored - st.stored) - dot(damping, u) * dt;
   r.force = f_spring + damping;
   st.spring = spring;
   st.stored = stored;
+  st.k = law.k;
   return r;
 }
 

@@ -1,0 +1,242 @@
+#include "collide_command.hpp"
+
+#include "core/units.hpp"
+#include "io/scene_reader.hpp"
+#include "thermo/two_grain.hpp"
+#include "validation/binary_collision.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/os.h>
+#include <optional>
+#include <spdlog/spdlog.h>
+#include <stdexcept>
+
+namespace yuxi {
+namespace fs = std::filesystem;
+namespace {
+
+// Model units of the study (thermo_contact_model.md section 8): m = 1, a = 0.5, so d = 1 and
+// m* = 1/2; every model's normal stiffness is 1 there (Hertz: (4/3) E* sqrt(R*) = 1, i.e.
+// E* = 1.5), friction 0.5, tangential stiffness 2/7 of the normal one where it is free.
+constexpr double unit_e_star = 1.5, unit_poisson = 0.3, unit_friction = 0.5;
+constexpr double speed_independent_e = 0.88; // linear and Hertz-Mindlin: REF's e near v0 = 1e-3
+
+// The linear damping rate giving restitution e: e = exp(-gamma t_c / 2),
+// t_c = pi / sqrt(k/m* - gamma^2/4).
+double linear_damping(double e, double k, double m_eff) {
+  const double b = -std::log(e) / pi;
+  const double omega = std::sqrt(k / m_eff / (1 + b * b));
+  return 2 * b * omega;
+}
+
+AnyContactLaw builtin_law(const std::string& model) {
+  AnyContactLaw law = make_contact_law(model, 1);
+  std::visit(
+      [&](auto& l) {
+        using Model = typename std::decay_t<decltype(l)>::model_type;
+        typename Model::Coeffs c{};
+        if constexpr (std::is_same_v<Model, LinearSpringDashpot>) {
+          c.k_n = 1;
+          c.k_t = 2.0 / 7.0;
+          c.gamma_n = linear_damping(speed_independent_e, 1, 0.5);
+          c.mu_s = c.mu_d = unit_friction;
+        } else if constexpr (std::is_same_v<Model, HertzMindlin>) {
+          const double youngs = 2 * unit_e_star * (1 - unit_poisson * unit_poisson);
+          c = HertzMindlin::mix(youngs, unit_poisson, youngs, unit_poisson, speed_independent_e,
+                                unit_friction);
+        } else if constexpr (std::is_same_v<Model, Luding>) {
+          // Plastic hysteresis: e = sqrt(k1/k2(delta_max)) falls from 1 to sqrt(1/5).
+          c.k1 = 1;
+          c.kp = 5;
+          c.phi_f = 0.05;
+          c.k_t = 2.0 / 7.0;
+          c.mu_s = c.mu_d = unit_friction;
+        } else { // thermodynamic: REF of the spec (section 6.3)
+          c.e_star = unit_e_star;
+        }
+        l.coeffs.set(0, 0, c);
+      },
+      law);
+  return law;
+}
+
+std::string model_name(const AnyContactLaw& law) {
+  return std::visit(
+      [](const auto& l) { return std::string(std::decay_t<decltype(l)>::model_type::name); }, law);
+}
+
+// The exact two-grain setup of a thermodynamic law (none for the other models).
+std::optional<thermo::TwoGrainSetup> exact_setup(const AnyContactLaw& law, double mass,
+                                                 double radius) {
+  const auto* l = std::get_if<ContactLaw<Thermodynamic>>(&law);
+  if (!l) return std::nullopt;
+  const auto& c = l->coeffs(0, 0);
+  thermo::TwoGrainSetup s;
+  s.m1 = s.m2 = mass;
+  s.a1 = s.a2 = radius;
+  s.k = 4.0 / 3.0 * c.e_star * std::sqrt(0.5 * radius);
+  s.xi = thermo::xi_of_friction(c.friction);
+  s.transport = thermo::Transport::example(c.model(), s.k, 0.5 * mass, 2 * radius);
+  return s;
+}
+
+struct Study {
+  std::string name;
+  AnyContactLaw law;
+};
+
+std::vector<Study> studies(const CollideOptions& o) {
+  std::vector<Study> out;
+  if (!o.scene_path.empty()) {
+    const Scene scene = read_scene_file(o.scene_path);
+    out.push_back({model_name(scene.law), scene.law});
+    return out;
+  }
+  std::vector<std::string> names = o.models;
+  if (names.empty())
+    for (auto n : contact_model_names) names.emplace_back(n);
+  for (const auto& n : names) out.push_back({n, builtin_law(n)});
+  return out;
+}
+
+std::vector<double> speeds(const CollideOptions& o) {
+  if (!(o.v0_min > 0 && o.v0_max >= o.v0_min))
+    throw std::invalid_argument("--v0-min and --v0-max must satisfy 0 < min <= max");
+  if (o.per_decade < 1) throw std::invalid_argument("--per-decade must be at least 1");
+  const double decades = std::log10(o.v0_max / o.v0_min);
+  const int n = static_cast<int>(std::lround(decades * o.per_decade));
+  std::vector<double> v;
+  for (int k = 0; k <= n; ++k) v.push_back(o.v0_min * std::pow(10.0, k * decades / std::max(n, 1)));
+  return v;
+}
+
+// Restitution against impact speed, every model, head-on: Fig. 4.
+void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+  auto csv = fmt::output_file((dir / "restitution.csv").string());
+  csv.print("model,source,v0,impact_speed,e_n,contact_time,peak_force,max_overlap,heat_fraction,"
+            "energy_drift\n");
+  for (const auto& s : runs) {
+    const auto exact = exact_setup(s.law, o.mass, o.radius);
+    for (double v0 : speeds(o)) {
+      validation::BinaryCollision c;
+      c.law = s.law;
+      c.radius = o.radius;
+      c.mass = o.mass;
+      c.v0 = v0;
+      c.steps_per_contact = o.steps_per_contact;
+      const auto r = validation::collide_binary(c);
+      if (!r.separated) throw std::runtime_error(fmt::format("{}: no separation", s.name));
+      csv.print("{},engine,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g}\n", s.name, v0,
+                2 * v0, r.e_n, r.contact_time, r.peak_force, r.max_overlap, r.heat, r.max_drift);
+      if (exact) {
+        auto e = *exact;
+        e.v0 = v0;
+        const auto x = thermo::collide(e);
+        csv.print("{},exact,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g}\n", s.name, v0,
+                  2 * v0, x.restitution, x.contact_time, x.peak_force, x.max_overlap,
+                  (x.final_heat + x.final_w_relax) / x.initial_energy, x.max_energy_error);
+      }
+    }
+    spdlog::info("{}: {} impact speeds", s.name, speeds(o).size());
+  }
+}
+
+// Oblique impacts at v0 = 1e-3 (spec T13): with rotation, with rotation locked, and the exact
+// 2-D solution (no rotation) for the thermodynamic model.
+void sweep_obliquity(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+  auto csv = fmt::output_file((dir / "oblique.csv").string());
+  csv.print("model,source,impact_parameter,e_n,e_t,v_rel_after_x,v_rel_after_y,spin_0_z,spin_1_z,"
+            "heat_fraction,energy_drift\n");
+  const double v0 = 1e-3;
+  for (const auto& s : runs) {
+    const auto exact = exact_setup(s.law, o.mass, o.radius);
+    for (double b : o.obliquities) {
+      for (bool spins : {true, false}) {
+        validation::BinaryCollision c;
+        c.law = s.law;
+        c.radius = o.radius;
+        c.mass = o.mass;
+        c.v0 = v0;
+        c.impact_parameter = b;
+        c.steps_per_contact = o.steps_per_contact;
+        c.spins = spins;
+        const auto r = validation::collide_binary(c);
+        const Vec3 dv = r.v_after[0] - r.v_after[1];
+        csv.print("{},{},{},{:.8f},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g}\n", s.name,
+                  spins ? "engine" : "engine-locked", b, r.e_n, r.e_t, dv.x, dv.y, r.w_after[0].z,
+                  r.w_after[1].z, r.heat, r.max_drift);
+      }
+      if (exact) {
+        auto e = *exact;
+        e.v0 = v0;
+        e.impact_parameter = b;
+        const auto x = thermo::collide(e);
+        csv.print("{},exact-2d,{},{:.8f},{:.6f},,,0,0,{:.6g},{:.3g}\n", s.name, b, x.restitution,
+                  x.tangential_restitution, (x.final_heat + x.final_w_relax) / x.initial_energy,
+                  x.max_energy_error);
+      }
+    }
+  }
+}
+
+// The head-on time series of the thermodynamic model at v0 = 1e-3 (spec T14, Fig. 3).
+void write_series(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+  for (const auto& s : runs) {
+    auto e = exact_setup(s.law, o.mass, o.radius);
+    if (!e) continue;
+    e->v0 = 1e-3;
+    const double t_c = validation::contact_time(s.law, o.mass, o.radius, 2e-3);
+    e->sample_interval = t_c / 400;
+    e->after_separation = 3 * t_c;
+    const auto x = thermo::collide(*e);
+    auto csv = fmt::output_file((dir / "collision_series.csv").string());
+    csv.print("t,x1,delta,fn,un,w_el,kinetic,mechanical,w_relax,heat,total\n");
+    const double e0 = x.initial_energy;
+    for (const auto& p : x.series)
+      csv.print("{:.8g},{:.10g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.12g}\n",
+                p.t, p.x1, p.delta, p.fn, p.un, p.w_el / e0, p.kinetic / e0, p.mechanical / e0,
+                p.w_relax / e0, p.heat / e0, p.total / e0);
+    spdlog::info("time series of the head-on collision (v0 = 1e-3): e = {:.6f}, E_total kept to "
+                 "{:.2g}",
+                 x.restitution, x.max_energy_error);
+    return;
+  }
+}
+
+} // namespace
+
+int collide_command(const CollideOptions& o) {
+  try {
+    const fs::path dir = o.output_dir;
+    if (fs::exists(dir) && !fs::is_empty(dir)) {
+      if (!o.overwrite)
+        throw std::invalid_argument(
+            fmt::format("output folder {} is not empty; choose another with -o or pass --overwrite",
+                        dir.string()));
+      fs::remove_all(dir);
+    }
+    fs::create_directories(dir);
+    const auto runs = studies(o);
+    sweep_speeds(o, runs, dir);
+    sweep_obliquity(o, runs, dir);
+    write_series(o, runs, dir);
+    spdlog::info("results in {}", dir.string());
+    if (o.plots) {
+      // Debian's matplotlib belongs to the system interpreter.
+      const std::string cmd = fmt::format("/usr/bin/python3 '{}/scripts/plot_collide.py' '{}'",
+                                          YUXI_SOURCE_DIR, dir.string());
+      if (std::system(cmd.c_str()) != 0)
+        spdlog::warn("plotting failed (is python3-matplotlib installed?): {}", cmd);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}
+
+} // namespace yuxi
