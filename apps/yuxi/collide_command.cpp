@@ -118,7 +118,7 @@ std::vector<double> speeds(const CollideOptions& o) {
 void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
   auto csv = fmt::output_file((dir / "restitution.csv").string());
   csv.print("model,source,v0,impact_speed,e_n,contact_time,peak_force,max_overlap,heat_fraction,"
-            "energy_drift\n");
+            "energy_drift,final_drift\n");
   for (const auto& s : runs) {
     const auto exact = exact_setup(s.law, o.mass, o.radius);
     for (double v0 : speeds(o)) {
@@ -130,15 +130,17 @@ void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const
       c.steps_per_contact = o.steps_per_contact;
       const auto r = validation::collide_binary(c);
       if (!r.separated) throw std::runtime_error(fmt::format("{}: no separation", s.name));
-      csv.print("{},engine,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g}\n", s.name, v0,
-                2 * v0, r.e_n, r.contact_time, r.peak_force, r.max_overlap, r.heat, r.max_drift);
+      csv.print("{},engine,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g}\n",
+                s.name, v0, 2 * v0, r.e_n, r.contact_time, r.peak_force, r.max_overlap, r.heat,
+                r.max_drift, r.final_drift);
       if (exact) {
         auto e = *exact;
         e.v0 = v0;
         const auto x = thermo::collide(e);
-        csv.print("{},exact,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g}\n", s.name, v0,
-                  2 * v0, x.restitution, x.contact_time, x.peak_force, x.max_overlap,
-                  (x.final_heat + x.final_w_relax) / x.initial_energy, x.max_energy_error);
+        csv.print("{},exact,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g}\n",
+                  s.name, v0, 2 * v0, x.restitution, x.contact_time, x.peak_force, x.max_overlap,
+                  (x.final_heat + x.final_w_relax) / x.initial_energy, x.max_energy_error,
+                  x.max_energy_error);
       }
     }
     spdlog::info("{}: {} impact speeds", s.name, speeds(o).size());

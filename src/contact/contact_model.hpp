@@ -36,14 +36,6 @@ inline constexpr std::string_view contact_model_names[] = {
 // An empty law of the named model for n materials (throws std::out_of_range if unknown).
 AnyContactLaw make_contact_law(std::string_view model, std::size_t n_materials);
 
-// Models whose dissipative forces act on the predicted end-of-step velocity v + dt F/m rather
-// than the half-step velocity of velocity Verlet (thermo_contact_model.md section 7, step 4):
-// their energy books then close to second order in dt. The others keep the half-step velocity,
-// as LAMMPS does.
-template <class Model> inline constexpr bool uses_predicted_velocity = requires {
-  requires Model::predicts_velocity;
-};
-
 template <class Model>
 concept ContactModel = requires(const ContactGeometry& g, const typename Model::Coeffs& c,
                                 typename Model::State& s) {

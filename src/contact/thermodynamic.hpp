@@ -16,9 +16,12 @@
 //   e. w_R decays exactly, w_R *= exp(-dt/tau), into heat (22);
 // then the force (28)-(29): f_n = G pi_n - eta v_n, f_t = G pi_t - eta v_t, and the viscous
 // power eta (v_n^2 + |v_t|^2) fills w_R (the relaxation channel of (39); heat if so chosen).
-// Velocities are the predicted end-of-step ones (spec 7, step 4), and each step's viscous energy
-// is booked half at once and half at the next step, as the force acts in the two half kicks
-// of velocity Verlet (spec 7, steps 1 and 5): the books then close to second order in dt.
+// Velocities are the half-step ones of velocity Verlet, which also drive the springs. The
+// viscous force of a step acts in two half kicks (spec 7, steps 1 and 5): half its energy is
+// booked at once, eta v^2 dt/2, the other half at the next step as (eta v dt/2) . v_next, the
+// power of the same force at the velocity it then acts on. The books then close to second
+// order in dt (the spec reaches the same with predicted velocities, which would make the
+// springs move with velocities other than the displacement's).
 // Lever arms are Luding's branch lengths a' = a - delta/2 (spec 2.2), so a rigid rotation of
 // the pair moves no spring (test T11).
 //
@@ -43,8 +46,6 @@ enum class ViscosityChannel : std::uint8_t { relaxation, heat };
 
 struct Thermodynamic {
   static constexpr std::string_view name = "thermodynamic";
-  // Forces at the predicted velocity (spec 7, step 4): second-order energy books.
-  static constexpr bool predicts_velocity = true;
 
   struct Coeffs {
     double e_star = 0;      // E* of the pair (as for Hertz-Mindlin) [force/length^2]
@@ -60,19 +61,22 @@ struct Thermodynamic {
   };
 
   struct State {
-    double un = 0;         // normal spring deformation u_n <= 0 [length]
-    Vec3 ut;               // tangential spring deformation, in the tangent plane [length]
-    double w_relax = 0;    // relaxation energy w_R >= 0 [energy]
-    double stored = 0;     // elastic energy w_el(u_n, u_t) after the last step [energy]
-    Vec3 n_prev;           // normal at the last step (zero: a new contact)
-    double delta_prev = 0; // overlap at the last step [length]
-    double owed = 0;       // second half of the last step's viscous energy, booked next step
+    double un = 0;          // normal spring deformation u_n <= 0 [length]
+    Vec3 ut;                // tangential spring deformation, in the tangent plane [length]
+    double w_relax = 0;     // relaxation energy w_R >= 0 [energy]
+    double stored = 0;      // elastic energy w_el(u_n, u_t) after the last step [energy]
+    Vec3 n_prev;            // normal at the last step (zero: a new contact)
+    double delta_prev = 0;  // overlap at the last step [length]
+    Vec3 owed;              // eta v_c dt/2 of the last step: its dot with this step's v_c is the
+                            // second half of the last step's viscous energy [momentum]
+    double owed_energy = 0; // eta |v_c|^2 dt/2 of the last step, booked if the contact opens
     bool operator==(const State&) const = default;
     // Seen from the partner, n turns over and with it the tangential spring.
     State mirrored() const {
       State m = *this;
       m.ut = -ut;
       m.n_prev = -n_prev;
+      m.owed = -owed;
       return m;
     }
   };

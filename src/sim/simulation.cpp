@@ -67,12 +67,7 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
       law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
-      cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_),
-      predict_velocity_(std::visit(
-          [](const auto& f) {
-            return uses_predicted_velocity<typename std::decay_t<decltype(f.law())>::model_type>;
-          },
-          forces_)) {
+      cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   if (motions_.empty()) motions_.push_back(StaticMotion{});
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
@@ -134,10 +129,6 @@ void Simulation::step() {
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
     store_.x[i] += dt * store_.v[i];
     gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt; // m g_p . dx
-    if (predict_velocity_) { // v + dt F/m: the contact forces see the predicted end velocity
-      store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
-      store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
-    }
   }
   gravity_work_ += gravity_work;
   time_ += dt;
@@ -163,15 +154,12 @@ void Simulation::step() {
   // 3. Forces.
   compute_forces();
 
-  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away; the
-  // old forces migrated with them).
+  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
   t0 = Clock::now();
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
-    const Vec3 df = predict_velocity_ ? store_.f[i] - old_force_[i] : store_.f[i];
-    const Vec3 dtau = predict_velocity_ ? store_.torque[i] - old_torque_[i] : store_.torque[i];
-    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * df;
-    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * dtau;
+    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
+    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
   }
   timers_.integrate += seconds_since(t0);
   dissipated_ += tally_.dissipated;
@@ -428,11 +416,6 @@ void Simulation::handle_escapes_here() {
 
 void Simulation::compute_forces(bool advance_history) {
   auto t0 = Clock::now();
-  if (predict_velocity_) {
-    old_force_.assign(store_.f.begin(), store_.f.begin() + std::ptrdiff_t(store_.n_owned()));
-    old_torque_.assign(store_.torque.begin(),
-                       store_.torque.begin() + std::ptrdiff_t(store_.n_owned()));
-  }
   for (std::size_t i = 0; i < store_.size(); ++i) {
     store_.f[i] = Vec3{};
     store_.torque[i] = Vec3{};

@@ -206,10 +206,6 @@ private:
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   bool merging_ = false; // load_redistributed() is reading sections
-  // The contact model acts on predicted velocities: the kick undoes the prediction with the
-  // forces of the previous step, kept here for the owned particles.
-  bool predict_velocity_ = false;
-  std::vector<Vec3> old_force_, old_torque_;
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };

@@ -89,6 +89,7 @@ BinaryOutcome collide_binary(const BinaryCollision& c) {
     out.e_t = std::numeric_limits<double>::quiet_NaN();
   }
   out.heat = sim.energies().dissipated / out.initial_energy;
+  out.final_drift = (sim.energies().balance() - out.initial_energy) / out.initial_energy;
   for (GlobalId g = 0; g < 2; ++g) {
     out.v_after[g] = sim.particles().v[index(g)];
     out.w_after[g] = sim.particles().w[index(g)];

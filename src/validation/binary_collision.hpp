@@ -28,6 +28,7 @@ struct BinaryOutcome {
   double initial_energy = 0;
   double heat = 0;          // dissipated at the end / initial energy
   double max_drift = 0;     // largest |E_total - E_0| / E_0 over the run (energy books)
+  double final_drift = 0;   // (E_total - E_0) / E_0 after separation
   double max_mech_rise = 0; // largest step-to-step rise of mechanical energy / E_0
   double peak_relax = 0;    // largest relaxation energy / E_0 (thermodynamic model)
   Vec3 v_after[2], w_after[2];
