@@ -2,6 +2,7 @@
 
 #include "core/units.hpp"
 #include "io/scene_reader.hpp"
+#include "plot_script.hpp"
 #include "thermo/two_grain.hpp"
 #include "validation/binary_collision.hpp"
 
@@ -227,13 +228,7 @@ int collide_command(const CollideOptions& o) {
     sweep_obliquity(o, runs, dir);
     write_series(o, runs, dir);
     spdlog::info("results in {}", dir.string());
-    if (o.plots) {
-      // Debian's matplotlib belongs to the system interpreter.
-      const std::string cmd = fmt::format("/usr/bin/python3 '{}/scripts/plot_collide.py' '{}'",
-                                          YUXI_SOURCE_DIR, dir.string());
-      if (std::system(cmd.c_str()) != 0)
-        spdlog::warn("plotting failed (is python3-matplotlib installed?): {}", cmd);
-    }
+    if (o.plots) run_plot_script("plot_collide.py", fmt::format("'{}'", dir.string()));
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   run->add_flag("--force", opt.force_dt, "Run even if dt exceeds t_c/10 of the stiffest contact");
   run->add_option("--t-end", opt.t_end, "Override run.t_end");
   run->add_flag("!--no-progress", opt.progress, "Do not show progress on the terminal");
+  run->add_flag("!--no-plots", opt.plots, "Do not draw the plots at the end");
 
   auto* check = app.add_subcommand("check", "Validate a scene and report its time step");
   check->add_option("scene", opt.scene_path, "Scene file (TOML)")->check(CLI::ExistingFile);

@@ -7,6 +7,7 @@
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "plot_script.hpp"
 
 #include <csignal>
 #include <filesystem>
@@ -192,6 +193,13 @@ int run_command(const RunCommandOptions& o) {
     fmt::print(stderr, "error: the simulation stopped: {}\n", s.failure);
     fmt::print(stderr, "its last state is in {}\n", (dir / "failure.vtu").string());
     return 3;
+  }
+  if (o.plots) {
+    if (scene.analysis)
+      run_plot_script("plot_basin.py", fmt::format("'{}'", dir.string()));
+    else
+      run_plot_script("plot_energy.py", fmt::format("'{}' '{}'", (dir / "energies.csv").string(),
+                                                    (dir / "energies.png").string()));
   }
   fmt::print("{}\n", dir.string());
   return 0;

@@ -14,6 +14,7 @@ struct RunCommandOptions {
   bool force_dt = false;
   std::optional<double> t_end;
   bool progress = true;
+  bool plots = true; // draw the energy plot, or the basin figures of an [analysis] table
 };
 
 // Each returns the process exit code: 0 success, 2 bad input, 3 the simulation had to stop.

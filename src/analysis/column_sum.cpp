@@ -48,6 +48,11 @@ void ColumnAccumulator::add(std::span<const Vec3> positions, std::span<const dou
   ++snapshots_;
 }
 
+void ColumnAccumulator::combine(const std::function<void(double*, int)>& sum_in_place) {
+  sum_in_place(sums_.data(), static_cast<int>(sums_.size()));
+  sum_in_place(counts_.data(), static_cast<int>(counts_.size()));
+}
+
 GridField ColumnAccumulator::sum() const {
   return {grid_, sums_};
 }

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
@@ -57,7 +58,10 @@ public:
   const std::vector<double>& sums() const { return sums_; }     // over all snapshots
   const std::vector<double>& counts() const { return counts_; } // grain-snapshots per cell
 
-  GridField sum() const;             // total over all snapshots
+  GridField sum() const; // total over all snapshots
+  // Adds up the accumulators of several processes (each saw its own grains at the same
+  // snapshots): `sum_in_place(values, n)` must sum n doubles over them, in place.
+  void combine(const std::function<void(double*, int)>& sum_in_place);
   GridField time_mean() const;       // sum / snapshots: time average of the cell's total
   GridField time_mean_count() const; // counts / snapshots: mean number of grains in the cell
   GridField grain_mean() const;      // sum / counts: mean per grain (NaN where counts = 0)

@@ -48,6 +48,27 @@ void LogHistogram::add(std::span<const double> values) {
   for (const double v : values) add(v);
 }
 
+void LogHistogram::combine(const std::function<void(double*, int)>& sum_in_place) {
+  // Counts travel as doubles: exact up to 2^53.
+  std::vector<double> packed;
+  for (const auto c : counts_) packed.push_back(static_cast<double>(c));
+  packed.insert(packed.end(), energies_.begin(), energies_.end());
+  for (const auto c : {samples_, below_, above_, non_finite_})
+    packed.push_back(static_cast<double>(c));
+  packed.push_back(total_);
+  sum_in_place(packed.data(), static_cast<int>(packed.size()));
+  const std::size_t n = counts_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    counts_[k] = static_cast<std::size_t>(packed[k]);
+    energies_[k] = packed[n + k];
+  }
+  samples_ = static_cast<std::size_t>(packed[2 * n]);
+  below_ = static_cast<std::size_t>(packed[2 * n + 1]);
+  above_ = static_cast<std::size_t>(packed[2 * n + 2]);
+  non_finite_ = static_cast<std::size_t>(packed[2 * n + 3]);
+  total_ = packed[2 * n + 4];
+}
+
 Density LogHistogram::density() const {
   Density d;
   d.samples = samples_;

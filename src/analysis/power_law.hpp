@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ public:
   const std::vector<double>& edges() const { return edges_; } // bins() + 1 edges
   std::size_t samples() const { return samples_; }
   Density density() const;
+  // Adds up the histograms of several processes: `sum_in_place(values, n)` must sum n doubles
+  // over them, in place.
+  void combine(const std::function<void(double*, int)>& sum_in_place);
 
 private:
   std::vector<double> edges_;

@@ -57,6 +57,10 @@ double Comm::max(double v) const {
   return v;
 }
 
+void Comm::max(double* values, int n) const {
+  if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, to_mpi(handle_));
+}
+
 bool Comm::any(bool v) const {
   int x = v ? 1 : 0;
   if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_INT, MPI_MAX, to_mpi(handle_));
@@ -161,6 +165,7 @@ std::int64_t Comm::sum(std::int64_t v) const {
 double Comm::max(double v) const {
   return v;
 }
+void Comm::max(double*, int) const {}
 bool Comm::any(bool v) const {
   return v;
 }

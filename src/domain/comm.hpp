@@ -26,6 +26,7 @@ public:
   void sum(double* values, int n) const;
   std::int64_t sum(std::int64_t v) const;
   double max(double v) const;
+  void max(double* values, int n) const; // element-wise, in place
   bool any(bool v) const;
   // Sends `out` to `dest` and receives from `source` (either may be this rank).
   std::string send_receive(int dest, const std::string& out, int source, int tag) const;

@@ -112,32 +112,33 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
   }
 }
 
-void Halo::reverse(ParticleStore& s, const Comm& comm) const {
+template <class... Field> void Halo::reverse_add(const Comm& comm, Field&... fields) const {
   for (std::size_t k = swaps_.size(); k-- > 0;) {
     const Swap& w = swaps_[k];
     if (w.send_to == comm.rank() && w.receive_from == comm.rank()) {
       for (std::uint32_t n = 0; n < w.count; ++n) {
         const std::uint32_t i = w.sends[n], g = w.first + n;
-        s.f[i] += s.f[g];
-        s.torque[i] += s.torque[g];
+        ((fields[i] += fields[g]), ...);
       }
       continue;
     }
     std::string out;
-    out.reserve(w.count * 2 * sizeof(Vec3));
-    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {
-      put(out, s.f[g]);
-      put(out, s.torque[g]);
-    }
+    out.reserve(w.count * (sizeof(fields[0]) + ...));
+    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) (put(out, fields[g]), ...);
     // back the way the ghosts came: to the rank they were received from
     const std::string in =
         comm.send_receive(w.receive_from, out, w.send_to, 400 + 2 * static_cast<int>(k));
     std::size_t at = 0;
-    for (auto i : w.sends) {
-      s.f[i] += take<Vec3>(in, at);
-      s.torque[i] += take<Vec3>(in, at);
-    }
+    for (auto i : w.sends) ((fields[i] += take<std::decay_t<decltype(fields[i])>>(in, at)), ...);
   }
+}
+
+void Halo::reverse(ParticleStore& s, const Comm& comm) const {
+  reverse_add(comm, s.f, s.torque);
+}
+
+void Halo::reverse_sum(std::vector<double>& per_particle, const Comm& comm) const {
+  reverse_add(comm, per_particle);
 }
 
 void Halo::migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,

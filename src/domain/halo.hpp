@@ -29,6 +29,9 @@ public:
   void build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff);
   void forward(ParticleStore& s, const Comm& comm) const;
   void reverse(ParticleStore& s, const Comm& comm) const;
+  // The same for one quantity per particle (owned, then ghosts): ghosts' values are added to
+  // the particles they copy (a per-particle sum of pair contributions, like the forces).
+  void reverse_sum(std::vector<double>& per_particle, const Comm& comm) const;
   std::size_t n_ghosts() const { return n_ghosts_; }
 
   // Sends owned particles outside the sub-domain to their new owners. `payload(i)` packs what
@@ -39,6 +42,7 @@ public:
                       const std::function<void(std::size_t, const std::string&)>& arrived);
 
 private:
+  template <class... Field> void reverse_add(const Comm& comm, Field&... fields) const;
   struct Swap {
     int send_to = -1, receive_from = -1;
     Vec3 shift;                         // added to what is sent (crossing a periodic boundary)

@@ -4,6 +4,7 @@
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/progress.hpp"
+#include "io/run_analysis.hpp"
 #include "io/vtk_writer.hpp"
 
 #include <chrono>
@@ -68,6 +69,9 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     if (dump) dump->write(all, sim.step_count());
   };
 
+  std::unique_ptr<RunAnalysis> analysis;
+  if (scene.analysis) analysis = std::make_unique<RunAnalysis>(scene, dir, dt);
+
   RunSummary summary;
   Progress progress(first, last, options.show_progress && sim.comm().root());
   const double n_particles =
@@ -82,7 +86,9 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     while (sim.step_count() < last) {
       const bool checkpoint_now = checkpoint_due(sim.step_count() + 1);
       if (checkpoint_now) sim.request_rebuild();
+      if (analysis) analysis->before_step(sim);
       sim.step();
+      if (analysis) analysis->after_step(sim);
       particle_steps += n_particles;
       const std::int64_t k = sim.step_count();
       if (k % energy_every == 0 || k == last) write_energies();
@@ -108,6 +114,7 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     }
   }
   progress.finish();
+  if (analysis && !summary.failed) analysis->finish(sim);
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.steps = sim.step_count() - first;

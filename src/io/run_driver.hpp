@@ -5,6 +5,9 @@
 //   checkpoints/          the run's state every [checkpoint] interval, on SIGINT/SIGTERM and at
 //                         the end (checkpoint_file.hpp); a resumed run continues every file
 //   failure.txt, failure.vtu   if the run had to stop: the diagnosis and the last state
+//   analysis/             the fish-basin analysis of the scene's [analysis] table
+//                         (run_analysis.hpp); a run resumed inside the averaging window
+//                         averages over the part after the restart
 #pragma once
 
 #include "io/scene.hpp"

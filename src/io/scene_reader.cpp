@@ -62,6 +62,63 @@ void read_checkpoint_settings(Scene& scene, TomlReader& root) {
   c->finish();
 }
 
+// A pair [lo, hi] with lo < hi (and lo > 0 if positive).
+std::array<double, 2> read_range(TomlReader& t, std::string_view key, std::array<double, 2> value,
+                                 bool positive) {
+  if (!t.has(key)) return value;
+  const auto v = t.numbers(key);
+  if (v.size() != 2 || !(v[0] < v[1]) || (positive && !(v[0] > 0)))
+    t.fail(key, positive ? "expected [lo, hi] with 0 < lo < hi" : "expected [lo, hi] with lo < hi");
+  return {v[0], v[1]};
+}
+
+void read_analysis(Scene& scene, TomlReader& root) {
+  auto a = root.table("analysis");
+  if (!a) return;
+  AnalysisSettings s;
+  const auto grid = a->has("grid") ? a->integers("grid") : std::vector<std::int64_t>{48, 48};
+  if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096)
+    a->fail("grid", "expected [nx, ny], each in 1..4096");
+  s.grid = {static_cast<int>(grid[0]), static_cast<int>(grid[1])};
+  const auto times = [&](std::string_view key) {
+    if (!a->has(key)) return std::vector<double>{};
+    auto v = a->numbers(key);
+    for (double t : v)
+      if (t < 0) a->fail(key, "times must not be negative");
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  s.surface_times = times("surface_times");
+  s.velocity_times = times("velocity_times");
+  s.elastic_map_times = times("elastic_map_times");
+  s.section_half_thickness = a->positive("section_half_thickness", s.section_half_thickness);
+  s.section_azimuth = a->number("section_azimuth", s.section_azimuth);
+  s.period_start = a->number("period_start", s.period_start);
+  s.period_length = a->number("period_length", s.period_length);
+  if (scene.basin && scene.basin->excitation.omega > 0) { // default: the first period after t0
+    if (s.period_start < 0) s.period_start = scene.basin->excitation.t0;
+    if (s.period_length <= 0) s.period_length = 2 * pi / scene.basin->excitation.omega;
+  }
+  if (s.period_start < 0 || s.period_length <= 0)
+    a->fail("period_start", "give period_start >= 0 and period_length > 0 (the scene has no "
+                            "excited [basin] to take them from)");
+  s.sample_interval = a->positive("sample_interval", s.sample_interval);
+  if (a->has("section_heights")) {
+    s.section_heights = a->numbers("section_heights");
+    if (s.section_heights.size() % 2 != 0)
+      a->fail("section_heights", "expected pairs z0, z1 (an even count of numbers)");
+    for (std::size_t k = 0; k < s.section_heights.size(); k += 2)
+      if (!(s.section_heights[k] < s.section_heights[k + 1]))
+        a->fail("section_heights", "each slab needs z0 < z1");
+  }
+  s.pdf_range = read_range(*a, "pdf_range", s.pdf_range, true);
+  s.bins_per_decade = static_cast<int>(a->integer("bins_per_decade", s.bins_per_decade, 1, 1000));
+  s.fit_a = read_range(*a, "fit_a", s.fit_a, true);
+  s.fit_b = read_range(*a, "fit_b", s.fit_b, true);
+  a->finish();
+  scene.analysis = s;
+}
+
 void read_domain(Scene& scene, TomlReader& root) {
   auto d = root.table("domain");
   if (!d) root.fail("", "missing table [domain]");
@@ -451,6 +508,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_contact(scene, root);
   read_planes(scene, root);
   read_basin(scene, root);
+  read_analysis(scene, root);
   read_lammps_data_section(scene, root);
   read_particles(scene, root);
   root.finish();

@@ -125,6 +125,28 @@ std::string resolved_scene_toml(const Scene& s) {
                                                       {"omega", k.excitation.omega},
                                                       {"t0", k.excitation.t0}}}});
   }
+  if (s.analysis) {
+    const auto& a = *s.analysis;
+    const auto list = [](const std::vector<double>& v) {
+      toml::array out;
+      for (double x : v) out.push_back(x);
+      return out;
+    };
+    doc.insert("analysis", toml::table{{"grid", toml::array{a.grid[0], a.grid[1]}},
+                                       {"surface_times", list(a.surface_times)},
+                                       {"velocity_times", list(a.velocity_times)},
+                                       {"section_half_thickness", a.section_half_thickness},
+                                       {"section_azimuth", a.section_azimuth},
+                                       {"elastic_map_times", list(a.elastic_map_times)},
+                                       {"period_start", a.period_start},
+                                       {"period_length", a.period_length},
+                                       {"sample_interval", a.sample_interval},
+                                       {"section_heights", list(a.section_heights)},
+                                       {"pdf_range", toml::array{a.pdf_range[0], a.pdf_range[1]}},
+                                       {"bins_per_decade", a.bins_per_decade},
+                                       {"fit_a", toml::array{a.fit_a[0], a.fit_a[1]}},
+                                       {"fit_b", toml::array{a.fit_b[0], a.fit_b[1]}}});
+  }
   if (s.lammps_data) {
     toml::array types, frozen;
     for (auto m : s.lammps_data->type_material) types.push_back(s.materials[m]);

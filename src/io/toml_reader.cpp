@@ -203,6 +203,21 @@ std::vector<std::int64_t> TomlReader::integers(std::string_view key) {
   return out;
 }
 
+std::vector<double> TomlReader::numbers(std::string_view key) {
+  const toml::node& n = require(key);
+  const toml::array* a = n.as_array();
+  if (!a) wrong_type(key, "an array of numbers");
+  std::vector<double> out;
+  for (const auto& e : *a) {
+    if (!e.is_number()) wrong_type(key, "an array of numbers");
+    const double x =
+        e.is_integer() ? static_cast<double>(*e.value<std::int64_t>()) : *e.value<double>();
+    if (!std::isfinite(x)) fail(key, "every number must be finite");
+    out.push_back(x);
+  }
+  return out;
+}
+
 std::optional<TomlReader> TomlReader::table(std::string_view key) {
   const toml::node* n = find(key);
   if (!n) return std::nullopt;

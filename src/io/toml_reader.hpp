@@ -42,6 +42,7 @@ public:
   std::array<std::int64_t, 3> int3(std::string_view key, std::int64_t min);
   std::vector<std::string> strings(std::string_view key);
   std::vector<std::int64_t> integers(std::string_view key);
+  std::vector<double> numbers(std::string_view key); // finite numbers (integers allowed)
 
   std::optional<TomlReader> table(std::string_view key);
   std::vector<TomlReader> tables(std::string_view key); // an array of tables ([[key]])

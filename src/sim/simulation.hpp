@@ -101,6 +101,10 @@ public:
   // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
   void record_contacts(bool on) { record_.enabled = on; }
   const ContactRecord& contact_record() const { return record_; }
+  // Elastic energy per owned particle at the last force evaluation: half of each contact's
+  // stored energy to each partner (flat walls keep theirs). Needs record_contacts(true) during
+  // that evaluation. Collective.
+  std::vector<double> particle_elastic_energy() const;
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   std::size_t escaped() const { return escaped_; }

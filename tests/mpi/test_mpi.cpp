@@ -2,6 +2,7 @@
 // ranks (MPI_COMM_WORLD) and, on rank 0, the same system on one rank (MPI_COMM_SELF), and
 // compares them particle by particle. Run with mpirun -np 1, 2 and 4 (ctest does).
 // Round-off differs (forces are summed in another order), so agreement is to a tolerance.
+#include "core/archive.hpp"
 #include "core/random.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
@@ -81,6 +82,49 @@ TEST(Mpi, DensePackingMatchesTheSerialRun) {
     EXPECT_GT(serial.energies().contacts, 150u); // a packing in contact, not a gas
     expect_same(a, snapshot(serial), 1e-9, 1e-7);
   }
+}
+
+// Per-grain elastic energy (half of each contact's to each partner; the analysis of Figs. 8-10):
+// over all particles it adds up to the engine's total less the flat walls' halves, and each
+// particle's share is the serial run's, whichever rank computed its contacts.
+TEST(Mpi, PerParticleElasticEnergyMatchesTheTotalAndTheSerialRun) {
+  const auto shares = [](Simulation& sim) {
+    sim.record_contacts(true);
+    sim.run(300);
+    const std::vector<double> e = sim.particle_elastic_energy(); // collective
+    double sum[2] = {0, 0};
+    for (double x : e) sum[0] += x;
+    for (double x : sim.contact_record().plane_elastic) sum[1] += 0.5 * x;
+    sim.comm().sum(sum, 2);
+    EXPECT_GT(sum[0], 0.0);
+    EXPECT_NEAR(sum[0] + sum[1], sim.energies().elastic, 1e-9 * sum[0]);
+    ArchiveWriter out;
+    std::vector<double> pairs;
+    for (std::size_t i = 0; i < e.size(); ++i)
+      pairs.insert(pairs.end(), {static_cast<double>(sim.particles().gid[i]), e[i]});
+    out.vector(pairs);
+    std::map<GlobalId, double> by_gid;
+    for (const auto& part : sim.comm().gather(out.data())) {
+      ArchiveReader in(part);
+      std::vector<double> v;
+      in.vector(v);
+      for (std::size_t k = 0; k + 1 < v.size(); k += 2)
+        by_gid[static_cast<GlobalId>(v[k])] = v[k + 1];
+    }
+    return by_gid;
+  };
+  Simulation parallel = dense(Comm::world());
+  const auto a = shares(parallel);
+  if (Comm::world().rank() != 0) return;
+  Simulation serial = dense(Comm::self());
+  const auto b = shares(serial);
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0, scale = 0;
+  for (const auto& [gid, e] : b) {
+    worst = std::max(worst, std::abs(a.at(gid) - e));
+    scale = std::max(scale, e);
+  }
+  EXPECT_LT(worst, 1e-6 * scale);
 }
 
 // Newton's third law across ranks: contact forces summed over all particles cancel, leaving

@@ -144,6 +144,27 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+// The [analysis] table: a window it cannot take from a basin, and malformed lists.
+TEST(SceneReader, AnalysisTableErrorsNameTheKey) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"[analysis]\nsurface_times = [1.0]\n", "analysis.period_start: give period_start"},
+      {"[analysis]\nperiod_start = 0.0\nperiod_length = 1.0\nsection_heights = [1.0]\n",
+       "analysis.section_heights: expected pairs"},
+      {"[analysis]\nperiod_start = 0.0\nperiod_length = 1.0\nfit_a = [2.0, 0.2]\n",
+       "analysis.fit_a: expected [lo, hi]"},
+      {"[analysis]\nperiod_start = 0.0\nperiod_length = 1.0\nsurface_times = [\"late\"]\n",
+       "analysis.surface_times"}};
+  for (const auto& [table, expected] : cases) {
+    const std::string text = replaced(base_scene, "[[particle]]", table + "\n[[particle]]");
+    try {
+      read_scene_text(text, "bad.toml");
+      FAIL() << table << ": accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(SceneReader, BasinLargerThanTheDomainIsRefused) {
   std::string text = std::string(base_scene);
   text = replaced(text, "[[particle]]",

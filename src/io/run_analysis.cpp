@@ -1,0 +1,181 @@
+#include "io/run_analysis.hpp"
+
+#include "analysis/analysis_csv.hpp"
+#include "analysis/free_surface.hpp"
+#include "analysis/grain_energy.hpp"
+#include "analysis/velocity_section.hpp"
+#include "core/archive.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <stdexcept>
+
+namespace yuxi {
+namespace {
+
+std::int64_t step_of(double t, double dt) {
+  return std::llround(t / dt);
+}
+
+std::set<std::int64_t> steps_of(const std::vector<double>& times, double dt) {
+  std::set<std::int64_t> out;
+  for (double t : times) out.insert(step_of(t, dt));
+  return out;
+}
+
+} // namespace
+
+RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double dt)
+    : settings_(*scene.analysis), dir_(std::move(dir)), dt_(dt),
+      grid_(scene.sim.box.lo, scene.sim.box.hi, static_cast<std::size_t>(settings_.grid[0]),
+            static_cast<std::size_t>(settings_.grid[1])),
+      pdf_kinetic_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),
+      pdf_elastic_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),
+      pdf_total_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade) {
+  const auto& s = settings_;
+  const Box& box = scene.sim.box;
+  axis_ = 0.5 * (box.lo + box.hi);
+  if (scene.basin) { // the basin's axis: the centre of its lattice
+    const auto& b = *scene.basin;
+    axis_ = {box.lo.x + 0.5 * b.cells[0] * b.spacing, box.lo.y + 0.5 * b.cells[1] * b.spacing, 0};
+  }
+  surface_steps_ = steps_of(s.surface_times, dt);
+  velocity_steps_ = steps_of(s.velocity_times, dt);
+  elastic_steps_ = steps_of(s.elastic_map_times, dt);
+  period_first_ = step_of(s.period_start, dt);
+  period_last_ = step_of(s.period_start + s.period_length, dt);
+  period_every_ = std::max<std::int64_t>(1, step_of(s.sample_interval, dt));
+  for (std::size_t k = 0; k + 1 < s.section_heights.size(); k += 2) {
+    section_elastic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
+    section_kinetic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
+  }
+  std::filesystem::create_directories(dir_ / "analysis");
+}
+
+bool RunAnalysis::needs_energies(std::int64_t step) const {
+  const bool in_period =
+      step >= period_first_ && step <= period_last_ && (step - period_first_) % period_every_ == 0;
+  return in_period || elastic_steps_.count(step) > 0;
+}
+
+void RunAnalysis::before_step(Simulation& sim) const {
+  sim.record_contacts(needs_energies(sim.step_count() + 1));
+}
+
+RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
+  const auto& p = sim.particles();
+  Grains g;
+  std::vector<double> elastic;
+  if (energies) elastic = sim.particle_elastic_energy(); // collective
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    if (!p.is_grain(i)) continue;
+    g.x.push_back(p.x[i]);
+    g.v.push_back(p.v[i]);
+    g.radius.push_back(p.radius[i]);
+    if (energies) {
+      const double rotational = p.inv_inertia[i] > 0 ? 0.5 * norm2(p.w[i]) / p.inv_inertia[i] : 0.0;
+      g.kinetic.push_back(0.5 * p.mass[i] * norm2(p.v[i]) + rotational);
+      g.elastic.push_back(elastic[i]);
+    }
+  }
+  return g;
+}
+
+void RunAnalysis::write_surface(Simulation& sim, const Grains& g) const {
+  analysis::GridField f = analysis::free_surface(grid_, g.x, g.radius);
+  constexpr double none = -std::numeric_limits<double>::infinity();
+  for (double& h : f.values)
+    if (std::isnan(h)) h = none;
+  sim.comm().max(f.values.data(), static_cast<int>(f.values.size()));
+  for (double& h : f.values)
+    if (h == none) h = std::numeric_limits<double>::quiet_NaN();
+  if (sim.comm().root())
+    analysis::write_surface_csv(
+        dir_ / "analysis" / analysis::timed_file_name("surface", sim.time()), f);
+}
+
+void RunAnalysis::write_velocity_section(Simulation& sim, const Grains& g) const {
+  const auto mine = analysis::velocity_section(g.x, g.v, axis_, settings_.section_azimuth,
+                                               settings_.section_half_thickness);
+  ArchiveWriter out; // the few grains in the plane travel to rank 0
+  std::vector<double> packed;
+  for (const auto& p : mine.points) packed.insert(packed.end(), {p.s, p.z, p.vs, p.vz, p.vn});
+  out.vector(packed);
+  const auto parts = sim.comm().gather(out.data());
+  if (!sim.comm().root()) return;
+  analysis::VelocitySection all = mine;
+  all.points.clear();
+  for (const auto& part : parts) {
+    ArchiveReader in(part);
+    std::vector<double> v;
+    in.vector(v);
+    for (std::size_t k = 0; k + 4 < v.size(); k += 5)
+      all.points.push_back({all.points.size(), v[k], v[k + 1], v[k + 2], v[k + 3], v[k + 4]});
+  }
+  analysis::write_velocity_section_csv(
+      dir_ / "analysis" / analysis::timed_file_name("velocity", sim.time()), all);
+}
+
+void RunAnalysis::write_elastic_map(Simulation& sim, const Grains& g) const {
+  analysis::GridField f = analysis::column_sum(grid_, g.x, g.elastic);
+  sim.comm().sum(f.values.data(), static_cast<int>(f.values.size()));
+  if (sim.comm().root())
+    analysis::write_column_sum_csv(
+        dir_ / "analysis" / analysis::timed_file_name("elastic_map", sim.time(), 4), f, "elastic");
+}
+
+void RunAnalysis::accumulate_period(const Grains& g) {
+  for (std::size_t k = 0; k < section_elastic_.size(); ++k) {
+    section_elastic_[k].add(g.x, g.elastic);
+    section_kinetic_[k].add(g.x, g.kinetic);
+  }
+  pdf_kinetic_.add(g.kinetic);
+  pdf_elastic_.add(g.elastic);
+  for (std::size_t i = 0; i < g.kinetic.size(); ++i) pdf_total_.add(g.kinetic[i] + g.elastic[i]);
+}
+
+void RunAnalysis::after_step(Simulation& sim) {
+  const std::int64_t k = sim.step_count();
+  const bool surface = surface_steps_.count(k) > 0, velocity = velocity_steps_.count(k) > 0;
+  const bool energies = needs_energies(k);
+  if (!surface && !velocity && !energies) return;
+  const Grains g = grains(sim, energies);
+  if (surface) write_surface(sim, g);
+  if (velocity) write_velocity_section(sim, g);
+  if (elastic_steps_.count(k) > 0) write_elastic_map(sim, g);
+  if (energies && k >= period_first_ && k <= period_last_ &&
+      (k - period_first_) % period_every_ == 0)
+    accumulate_period(g);
+  if (k == period_last_) finish(sim);
+}
+
+void RunAnalysis::finish(Simulation& sim) {
+  if (finished_ || pdf_kinetic_.samples() == 0) return;
+  finished_ = true;
+  const auto sum = [&](double* values, int n) { sim.comm().sum(values, n); };
+  for (auto& a : section_elastic_) a.combine(sum);
+  for (auto& a : section_kinetic_) a.combine(sum);
+  pdf_kinetic_.combine(sum);
+  pdf_elastic_.combine(sum);
+  pdf_total_.combine(sum);
+  if (!sim.comm().root()) return;
+  const auto folder = dir_ / "analysis";
+  std::vector<analysis::EnergySection> sections;
+  for (std::size_t k = 0; k < section_elastic_.size(); ++k)
+    sections.push_back({&section_elastic_[k], &section_kinetic_[k]});
+  if (!sections.empty()) analysis::write_sections_csv(folder / "period_sections.csv", sections);
+  std::vector<analysis::NamedFit> fits;
+  const std::pair<const char*, const analysis::LogHistogram*> pdfs[] = {
+      {"kinetic", &pdf_kinetic_}, {"elastic", &pdf_elastic_}, {"total", &pdf_total_}};
+  for (const auto& [name, h] : pdfs) {
+    const analysis::Density d = h->density();
+    analysis::write_density_csv(folder / fmt::format("pdf_{}.csv", name), d);
+    for (const auto& [range, r] :
+         {std::pair{"A", settings_.fit_a}, std::pair{"B", settings_.fit_b}})
+      fits.push_back({name, range, r[0], r[1], analysis::fit_power_law(d, r[0], r[1])});
+  }
+  analysis::write_fits_csv(folder / "fits.csv", fits);
+}
+
+} // namespace yuxi
