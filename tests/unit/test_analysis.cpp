@@ -9,6 +9,7 @@
 #include "analysis/velocity_section.hpp"
 #include "analysis/xy_grid.hpp"
 #include "core/random.hpp"
+#include "temp_folder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -26,13 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("yuxi_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::temp_dir;
 
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);

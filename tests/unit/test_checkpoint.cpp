@@ -6,6 +6,7 @@
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "temp_folder.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -57,12 +58,7 @@ TEST(Checkpoint, ResumedRunMatchesTheUninterruptedOneByteForByte) {
   EXPECT_EQ(straight->energies().balance(), resumed->energies().balance());
 }
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("yuxi_ckpt_" + name + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::temp_dir;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

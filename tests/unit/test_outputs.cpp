@@ -3,6 +3,7 @@
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
+#include "temp_folder.hpp"
 #include "test_support.hpp"
 
 #include <cstring>
@@ -17,13 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("yuxi_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::temp_dir;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
