@@ -221,6 +221,45 @@ TEST(Mpi, ShakenBasinMatchesTheSerialRun) {
   }
 }
 
+// The thermodynamic model across ranks: its per-contact state (spring deformations, relaxation
+// energy, previous normal) migrates and is mirrored like any history, and the books with their
+// relaxation column agree with the serial run.
+TEST(Mpi, ThermodynamicModelMatchesTheSerialRun) {
+  const auto make = [](Comm comm) {
+    Random rng(23);
+    auto cfg = test::open_box(6.0, {0.2, 0.1, -1.0}, 1e-4);
+    cfg.box.boundary = {Boundary::periodic, Boundary::periodic, Boundary::wall};
+    cfg.skin = 0.15;
+    std::vector<ParticleSpec> specs;
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j)
+        for (int k = 0; k < 8; ++k) {
+          const double r = rng.uniform(0.4, 0.5);
+          specs.push_back(
+              test::sphere({-5.5 + 0.92 * i, -5.5 + 0.92 * j, -5.5 + 0.92 * k}, r, r * r * r,
+                           {rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)},
+                           {rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5)}));
+        }
+    Thermodynamic::Coeffs c; // REF, E* such that k = 2e4 at R* = 0.225
+    c.e_star = 2e4 / (4.0 / 3.0 * std::sqrt(0.225));
+    ContactLaw<Thermodynamic> law{PairTable<Thermodynamic::Coeffs>(1)};
+    law.coeffs.set(0, 0, c);
+    return Simulation(cfg, test::store_of(specs), {}, {}, law, comm);
+  };
+  Simulation parallel = make(Comm::world());
+  parallel.run(400);
+  const Snapshot a = snapshot(parallel);
+  const double relaxation = parallel.energies().relaxation; // collective
+  if (Comm::world().rank() == 0) {
+    Simulation serial = make(Comm::self());
+    serial.run(400);
+    EXPECT_GT(serial.energies().contacts, 150u);
+    EXPECT_GT(serial.energies().relaxation, 0.0);
+    EXPECT_NEAR(relaxation, serial.energies().relaxation, 1e-8 * serial.energies().relaxation);
+    expect_same(a, snapshot(serial), 1e-9, 1e-7);
+  }
+}
+
 } // namespace
 } // namespace yuxi
 
