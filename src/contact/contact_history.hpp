@@ -40,6 +40,10 @@ template <class State> class ContactHistory {
 public:
   std::vector<State> pair;  // aligned with NeighborList::partners
   std::vector<State> plane; // aligned with NeighborList::planes
+  // 1 where the state may differ from a fresh one (the contact touched since it was last
+  // released): the pair loop reads these bytes, not the states, for the many listed pairs
+  // that do not touch.
+  std::vector<std::uint8_t> pair_live, plane_live;
 
   struct Entry {
     ContactKey key;
@@ -84,16 +88,22 @@ public:
   void restore(const ParticleStore& s, const NeighborList& list) {
     pair.assign(list.n_pairs(), State{});
     plane.assign(list.planes.size(), State{});
+    pair_live.assign(list.n_pairs(), 0);
+    plane_live.assign(list.planes.size(), 0);
     if (stash_.empty()) return;
     for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
         const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
         const auto it = stash_.find(ContactKey{std::min(a, b), std::max(a, b)});
-        if (it != stash_.end()) pair[p] = a < b ? it->second : it->second.mirrored();
+        if (it == stash_.end()) continue;
+        pair[p] = a < b ? it->second : it->second.mirrored();
+        pair_live[p] = 1;
       }
     for (std::size_t k = 0; k < list.planes.size(); ++k) {
       const auto it = stash_.find(plane_key(s, list.planes[k]));
-      if (it != stash_.end()) plane[k] = it->second;
+      if (it == stash_.end()) continue;
+      plane[k] = it->second;
+      plane_live[k] = 1;
     }
     stash_.clear();
   }

@@ -63,7 +63,7 @@ ContactResult HertzMindlin::evaluate(const ContactGeometry& g, const Coeffs& c, 
                                std::max(fn, 0.0), tangential, g.dt);
 
   r.add_contact_force(g, fn, t.force);
-  r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored;
+  r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = eta_n * vn * vn * g.dt + t.dissipated;
   return r;
 }

@@ -70,7 +70,7 @@ ContactResult Luding::evaluate(const ContactGeometry& g, const Coeffs& c, State&
   const Vec3 twist = a12 * tor.force;
   r.torque_i += roll + twist;
   r.torque_j -= roll + twist;
-  r.elastic = stored_n + s.tangential.stored + s.rolling.stored + s.torsion.stored;
+  r.elastic = stored_n + s.tangential.stored() + s.rolling.stored() + s.torsion.stored();
   r.dissipated = g.m_eff * c.gamma_n * vn * vn * g.dt + normal_loss + t.dissipated + rr.dissipated +
                  tor.dissipated;
   return r;

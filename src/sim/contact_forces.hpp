@@ -56,21 +56,24 @@ private:
 
   void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
                      ContactRecord& record) {
-    const State fresh{};
     for (std::uint32_t i = 0; i + 1 < list.offsets.size(); ++i) {
       const Vec3 xi = s.x[i];
       const double ai = s.radius[i];
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
         const std::uint32_t j = list.partners[p];
-        State& state = history.pair[p];
         const Vec3 d = xi - s.x[j];
         const double r2 = norm2(d);
         const double touch = ai + s.radius[j];
         if (r2 >= touch * touch) {
-          if (!(state == fresh)) // separated: the contact's history ends
-            tally.dissipated += Model::release(law_.coeffs(s.material[i], s.material[j]), state);
+          if (history.pair_live[p]) { // separated: the contact's history ends
+            tally.dissipated +=
+                Model::release(law_.coeffs(s.material[i], s.material[j]), history.pair[p]);
+            history.pair_live[p] = 0;
+          }
           continue;
         }
+        State& state = history.pair[p];
+        history.pair_live[p] = 1;
         const double dist = std::sqrt(r2);
         ContactGeometry g;
         g.n = d / dist;
@@ -105,7 +108,6 @@ private:
   void compute_planes(ParticleStore& s, const NeighborList& list,
                       const std::vector<PlaneWall>& planes, double t, double dt,
                       ContactTally& tally, ContactRecord& record) {
-    const State fresh{};
     for (std::size_t k = 0; k < list.planes.size(); ++k) {
       const auto [i, plane_index] = list.planes[k];
       const PlaneWall& wall = planes[plane_index];
@@ -113,10 +115,13 @@ private:
       const double dist = wall.distance(s.x[i], t);
       const double ai = s.radius[i];
       if (dist >= ai) {
-        if (!(state == fresh))
+        if (history.plane_live[k]) {
           tally.dissipated += Model::release(law_.coeffs(s.material[i], wall.material), state);
+          history.plane_live[k] = 0;
+        }
         continue;
       }
+      history.plane_live[k] = 1;
       const Vec3 v_wall = wall.velocity(t);
       ContactGeometry g;
       g.n = wall.normal;
