@@ -105,13 +105,17 @@ std::size_t Simulation::n_grains() const {
   return static_cast<std::size_t>(comm_.sum(n));
 }
 
-void Simulation::place_walls(double t) {
+bool Simulation::place_walls(double t) {
+  const double limit2 = 0.25 * config_.skin * config_.skin;
+  bool moved_far = false;
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i)) continue;
     const PlacedState p = place(motions_[store_.motion[i]], store_.x_rest[i], t);
     store_.x[i] = p.position;
     store_.v[i] = p.velocity;
+    if (!(norm2(p.position - store_.x_build[i]) <= limit2)) moved_far = true;
   }
+  return moved_far;
 }
 
 void Simulation::step() {
@@ -129,14 +133,13 @@ void Simulation::step() {
     store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
     store_.x[i] += dt * store_.v[i];
-    gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt; // m g_p . dx
+    gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt;           // m g_p . dx
+    if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
   }
   gravity_work_ += gravity_work;
   time_ += dt;
   ++step_;
-  place_walls(time_);
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
+  if (place_walls(time_)) must_rebuild = true;
   timers_.integrate += seconds_since(t0);
   t0 = Clock::now();
   must_rebuild = comm_.any(must_rebuild);

@@ -157,7 +157,8 @@ public:
   void refresh();
 
 private:
-  void place_walls(double t);
+  // Walls to their prescribed place at t; true if one moved more than half the skin.
+  bool place_walls(double t);
   void rebuild(bool stash_history = true);
   void migrate();
   void rebalance();
