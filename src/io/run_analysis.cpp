@@ -139,7 +139,10 @@ void RunAnalysis::after_step(Simulation& sim) {
   const std::int64_t k = sim.step_count();
   const bool surface = surface_steps_.count(k) > 0, velocity = velocity_steps_.count(k) > 0;
   const bool energies = needs_energies(k);
-  if (!surface && !velocity && !energies) return;
+  if (!surface && !velocity && !energies) {
+    if (k == period_last_) finish(sim);
+    return;
+  }
   const Grains g = grains(sim, energies);
   if (surface) write_surface(sim, g);
   if (velocity) write_velocity_section(sim, g);
