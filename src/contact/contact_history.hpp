@@ -8,6 +8,10 @@
 //
 // Ownership (for MPI migration and checkpoints): a contact belongs with its particle of lower
 // global id; a grain-plane contact with its grain.
+//
+// The stash is a plain array, and restore() walks it: each stashed contact looks for its pair
+// in the rows of its two particles (found by global id), so a rebuild costs no hashing per
+// listed pair and no allocation per contact; violent runs rebuild every few steps.
 #pragma once
 
 #include "core/neighbor_list.hpp"
@@ -26,6 +30,38 @@ struct ContactKey {
   GlobalId first;  // lower global id (the grain, for a plane contact)
   GlobalId second; // higher global id, or -(plane index + 1) for a plane contact
   bool operator==(const ContactKey&) const = default;
+};
+
+// Local index of each owned particle by global id: a table when the ids are dense enough,
+// a hash map otherwise (ids read from a LAMMPS data file may be anything).
+class OwnedIndex {
+public:
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  explicit OwnedIndex(const ParticleStore& s) {
+    GlobalId top = -1;
+    for (std::size_t i = 0; i < s.n_owned(); ++i) top = std::max(top, s.gid[i]);
+    const auto n = static_cast<std::size_t>(top + 1);
+    dense_ = top >= 0 && n <= 8 * s.n_owned() + 1024;
+    if (dense_) {
+      table_.assign(n, none);
+      for (std::size_t i = 0; i < s.n_owned(); ++i) table_[static_cast<std::size_t>(s.gid[i])] = i;
+    } else {
+      for (std::size_t i = 0; i < s.n_owned(); ++i) map_.emplace(s.gid[i], i);
+    }
+  }
+  std::size_t find(GlobalId g) const {
+    if (dense_)
+      return g >= 0 && static_cast<std::size_t>(g) < table_.size()
+                 ? table_[static_cast<std::size_t>(g)]
+                 : none;
+    const auto it = map_.find(g);
+    return it == map_.end() ? none : it->second;
+  }
+
+private:
+  bool dense_ = true;
+  std::vector<std::size_t> table_;
+  std::unordered_map<GlobalId, std::size_t> map_;
 };
 
 struct ContactKeyHash {
@@ -67,9 +103,8 @@ public:
 
   // Moves every non-default state into the stash, keyed by global ids.
   void stash(const ParticleStore& s, const NeighborList& list) {
-    stash_.clear();
+    stash_ = entries(s, list);
     by_owner_.clear();
-    for (const auto& e : entries(s, list)) stash_.emplace(e.key, e.state);
   }
 
   // Saves the states of the current list, or loads them into the stash for the next restore().
@@ -79,8 +114,8 @@ public:
     if constexpr (!Archive::loading) all = entries(s, list);
     ar.vector(all);
     if constexpr (Archive::loading) {
-      stash_.clear();
-      for (const auto& e : all) stash_.emplace(e.key, e.state);
+      stash_ = std::move(all);
+      by_owner_.clear();
     }
   }
 
@@ -91,39 +126,57 @@ public:
     pair_live.assign(list.n_pairs(), 0);
     plane_live.assign(list.planes.size(), 0);
     if (stash_.empty()) return;
-    for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
-      for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
-        const auto it = stash_.find(ContactKey{std::min(a, b), std::max(a, b)});
-        if (it == stash_.end()) continue;
-        pair[p] = a < b ? it->second : it->second.mirrored();
-        pair_live[p] = 1;
+    const OwnedIndex owned(s);
+    // The row of particle `row` (if owned here) lists the pair when its partner has global id
+    // `other`; the state is stored as seen from the lower id.
+    const auto place = [&](std::size_t row, GlobalId other, const State& state, bool mirror) {
+      if (row == OwnedIndex::none) return;
+      for (std::uint32_t p = list.offsets[row]; p < list.offsets[row + 1]; ++p)
+        if (s.gid[list.partners[p]] == other) {
+          pair[p] = mirror ? state.mirrored() : state;
+          pair_live[p] = 1;
+        }
+    };
+    std::unordered_map<ContactKey, const State*, ContactKeyHash> plane_states;
+    for (const Entry& e : stash_) {
+      if (e.key.first == taken) continue;
+      if (e.key.second < 0) {
+        plane_states[e.key] = &e.state;
+        continue;
       }
-    for (std::size_t k = 0; k < list.planes.size(); ++k) {
-      const auto it = stash_.find(plane_key(s, list.planes[k]));
-      if (it == stash_.end()) continue;
-      plane[k] = it->second;
-      plane_live[k] = 1;
+      place(owned.find(e.key.first), e.key.second, e.state, false);
+      place(owned.find(e.key.second), e.key.first, e.state, true);
     }
+    if (!plane_states.empty())
+      for (std::size_t k = 0; k < list.planes.size(); ++k) {
+        const auto it = plane_states.find(plane_key(s, list.planes[k]));
+        if (it == plane_states.end()) continue;
+        plane[k] = *it->second;
+        plane_live[k] = 1;
+      }
     stash_.clear();
+    by_owner_.clear();
   }
 
-  std::size_t stashed() const { return stash_.size(); }
+  std::size_t stashed() const {
+    return static_cast<std::size_t>(std::count_if(
+        stash_.begin(), stash_.end(), [](const Entry& e) { return e.key.first != taken; }));
+  }
 
   // Migration between ranks: the stashed states owned by particle `gid` (the contacts whose
   // lower global id it has), packed as bytes and removed from the stash; and the reverse.
   std::string take_owned_by(GlobalId gid) {
     if (by_owner_.empty() && !stash_.empty())
-      for (const auto& [key, state] : stash_) by_owner_[key.first].push_back(key);
+      for (std::size_t k = 0; k < stash_.size(); ++k)
+        if (stash_[k].key.first != taken) by_owner_[stash_[k].key.first].push_back(k);
     std::string out;
     const auto it = by_owner_.find(gid);
     if (it == by_owner_.end()) return out;
-    for (const ContactKey& key : it->second) {
-      const auto st = stash_.find(key);
-      if (st == stash_.end()) continue;
-      const Entry e{key, st->second};
+    for (const std::size_t k : it->second) {
+      Entry& e = stash_[k];
+      if (e.key.first != gid) continue;
       out.append(reinterpret_cast<const char*>(&e), sizeof e);
-      stash_.erase(st);
+      e.key.first = taken;
     }
     by_owner_.erase(it);
     return out;
@@ -132,18 +185,16 @@ public:
     for (std::size_t at = 0; at + sizeof(Entry) <= bytes.size(); at += sizeof(Entry)) {
       Entry e;
       std::memcpy(&e, bytes.data() + at, sizeof e);
-      stash_.insert_or_assign(e.key, e.state);
-      if (!by_owner_.empty()) by_owner_[e.key.first].push_back(e.key); // may move on again
+      stash_.push_back(e);
+      if (!by_owner_.empty()) by_owner_[e.key.first].push_back(stash_.size() - 1); // may move on
     }
   }
   void forget_owner_index() { by_owner_.clear(); }
   // Every stashed state as bytes (for give()).
   std::string stashed_bytes() const {
     std::string out;
-    for (const auto& [key, state] : stash_) {
-      const Entry e{key, state};
-      out.append(reinterpret_cast<const char*>(&e), sizeof e);
-    }
+    for (const Entry& e : stash_)
+      if (e.key.first != taken) out.append(reinterpret_cast<const char*>(&e), sizeof e);
     return out;
   }
 
@@ -151,8 +202,9 @@ private:
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
-  std::unordered_map<ContactKey, State, ContactKeyHash> stash_;
-  std::unordered_map<GlobalId, std::vector<ContactKey>> by_owner_; // built on first migration
+  static constexpr GlobalId taken = -1; // key.first of an entry that has left (migration)
+  std::vector<Entry> stash_;            // later entries win over earlier ones with their key
+  std::unordered_map<GlobalId, std::vector<std::size_t>> by_owner_; // built on first migration
 };
 
 } // namespace yuxi

@@ -21,7 +21,7 @@
 
 namespace yuxi {
 
-inline constexpr std::uint32_t checkpoint_format_version = 3;
+inline constexpr std::uint32_t checkpoint_format_version = 4;
 
 class CheckpointError : public std::runtime_error {
 public:
