@@ -166,6 +166,8 @@ int run_command(const RunCommandOptions& o) {
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
   const double imbalance = sim->imbalance(); // collective
+  const double data_bytes = sim->comm().sum(static_cast<double>(sim->memory_bytes()));
+  const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -178,6 +180,9 @@ int run_command(const RunCommandOptions& o) {
                sim->comm().size() > 1
                    ? fmt::format("; load max/mean {:.3f} (rank 0's times)", imbalance)
                    : std::string());
+  spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
+               "list and contact states",
+               data_bytes / std::max(n_particles, 1.0));
   spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,

@@ -158,6 +158,12 @@ public:
     by_owner_.clear();
   }
 
+  // Bytes held by the per-contact arrays (states and live flags).
+  std::size_t memory_bytes() const {
+    return (pair.capacity() + plane.capacity()) * sizeof(State) + pair_live.capacity() +
+           plane_live.capacity() + stash_.capacity() * sizeof(Entry);
+  }
+
   std::size_t stashed() const {
     return static_cast<std::size_t>(std::count_if(
         stash_.begin(), stash_.end(), [](const Entry& e) { return e.key.first != taken; }));

@@ -47,6 +47,10 @@ public:
   // The other 13 neighbours (the negated half shell).
   static const std::array<std::array<int, 3>, 13>& lower_shell();
 
+  std::size_t memory_bytes() const {
+    return (start_.capacity() + members_.capacity()) * sizeof(std::uint32_t);
+  }
+
 private:
   Vec3 lo_;
   Vec3 edge_;

@@ -35,6 +35,11 @@ struct NeighborList {
   std::vector<std::uint32_t> partners; // j of each pair, grouped by i
   std::vector<PlaneContactRef> planes; // grain-plane candidate contacts (filled by the owner)
 
+  std::size_t memory_bytes() const {
+    return (offsets.capacity() + partners.capacity()) * sizeof(std::uint32_t) +
+           planes.capacity() * sizeof(PlaneContactRef);
+  }
+
   std::size_t n_pairs() const { return partners.size(); }
 };
 

@@ -76,6 +76,12 @@ public:
   }
 
   std::size_t size() const { return x.size(); }
+  // Bytes held by the fields (capacity, owned and ghosts).
+  std::size_t memory_bytes() const {
+    std::size_t b = 0;
+    for_each_field([&](const auto& field) { b += field.capacity() * sizeof(field[0]); });
+    return b;
+  }
   std::size_t n_owned() const { return n_owned_; }
   std::size_t n_ghost() const { return size() - n_owned_; }
 

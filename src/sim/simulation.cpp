@@ -337,6 +337,12 @@ double Simulation::imbalance() const {
   return mean > 0 ? comm_.max(n) / mean : 1.0;
 }
 
+std::size_t Simulation::memory_bytes() const {
+  const std::size_t history =
+      std::visit([](const auto& f) { return f.history.memory_bytes(); }, forces_);
+  return store_.memory_bytes() + grid_.memory_bytes() + list_.memory_bytes() + history;
+}
+
 std::vector<double> Simulation::particle_elastic_energy() const {
   if (!record_.enabled) throw std::logic_error("particle_elastic_energy needs contact recording");
   std::vector<analysis::ContactEnergy> contacts;

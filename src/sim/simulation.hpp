@@ -105,6 +105,9 @@ public:
   // stored energy to each partner (flat walls keep theirs). Needs record_contacts(true) during
   // that evaluation. Collective.
   std::vector<double> particle_elastic_energy() const;
+  // Bytes of this rank's simulation data: particles (with ghosts), cells, neighbour list,
+  // contact states; the libraries and the scene's input are not counted.
+  std::size_t memory_bytes() const;
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   std::size_t escaped() const { return escaped_; }
