@@ -27,7 +27,7 @@ std::set<std::int64_t> steps_of(const std::vector<double>& times, double dt) {
 } // namespace
 
 RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double dt)
-    : settings_(*scene.analysis), dir_(std::move(dir)), dt_(dt),
+    : settings_(*scene.analysis), dir_(std::move(dir)),
       grid_(scene.sim.box.lo, scene.sim.box.hi, static_cast<std::size_t>(settings_.grid[0]),
             static_cast<std::size_t>(settings_.grid[1])),
       pdf_kinetic_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),

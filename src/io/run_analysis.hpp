@@ -47,7 +47,6 @@ private:
 
   AnalysisSettings settings_;
   std::filesystem::path dir_;
-  double dt_;
   analysis::XYGrid grid_;
   Vec3 axis_;
   std::set<std::int64_t> surface_steps_, velocity_steps_, elastic_steps_;
