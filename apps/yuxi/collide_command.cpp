@@ -79,7 +79,7 @@ std::optional<thermo::TwoGrainSetup> exact_setup(const AnyContactLaw& law, doubl
   thermo::TwoGrainSetup s;
   s.m1 = s.m2 = mass;
   s.a1 = s.a2 = radius;
-  s.k = 4.0 / 3.0 * c.e_star * std::sqrt(0.5 * radius);
+  s.k = Thermodynamic::spring_constant(c, 0.5 * radius);
   s.xi = thermo::xi_of_friction(c.friction);
   s.transport = thermo::Transport::example(c.model(), s.k, 0.5 * mass, 2 * radius);
   return s;
@@ -122,7 +122,8 @@ void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const
             "energy_drift,final_drift\n");
   for (const auto& s : runs) {
     const auto exact = exact_setup(s.law, o.mass, o.radius);
-    for (double v0 : speeds(o)) {
+    const std::vector<double> v0s = speeds(o);
+    for (double v0 : v0s) {
       validation::BinaryCollision c;
       c.law = s.law;
       c.radius = o.radius;
@@ -144,7 +145,7 @@ void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const
                   x.max_energy_error);
       }
     }
-    spdlog::info("{}: {} impact speeds", s.name, speeds(o).size());
+    spdlog::info("{}: {} impact speeds", s.name, v0s.size());
   }
 }
 

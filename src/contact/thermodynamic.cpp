@@ -35,12 +35,12 @@ thermo::ExampleModel Thermodynamic::Coeffs::model() const {
 
 thermo::ExampleCoefficients Thermodynamic::coefficients(const Coeffs& c, double m_eff, double r_eff,
                                                         double d) {
-  const double k = 4.0 / 3.0 * c.e_star * std::sqrt(r_eff);
+  const double k = spring_constant(c, r_eff);
   return thermo::ExampleCoefficients::of(c.model(), k, m_eff, d);
 }
 
 double Thermodynamic::contact_time(const Coeffs& c, double m_eff, double r_eff, double v) {
-  const double k = 4.0 / 3.0 * c.e_star * std::sqrt(r_eff) * std::pow(c.gear, 2.5);
+  const double k = spring_constant(c, r_eff) * std::pow(c.gear, 2.5);
   const double t_normal = 2.9432 * std::pow(5 * m_eff / (4 * k), 0.4) * std::pow(v, -0.2);
   // The tangential spring is k_t/k_n = 4/(3 xi) times stiffer than the normal one (spec 4) and
   // acts on 2/7 of the mass for rolling spheres: its half period is shorter when that exceeds 1.

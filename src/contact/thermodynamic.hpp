@@ -81,6 +81,10 @@ struct Thermodynamic {
     }
   };
 
+  // The spring constant of (19) for a contact of reduced radius R*: k = (4/3) E* sqrt(R*).
+  static double spring_constant(const Coeffs& c, double r_eff) {
+    return 4.0 / 3.0 * c.e_star * std::sqrt(r_eff);
+  }
   // The example coefficients of one contact: k = (4/3) E* sqrt(R*), d = a_i + a_j (2 a_i against
   // a flat wall), reference mass 2 m*.
   static thermo::ExampleCoefficients coefficients(const Coeffs& c, double m_eff, double r_eff,

@@ -53,10 +53,13 @@ RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double d
   std::filesystem::create_directories(dir_ / "analysis");
 }
 
+bool RunAnalysis::period_sample(std::int64_t step) const {
+  return step >= period_first_ && step <= period_last_ &&
+         (step - period_first_) % period_every_ == 0;
+}
+
 bool RunAnalysis::needs_energies(std::int64_t step) const {
-  const bool in_period =
-      step >= period_first_ && step <= period_last_ && (step - period_first_) % period_every_ == 0;
-  return in_period || elastic_steps_.count(step) > 0;
+  return period_sample(step) || elastic_steps_.count(step) > 0;
 }
 
 void RunAnalysis::before_step(Simulation& sim) const {
@@ -74,8 +77,7 @@ RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
     g.v.push_back(p.v[i]);
     g.radius.push_back(p.radius[i]);
     if (energies) {
-      const double rotational = p.inv_inertia[i] > 0 ? 0.5 * norm2(p.w[i]) / p.inv_inertia[i] : 0.0;
-      g.kinetic.push_back(0.5 * p.mass[i] * norm2(p.v[i]) + rotational);
+      g.kinetic.push_back(0.5 * p.mass[i] * norm2(p.v[i]) + sim.rotational_energy(i));
       g.elastic.push_back(elastic[i]);
     }
   }
@@ -147,9 +149,7 @@ void RunAnalysis::after_step(Simulation& sim) {
   if (surface) write_surface(sim, g);
   if (velocity) write_velocity_section(sim, g);
   if (elastic_steps_.count(k) > 0) write_elastic_map(sim, g);
-  if (energies && k >= period_first_ && k <= period_last_ &&
-      (k - period_first_) % period_every_ == 0)
-    accumulate_period(g);
+  if (period_sample(k)) accumulate_period(g);
   if (k == period_last_) finish(sim);
 }
 

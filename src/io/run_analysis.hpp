@@ -43,6 +43,7 @@ private:
   void write_velocity_section(Simulation& sim, const Grains& g) const;
   void write_elastic_map(Simulation& sim, const Grains& g) const;
   void accumulate_period(const Grains& g);
+  bool period_sample(std::int64_t step) const; // a sample step of the averaging window
   bool needs_energies(std::int64_t step) const;
 
   AnalysisSettings settings_;

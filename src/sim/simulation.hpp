@@ -105,6 +105,8 @@ public:
   // stored energy to each partner (flat walls keep theirs). Needs record_contacts(true) during
   // that evaluation. Collective.
   std::vector<double> particle_elastic_energy() const;
+  // J w^2 / 2 of owned particle i (0 when its rotation is locked).
+  double rotational_energy(std::size_t i) const;
   // Bytes of this rank's simulation data: particles (with ghosts), cells, neighbour list,
   // contact states; the libraries and the scene's input are not counted.
   std::size_t memory_bytes() const;
@@ -178,7 +180,6 @@ private:
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
-  double rotational_energy(std::size_t i) const; // J w^2 / 2 of one grain (0 when locked)
   // Gravity's components along periodic axes (no potential) and along the others.
   Vec3 periodic_gravity() const;
   Vec3 potential_gravity() const { return config_.gravity - periodic_gravity(); }

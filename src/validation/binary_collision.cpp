@@ -35,12 +35,7 @@ BinaryOutcome collide_binary(const BinaryCollision& c) {
   for (auto& body : setup.bodies) body.spins = c.spins;
   Simulation sim = make_simulation(setup);
 
-  const auto index = [&](GlobalId id) {
-    const auto& p = sim.particles();
-    for (std::size_t i = 0; i < p.n_owned(); ++i)
-      if (p.gid[i] == id) return i;
-    throw std::logic_error("a grain of the collision left the simulation");
-  };
+  const auto index = [&](GlobalId id) { return owned_index(sim, id); };
   // Normal and tangential relative velocity of the centres, the tangent fixed by the approach.
   const auto relative = [&](Vec3& n) {
     const auto& p = sim.particles();

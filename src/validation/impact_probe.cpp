@@ -1,6 +1,7 @@
 #include "validation/impact_probe.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace yuxi::validation {
 
@@ -49,16 +50,18 @@ Simulation make_simulation(const Impact& setup) {
   return Simulation(cfg, std::move(store), setup.planes, {}, setup.law);
 }
 
+std::size_t owned_index(const Simulation& sim, GlobalId id) {
+  const auto& s = sim.particles();
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (s.gid[i] == id) return i;
+  throw std::logic_error("a body of the impact left the simulation");
+}
+
 ImpactOutcome run_impact(const Impact& setup) {
   Simulation sim = make_simulation(setup);
   ImpactOutcome out;
   bool started = false;
-  auto index_of = [&](GlobalId g) {
-    const auto& s = sim.particles();
-    for (std::size_t i = 0; i < s.n_owned(); ++i)
-      if (s.gid[i] == g) return i;
-    return s.size();
-  };
+  const auto index_of = [&](GlobalId g) { return owned_index(sim, g); };
   for (int k = 0; k < setup.max_steps; ++k) {
     sim.step();
     const bool touching = sim.last_tally().touching > 0;

@@ -38,6 +38,10 @@ struct ImpactOutcome {
 
 ImpactOutcome run_impact(const Impact& setup);
 
+// Index of the owned particle with global id `id` (the simulation reorders particles); throws
+// std::logic_error if it is not there (it left the simulation).
+std::size_t owned_index(const Simulation& sim, GlobalId id);
+
 // A flat wall through `point` with inward `normal`, of material `material`.
 PlaneWall flat_wall(Vec3 point, Vec3 normal, std::uint8_t material);
 
