@@ -1,7 +1,10 @@
 // Per-contact state kept across neighbour-list rebuilds.
 //
-// Between rebuilds the state lives in arrays aligned with the neighbour list (one entry per
-// listed pair, one per grain-plane candidate). At a rebuild it is stashed by the global ids of
+// Between rebuilds each listed pair holds a slot number (4 bytes, aligned with the neighbour
+// list) into a pool of states kept only for the contacts that touch: in a granular flow most
+// listed pairs are near misses (the chute lists about six pairs per touching contact), so the
+// pair loop streams 4 bytes, not a whole state, past each of them. Grain-plane candidates are
+// few and keep one state each. At a rebuild the states are stashed by the global ids of
 // the two partners, the particles are reordered and the list rebuilt, and each new list entry
 // picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
 // state. Only states that differ from a fresh one are stashed: a default state carries nothing.
@@ -74,12 +77,33 @@ struct ContactKeyHash {
 
 template <class State> class ContactHistory {
 public:
-  std::vector<State> pair;  // aligned with NeighborList::partners
-  std::vector<State> plane; // aligned with NeighborList::planes
-  // 1 where the state may differ from a fresh one (the contact touched since it was last
-  // released): the pair loop reads these bytes, not the states, for the many listed pairs
-  // that do not touch.
-  std::vector<std::uint8_t> pair_live, plane_live;
+  static constexpr std::uint32_t none = 0xFFFFFFFFu; // slot of a pair that does not touch
+
+  // Slot in `states` of each listed pair (aligned with NeighborList::partners), or none.
+  std::vector<std::uint32_t> pair_slot;
+  std::vector<State> states; // the touching pairs' states (and free slots)
+  std::vector<State> plane;  // aligned with NeighborList::planes
+  // 1 where the plane state may differ from a fresh one (the contact touched since it was last
+  // released).
+  std::vector<std::uint8_t> plane_live;
+
+  // The state of listed pair p, opened fresh if it has none.
+  State& open(std::uint32_t p) {
+    std::uint32_t& slot = pair_slot[p];
+    if (slot != none) return states[slot];
+    if (free_.empty()) {
+      slot = static_cast<std::uint32_t>(states.size());
+      return states.emplace_back();
+    }
+    slot = free_.back();
+    free_.pop_back();
+    return states[slot] = State{};
+  }
+  // Listed pair p has opened: its slot is free for another contact.
+  void close(std::uint32_t p) {
+    free_.push_back(pair_slot[p]);
+    pair_slot[p] = none;
+  }
 
   struct Entry {
     ContactKey key;
@@ -89,12 +113,14 @@ public:
   // Every non-default state, keyed by global ids, in neighbour-list order.
   std::vector<Entry> entries(const ParticleStore& s, const NeighborList& list) const {
     std::vector<Entry> out;
+    out.reserve(states.size() - free_.size() + plane.size());
     const State fresh{};
     for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        if (pair[p] == fresh) continue;
+        if (pair_slot[p] == none || states[pair_slot[p]] == fresh) continue;
+        const State& state = states[pair_slot[p]];
         const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
-        out.push_back({{std::min(a, b), std::max(a, b)}, a < b ? pair[p] : pair[p].mirrored()});
+        out.push_back({{std::min(a, b), std::max(a, b)}, a < b ? state : state.mirrored()});
       }
     for (std::size_t k = 0; k < list.planes.size(); ++k)
       if (!(plane[k] == fresh)) out.push_back({plane_key(s, list.planes[k]), plane[k]});
@@ -121,9 +147,10 @@ public:
 
   // Gives each entry of the new list its stashed state (or a fresh one).
   void restore(const ParticleStore& s, const NeighborList& list) {
-    pair.assign(list.n_pairs(), State{});
+    pair_slot.assign(list.n_pairs(), none);
+    states.clear();
+    free_.clear();
     plane.assign(list.planes.size(), State{});
-    pair_live.assign(list.n_pairs(), 0);
     plane_live.assign(list.planes.size(), 0);
     if (stash_.empty()) return;
     const OwnedIndex owned(s);
@@ -132,10 +159,7 @@ public:
     const auto place = [&](std::size_t row, GlobalId other, const State& state, bool mirror) {
       if (row == OwnedIndex::none) return;
       for (std::uint32_t p = list.offsets[row]; p < list.offsets[row + 1]; ++p)
-        if (s.gid[list.partners[p]] == other) {
-          pair[p] = mirror ? state.mirrored() : state;
-          pair_live[p] = 1;
-        }
+        if (s.gid[list.partners[p]] == other) open(p) = mirror ? state.mirrored() : state;
     };
     std::unordered_map<ContactKey, const State*, ContactKeyHash> plane_states;
     for (const Entry& e : stash_) {
@@ -154,14 +178,15 @@ public:
         plane[k] = *it->second;
         plane_live[k] = 1;
       }
-    stash_.clear();
+    stash_ = {}; // its memory too: it is rebuilt at the next rebuild
     by_owner_.clear();
   }
 
-  // Bytes held by the per-contact arrays (states and live flags).
+  // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash).
   std::size_t memory_bytes() const {
-    return (pair.capacity() + plane.capacity()) * sizeof(State) + pair_live.capacity() +
-           plane_live.capacity() + stash_.capacity() * sizeof(Entry);
+    return (pair_slot.capacity() + free_.capacity()) * sizeof(std::uint32_t) +
+           (states.capacity() + plane.capacity()) * sizeof(State) + plane_live.capacity() +
+           stash_.capacity() * sizeof(Entry);
   }
 
   std::size_t stashed() const {
@@ -209,6 +234,7 @@ private:
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
   static constexpr GlobalId taken = -1; // key.first of an entry that has left (migration)
+  std::vector<std::uint32_t> free_;     // slots of `states` that no contact holds
   std::vector<Entry> stash_;            // later entries win over earlier ones with their key
   std::unordered_map<GlobalId, std::vector<std::size_t>> by_owner_; // built on first migration
 };

@@ -22,6 +22,7 @@
 // matters where k changes fast, as Mindlin's k_t ~ delta^{1/2} does just before separation.
 #pragma once
 
+#include "core/always_inline.hpp"
 #include "core/vec3.hpp"
 
 #include <cmath>
@@ -89,8 +90,8 @@ inline Vec3 carry_along(const Vec3& s, const Vec3& n) {
 }
 
 // One step of the slider. `carried` is the spring already carried into the current frame.
-inline SliderResult slide(SliderState& st, const Vec3& carried, const Vec3& u, double normal,
-                          const SliderLaw& law, double dt) {
+YUXI_ALWAYS_INLINE SliderResult slide(SliderState& st, const Vec3& carried, const Vec3& u,
+                                      double normal, const SliderLaw& law, double dt) {
   SliderResult r;
   const Vec3 increment = u * dt;
   Vec3 spring = carried + increment;

@@ -29,6 +29,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "core/always_inline.hpp"
 
 #include <string_view>
 
@@ -66,8 +67,8 @@ struct LinearSpringDashpot {
 };
 
 // Defined here so that the pair loop, templated on the model, inlines it.
-inline ContactResult LinearSpringDashpot::evaluate(const ContactGeometry& g, const Coeffs& c,
-                                                   State& s) {
+YUXI_ALWAYS_INLINE ContactResult LinearSpringDashpot::evaluate(const ContactGeometry& g,
+                                                               const Coeffs& c, State& s) {
   ContactResult r;
   r.touching = true;
   const auto [vn, vt] = split_contact_velocity(g);

@@ -43,6 +43,8 @@ public:
     bytes(s.data(), n);
   }
   const std::string& data() const { return buffer_; }
+  // Hands the bytes over (the writer is empty after).
+  std::string release() { return std::move(buffer_); }
 
 private:
   void bytes(const void* p, std::size_t n) { buffer_.append(static_cast<const char*>(p), n); }

@@ -25,26 +25,37 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   list.offsets.assign(n + 1, 0);
   list.partners.clear();
   const auto dims = grid.dims();
+  const bool has_ghosts = s.n_ghost() > 0;
   for (std::uint32_t i = 0; i < n; ++i) {
     list.offsets[i] = static_cast<std::uint32_t>(list.partners.size());
-    const auto c = grid.cell_of(s.x[i]);
-    auto consider = [&](std::uint32_t j, bool owned_allowed) {
-      if (j == i || both_walls(s, i, j)) return;
-      const bool ghost = j >= n;
-      if (ghost ? !ghost_pair_is_ours(s, i, j) : !owned_allowed) return;
-      if (within(s, i, j, range)) list.partners.push_back(j);
+    const Vec3 xi = s.x[i];
+    const double ri = s.radius[i];
+    const bool wall_i = s.kind[i] == Kind::wall;
+    const GlobalId gid_i = s.gid[i];
+    const auto c = grid.cell_of(xi);
+    // The tests that need only indices come first: most candidates fail them.
+    const auto add_if_near = [&](std::uint32_t j) {
+      if (wall_i && s.kind[j] == Kind::wall) return;
+      const double cut = ri + s.radius[j] + range; // as within() adds them
+      if (norm2(xi - s.x[j]) < cut * cut) list.partners.push_back(j);
     };
-    // The cell itself: owned partners after i only.
-    for (std::uint32_t j : grid.particles_in(grid.linear(c[0], c[1], c[2]))) consider(j, j > i);
-    auto visit = [&](const std::array<std::array<int, 3>, 13>& shell, bool owned_allowed) {
+    const auto ghost_is_ours = [&](std::uint32_t j) { return gid_i < s.gid[j]; };
+    // The cell itself: owned partners after i, and ghosts by the owned-ghost rule.
+    for (std::uint32_t j : grid.particles_in(grid.linear(c[0], c[1], c[2])))
+      if (j < n ? j > i : ghost_is_ours(j)) add_if_near(j);
+    const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell, auto&& accept) {
       for (const auto& o : shell) {
         const int x = c[0] + o[0], y = c[1] + o[1], z = c[2] + o[2];
         if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
-        for (std::uint32_t j : grid.particles_in(grid.linear(x, y, z))) consider(j, owned_allowed);
+        for (std::uint32_t j : grid.particles_in(grid.linear(x, y, z)))
+          if (accept(j)) add_if_near(j);
       }
     };
-    visit(CellGrid::half_shell(), true);
-    if (s.n_ghost() > 0) visit(CellGrid::lower_shell(), false);
+    // The upper half shell: every owned partner, ghosts by the rule; the lower half: ghosts
+    // only (owned pairs there are listed from the other side).
+    visit(CellGrid::half_shell(), [&](std::uint32_t j) { return j < n || ghost_is_ours(j); });
+    if (has_ghosts)
+      visit(CellGrid::lower_shell(), [&](std::uint32_t j) { return j >= n && ghost_is_ours(j); });
   }
   list.offsets[n] = static_cast<std::uint32_t>(list.partners.size());
 }

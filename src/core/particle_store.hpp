@@ -90,6 +90,17 @@ public:
   // Appends a ghost copy of particle `source` displaced by `shift`; returns its index.
   std::size_t add_ghost(std::size_t source, const Vec3& shift);
   void clear_ghosts() { resize_all(n_owned_); }
+  // Gives back spare capacity beyond an eighth of the size: ghosts are appended one by one,
+  // and a vector's doubling would otherwise leave up to half of every field unused.
+  void trim_capacity() {
+    const std::size_t n = size(), keep = n + n / 16;
+    for_each_field([n, keep](auto& field) {
+      if (field.capacity() > n + n / 8 + 64) {
+        field.shrink_to_fit();
+        field.reserve(keep);
+      }
+    });
+  }
   // Reorders the owned particles: new index k holds old particle order[k]. Ghosts are dropped.
   void permute_owned(std::span<const std::uint32_t> order);
   // Removes the owned particles whose flag is set (ghosts are dropped).

@@ -81,8 +81,12 @@ std::string Comm::send_receive(int dest, const std::string& out, int source, int
   return in;
 }
 
-std::vector<std::string> Comm::gather(const std::string& mine) const {
-  if (size_ == 1) return {mine};
+std::vector<std::string> Comm::gather(std::string mine) const {
+  if (size_ == 1) {
+    std::vector<std::string> out;
+    out.push_back(std::move(mine));
+    return out;
+  }
   const MPI_Comm c = to_mpi(handle_);
   const int n = static_cast<int>(mine.size());
   std::vector<int> sizes(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
@@ -172,8 +176,10 @@ bool Comm::any(bool v) const {
 std::string Comm::send_receive(int, const std::string& out, int source, int) const {
   return source < 0 ? std::string() : out;
 }
-std::vector<std::string> Comm::gather(const std::string& mine) const {
-  return {mine};
+std::vector<std::string> Comm::gather(std::string mine) const {
+  std::vector<std::string> out;
+  out.push_back(std::move(mine));
+  return out;
 }
 std::vector<std::string> Comm::all_gather(const std::string& mine) const {
   return {mine};

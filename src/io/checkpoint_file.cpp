@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <unistd.h>
+#include <utility>
 #include <zlib.h>
 
 namespace yuxi {
@@ -18,16 +20,19 @@ constexpr char magic[8] = {'Y', 'U', 'X', 'I', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t byte_order_mark = 0x01020304;
 constexpr std::size_t header_size = 8 + 4 + 4 + 8;
 
-std::uint32_t crc_of(const std::string& s, std::size_t from, std::size_t n) {
-  uLong crc = crc32(0L, Z_NULL, 0);
-  const auto* p = reinterpret_cast<const Bytef*>(s.data() + from);
+// CRC-32 of `bytes`, continuing from the CRC of what came before (zlib's crc32 chains; the CRC
+// of nothing is 0).
+std::uint32_t crc_of(std::string_view bytes, std::uint32_t crc = 0) {
+  uLong c = crc;
+  const auto* p = reinterpret_cast<const Bytef*>(bytes.data());
+  std::size_t n = bytes.size();
   while (n > 0) { // zlib takes uInt lengths
     const auto chunk = static_cast<uInt>(std::min<std::size_t>(n, 1u << 30));
-    crc = crc32(crc, p, chunk);
+    c = crc32(c, p, chunk);
     p += chunk;
     n -= chunk;
   }
-  return static_cast<std::uint32_t>(crc);
+  return static_cast<std::uint32_t>(c);
 }
 
 template <class T> void put(std::string& out, const T& v) {
@@ -40,57 +45,92 @@ template <class T> T get(const std::string& in, std::size_t at) {
   return v;
 }
 
-// Writes `bytes` to `file` through a temporary file, fsync and rename.
-void write_atomically(const std::filesystem::path& file, const std::string& bytes) {
-  const auto tmp = file.string() + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0)
-    throw CheckpointError(fmt::format("{}: cannot create: {}", tmp, std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (w < 0) {
-      ::close(fd);
-      throw CheckpointError(fmt::format("{}: write failed: {}", tmp, std::strerror(errno)));
+// A file written through a temporary file, fsync and rename, so that a crash mid-write leaves
+// the previous checkpoint intact; keeps the CRC-32 of what has been written since the header.
+class AtomicFile {
+public:
+  explicit AtomicFile(std::filesystem::path file)
+      : file_(std::move(file)), tmp_(file_.string() + ".tmp") {
+    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd_ < 0)
+      throw CheckpointError(fmt::format("{}: cannot create: {}", tmp_, std::strerror(errno)));
+  }
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile() {
+    if (fd_ >= 0) { // not committed: an error left it half written
+      ::close(fd_);
+      ::unlink(tmp_.c_str());
     }
-    done += static_cast<std::size_t>(w);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0)
-    throw CheckpointError(fmt::format("{}: cannot flush to disk", tmp));
-  std::filesystem::rename(tmp, file);
-  const int dir = ::open(file.parent_path().c_str(), O_RDONLY);
-  if (dir >= 0) {
-    ::fsync(dir); // makes the rename itself durable
-    ::close(dir);
+
+  void write(std::string_view bytes, bool checksummed = true) {
+    if (checksummed) crc_ = crc_of(bytes, crc_);
+    while (!bytes.empty()) {
+      const ssize_t w = ::write(fd_, bytes.data(), bytes.size());
+      if (w < 0)
+        throw CheckpointError(fmt::format("{}: write failed: {}", tmp_, std::strerror(errno)));
+      bytes.remove_prefix(static_cast<std::size_t>(w));
+    }
   }
-}
+  std::uint32_t crc() const { return crc_; }
+
+  void commit() {
+    const int fd = std::exchange(fd_, -1);
+    if (::fsync(fd) != 0 || ::close(fd) != 0)
+      throw CheckpointError(fmt::format("{}: cannot flush to disk", tmp_));
+    std::filesystem::rename(tmp_, file_);
+    const int dir = ::open(file_.parent_path().c_str(), O_RDONLY);
+    if (dir >= 0) {
+      ::fsync(dir); // makes the rename itself durable
+      ::close(dir);
+    }
+  }
+
+private:
+  std::filesystem::path file_;
+  std::string tmp_;
+  int fd_ = -1;
+  std::uint32_t crc_ = 0; // of nothing yet
+};
 
 } // namespace
 
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim) {
+  // Streamed to the file piece by piece: a checkpoint of a large run is not copied in memory.
   ArchiveWriter mine;
   sim.checkpoint(mine);
-  std::vector<std::string> sections = sim.comm().gather(mine.data());
+  std::vector<std::string> sections = sim.comm().gather(mine.release());
   if (!sim.comm().root()) return;
-  ArchiveWriter ar;
+  ArchiveWriter head;
   std::string scene = scene_text;
-  ar.string(scene);
+  head.string(scene);
   std::int64_t step = sim.step_count();
   double time = sim.time();
-  ar.value(step);
-  ar.value(time);
+  head.value(step);
+  head.value(time);
   std::uint64_t n = sections.size();
-  ar.value(n);
-  for (auto& sec : sections) ar.string(sec);
-  const std::string& payload = ar.data();
-  std::string bytes(magic, sizeof magic);
-  put(bytes, checkpoint_format_version);
-  put(bytes, byte_order_mark);
-  put(bytes, static_cast<std::uint64_t>(payload.size()));
-  bytes += payload;
-  put(bytes, crc_of(payload, 0, payload.size()));
-  write_atomically(file, bytes);
+  head.value(n);
+  std::uint64_t payload = head.data().size();
+  for (const auto& sec : sections) payload += sizeof(std::uint64_t) + sec.size();
+  std::string header(magic, sizeof magic);
+  put(header, checkpoint_format_version);
+  put(header, byte_order_mark);
+  put(header, payload);
+  AtomicFile out(file);
+  out.write(header, false);
+  out.write(head.data());
+  for (const auto& sec : sections) { // as ArchiveWriter::string writes them: length, bytes
+    std::string length;
+    put(length, static_cast<std::uint64_t>(sec.size()));
+    out.write(length);
+    out.write(sec);
+  }
+  std::string crc;
+  put(crc, out.crc());
+  out.write(crc, false);
+  out.commit();
 }
 
 CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
@@ -111,7 +151,8 @@ CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
                      bytes.size() - header_size));
   if (bytes.size() - header_size - size != 4) fail("trailing bytes after the checksum (corrupt)");
   const auto stored = get<std::uint32_t>(bytes, header_size + size);
-  if (crc_of(bytes, header_size, size) != stored) fail("checksum mismatch: the file is corrupt");
+  if (crc_of(std::string_view(bytes).substr(header_size, size)) != stored)
+    fail("checksum mismatch: the file is corrupt");
   CheckpointData d;
   d.file = name;
   try {

@@ -40,9 +40,8 @@ public:
 private:
   static void track_overlap(const ContactGeometry& g, double smaller_radius, std::size_t i,
                             ContactTally& tally) {
-    const double ratio = g.overlap / smaller_radius;
-    if (ratio > tally.max_overlap_ratio) {
-      tally.max_overlap_ratio = ratio;
+    if (g.overlap > tally.max_overlap_ratio * smaller_radius) { // divides only on a new maximum
+      tally.max_overlap_ratio = g.overlap / smaller_radius;
       tally.worst_particle = i;
     }
   }
@@ -56,36 +55,40 @@ private:
 
   void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
                      ContactRecord& record) {
+    const Vec3* x = s.x.data();
+    const double* radius = s.radius.data();
+    const std::uint32_t* partners = list.partners.data();
     for (std::uint32_t i = 0; i + 1 < list.offsets.size(); ++i) {
-      const Vec3 xi = s.x[i];
-      const double ai = s.radius[i];
+      const Vec3 xi = x[i];
+      const double ai = radius[i];
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        const std::uint32_t j = list.partners[p];
-        const Vec3 d = xi - s.x[j];
+        const std::uint32_t j = partners[p];
+        const Vec3 d = xi - x[j];
         const double r2 = norm2(d);
-        const double touch = ai + s.radius[j];
+        const double aj = radius[j];
+        const double touch = ai + aj;
         if (r2 >= touch * touch) {
-          if (history.pair_live[p]) { // separated: the contact's history ends
+          if (const auto slot = history.pair_slot[p]; slot != history.none) {
+            // separated: the contact's history ends
             tally.dissipated +=
-                Model::release(law_.coeffs(s.material[i], s.material[j]), history.pair[p]);
-            history.pair_live[p] = 0;
+                Model::release(law_.coeffs(s.material[i], s.material[j]), history.states[slot]);
+            history.close(p);
           }
           continue;
         }
-        State& state = history.pair[p];
-        history.pair_live[p] = 1;
+        State& state = history.open(p);
         const double dist = std::sqrt(r2);
         ContactGeometry g;
-        g.n = d / dist;
+        g.n = d * (1.0 / dist);
         g.overlap = touch - dist;
         g.distance = dist;
         g.v_rel = s.v[i] - s.v[j];
         g.w_i = s.w[i];
         g.w_j = s.w[j];
         g.a_i = ai;
-        g.a_j = s.radius[j];
+        g.a_j = aj;
         g.m_eff = 1.0 / (s.inv_mass[i] + s.inv_mass[j]);
-        g.r_eff = ai * g.a_j / (ai + g.a_j);
+        g.r_eff = ai * aj / touch;
         g.dt = dt;
         const ContactResult r =
             Model::evaluate(g, law_.coeffs(s.material[i], s.material[j]), state);
@@ -100,7 +103,7 @@ private:
         }
         if (s.kind[j] == Kind::wall) tally.wall_work += dot(r.force, s.v[j]) * dt;
         if (s.kind[i] == Kind::wall) tally.wall_work -= dot(r.force, s.v[i]) * dt;
-        track_overlap(g, std::min(ai, g.a_j), i, tally);
+        track_overlap(g, std::min(ai, aj), i, tally);
       }
     }
   }

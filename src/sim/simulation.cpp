@@ -96,6 +96,7 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
 void Simulation::refresh() {
   place_walls(time_);
   rebuild();
+  start_forces_from_gravity();
   compute_forces(false);
 }
 
@@ -128,13 +129,22 @@ void Simulation::step() {
   const std::size_t n = store_.n_owned();
   const Vec3 g_periodic = periodic_gravity();
   double gravity_work = 0.0;
+  // The forces of the last step are spent here, so the same pass starts the new ones from
+  // gravity (one sweep over the particles instead of two).
+  const Vec3 gravity = config_.gravity;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!store_.is_grain(i)) continue;
+    if (!store_.is_grain(i)) {
+      store_.f[i] = Vec3{};
+      store_.torque[i] = Vec3{};
+      continue;
+    }
     store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
     store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
     store_.x[i] += dt * store_.v[i];
     gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt;           // m g_p . dx
     if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
+    store_.f[i] = store_.mass[i] * gravity;
+    store_.torque[i] = Vec3{};
   }
   gravity_work_ += gravity_work;
   time_ += dt;
@@ -278,6 +288,7 @@ void Simulation::rebuild(bool stash_history) {
     store_.permute_owned(order);
   }
   halo_.build(store_, decomp_, comm_, cell_edge_);
+  store_.trim_capacity();
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
   list_.planes.clear();
@@ -443,14 +454,21 @@ void Simulation::handle_escapes_here() {
   escaped_ += count;
 }
 
+void Simulation::start_forces_from_gravity() {
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    store_.f[i] = store_.is_grain(i) ? store_.mass[i] * config_.gravity : Vec3{};
+    store_.torque[i] = Vec3{};
+  }
+}
+
 void Simulation::compute_forces(bool advance_history) {
   auto t0 = Clock::now();
-  for (std::size_t i = 0; i < store_.size(); ++i) {
+  // Owned particles start from gravity (step() or start_forces_from_gravity()); ghosts
+  // collect contact forces only, summed back to their owners.
+  for (std::size_t i = store_.n_owned(); i < store_.size(); ++i) {
     store_.f[i] = Vec3{};
     store_.torque[i] = Vec3{};
   }
-  for (std::size_t i = 0; i < store_.n_owned(); ++i)
-    if (store_.is_grain(i)) store_.f[i] = store_.mass[i] * config_.gravity;
   tally_ = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
   std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, dt, tally_, record_); },

@@ -174,6 +174,7 @@ private:
   void handle_escapes_here();
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
   // spring is incremented and nothing is dissipated).
+  void start_forces_from_gravity();
   void compute_forces(bool advance_history = true);
   void check_health() const;
   void check_energy_books() const;
