@@ -148,7 +148,10 @@ public:
   // Gives each entry of the new list its stashed state (or a fresh one).
   void restore(const ParticleStore& s, const NeighborList& list) {
     pair_slot.assign(list.n_pairs(), none);
-    states.clear();
+    // The pool restarts at the size of the stash with a quarter to spare for the contacts that
+    // open before the next rebuild (its memory would otherwise stay at its largest ever).
+    states = std::vector<State>(); // (not "= {}": that keeps the capacity)
+    states.reserve(stash_.size() + stash_.size() / 4 + 16);
     free_.clear();
     plane.assign(list.planes.size(), State{});
     plane_live.assign(list.planes.size(), 0);
@@ -178,7 +181,7 @@ public:
         plane[k] = *it->second;
         plane_live[k] = 1;
       }
-    stash_ = {}; // its memory too: it is rebuilt at the next rebuild
+    stash_ = std::vector<Entry>(); // its memory too: it is rebuilt at the next rebuild
     by_owner_.clear();
   }
 
