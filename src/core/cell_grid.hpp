@@ -36,7 +36,7 @@ public:
     const auto c = cell_of(p);
     return linear(c[0], c[1], c[2]);
   }
-  // Particles of cell `c`, in increasing index order.
+  // The particles of cell c, by ascending index (the neighbour build relies on it).
   std::span<const std::uint32_t> particles_in(std::size_t c) const {
     return {members_.data() + start_[c], members_.data() + start_[c + 1]};
   }

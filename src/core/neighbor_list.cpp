@@ -1,5 +1,7 @@
 #include "core/neighbor_list.hpp"
 
+#include <algorithm>
+
 namespace yuxi {
 namespace {
 
@@ -43,19 +45,26 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     // The cell itself: owned partners after i, and ghosts by the owned-ghost rule.
     for (std::uint32_t j : grid.particles_in(grid.linear(c[0], c[1], c[2])))
       if (j < n ? j > i : ghost_is_ours(j)) add_if_near(j);
-    const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell, auto&& accept) {
+    const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell, bool ghosts_only) {
       for (const auto& o : shell) {
         const int x = c[0] + o[0], y = c[1] + o[1], z = c[2] + o[2];
         if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
-        for (std::uint32_t j : grid.particles_in(grid.linear(x, y, z)))
-          if (accept(j)) add_if_near(j);
+        auto cell = grid.particles_in(grid.linear(x, y, z));
+        // A cell lists its particles by ascending index, so its ghosts (indices >= n) come
+        // last: a ghosts-only visit skips the owned ones before them (most cells have no
+        // ghost, and this visit then costs nothing).
+        if (ghosts_only)
+          cell = cell.subspan(static_cast<std::size_t>(
+              std::lower_bound(cell.begin(), cell.end(), static_cast<std::uint32_t>(n)) -
+              cell.begin()));
+        for (std::uint32_t j : cell)
+          if (j < n || ghost_is_ours(j)) add_if_near(j);
       }
     };
     // The upper half shell: every owned partner, ghosts by the rule; the lower half: ghosts
     // only (owned pairs there are listed from the other side).
-    visit(CellGrid::half_shell(), [&](std::uint32_t j) { return j < n || ghost_is_ours(j); });
-    if (has_ghosts)
-      visit(CellGrid::lower_shell(), [&](std::uint32_t j) { return j >= n && ghost_is_ours(j); });
+    visit(CellGrid::half_shell(), false);
+    if (has_ghosts) visit(CellGrid::lower_shell(), true);
   }
   list.offsets[n] = static_cast<std::uint32_t>(list.partners.size());
 }
