@@ -1,6 +1,8 @@
 #include "core/neighbor_list.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 
 namespace yuxi {
 namespace {
@@ -28,6 +30,26 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   list.partners.clear();
   const auto dims = grid.dims();
   const bool has_ghosts = s.n_ghost() > 0;
+  // Where a cell and all its neighbours lie inside the grid, the neighbours are at fixed
+  // offsets of the linear cell index: no bounds checks.
+  std::array<std::ptrdiff_t, 13> upper{}, lower{};
+  for (std::size_t k = 0; k < 13; ++k) {
+    const auto& o = CellGrid::half_shell()[k];
+    upper[k] =
+        o[0] + static_cast<std::ptrdiff_t>(dims[0]) * (o[1] + std::ptrdiff_t{dims[1]} * o[2]);
+    lower[k] = -upper[k];
+  }
+  const auto on_layer = [&](const std::array<int, 3>& c, int depth) {
+    for (int a = 0; a < 3; ++a)
+      if (c[a] < depth || c[a] >= dims[a] - depth) return true;
+    return false;
+  };
+  // Ghosts sit in the grid's outer layer of cells (the halo copies particles within one cell
+  // edge of a face, and the layer is one cell deep), so only cells next to that layer have
+  // ghosts in their lower half shell. Checked here: otherwise every cell visits it.
+  bool ghosts_outside = true;
+  for (std::size_t j = n; j < s.size() && ghosts_outside; ++j)
+    ghosts_outside = on_layer(grid.cell_of(s.x[j]), 1);
   for (std::uint32_t i = 0; i < n; ++i) {
     list.offsets[i] = static_cast<std::uint32_t>(list.partners.size());
     const Vec3 xi = s.x[i];
@@ -35,6 +57,7 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     const bool wall_i = s.kind[i] == Kind::wall;
     const GlobalId gid_i = s.gid[i];
     const auto c = grid.cell_of(xi);
+    const auto here = static_cast<std::ptrdiff_t>(grid.linear(c[0], c[1], c[2]));
     // The tests that need only indices come first: most candidates fail them.
     const auto add_if_near = [&](std::uint32_t j) {
       if (wall_i && s.kind[j] == Kind::wall) return;
@@ -43,28 +66,40 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     };
     const auto ghost_is_ours = [&](std::uint32_t j) { return gid_i < s.gid[j]; };
     // The cell itself: owned partners after i, and ghosts by the owned-ghost rule.
-    for (std::uint32_t j : grid.particles_in(grid.linear(c[0], c[1], c[2])))
+    for (std::uint32_t j : grid.particles_in(static_cast<std::size_t>(here)))
       if (j < n ? j > i : ghost_is_ours(j)) add_if_near(j);
-    const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell, bool ghosts_only) {
+    const auto scan = [&](std::size_t cell_index, bool ghosts_only) {
+      auto cell = grid.particles_in(cell_index);
+      // A cell lists its particles by ascending index, so its ghosts (indices >= n) come
+      // last: a ghosts-only visit passes over a cell whose last member is owned (most cells)
+      // and skips the owned members of the others.
+      if (ghosts_only) {
+        if (cell.empty() || cell.back() < n) return;
+        cell = cell.subspan(static_cast<std::size_t>(
+            std::lower_bound(cell.begin(), cell.end(), static_cast<std::uint32_t>(n)) -
+            cell.begin()));
+      }
+      for (std::uint32_t j : cell)
+        if (j < n || ghost_is_ours(j)) add_if_near(j);
+    };
+    const bool interior = !on_layer(c, 1);
+    const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell,
+                           const std::array<std::ptrdiff_t, 13>& offset, bool ghosts_only) {
+      if (interior) {
+        for (const std::ptrdiff_t o : offset) scan(static_cast<std::size_t>(here + o), ghosts_only);
+        return;
+      }
       for (const auto& o : shell) {
         const int x = c[0] + o[0], y = c[1] + o[1], z = c[2] + o[2];
         if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
-        auto cell = grid.particles_in(grid.linear(x, y, z));
-        // A cell lists its particles by ascending index, so its ghosts (indices >= n) come
-        // last: a ghosts-only visit skips the owned ones before them (most cells have no
-        // ghost, and this visit then costs nothing).
-        if (ghosts_only)
-          cell = cell.subspan(static_cast<std::size_t>(
-              std::lower_bound(cell.begin(), cell.end(), static_cast<std::uint32_t>(n)) -
-              cell.begin()));
-        for (std::uint32_t j : cell)
-          if (j < n || ghost_is_ours(j)) add_if_near(j);
+        scan(grid.linear(x, y, z), ghosts_only);
       }
     };
     // The upper half shell: every owned partner, ghosts by the rule; the lower half: ghosts
     // only (owned pairs there are listed from the other side).
-    visit(CellGrid::half_shell(), false);
-    if (has_ghosts) visit(CellGrid::lower_shell(), true);
+    visit(CellGrid::half_shell(), upper, false);
+    if (has_ghosts && (!ghosts_outside || on_layer(c, 2)))
+      visit(CellGrid::lower_shell(), lower, true);
   }
   list.offsets[n] = static_cast<std::uint32_t>(list.partners.size());
 }
