@@ -16,7 +16,11 @@ struct PlacedState {
 
 // Does not move.
 struct StaticMotion {
-  PlacedState at(const Vec3& rest, double) const { return {rest, {}}; }
+  // The motion at one time, for all its wall particles.
+  struct AtTime {
+    PlacedState place(const Vec3& rest) const { return {rest, {}}; }
+  };
+  AtTime at_time(double) const { return {}; }
 };
 
 // The fish-basin excitation (fish_basin.md section 6): each wall point at azimuth alpha about
@@ -31,26 +35,55 @@ struct RadialCosineMotion {
   double omega = 0;     // [1/time]
   double t0 = 0;        // start of the excitation [time]
 
-  PlacedState at(const Vec3& rest, double t) const {
-    if (t < t0) return {rest, {}};
-    const double dx = rest.x - center.x, dy = rest.y - center.y;
-    const double r0 = std::hypot(dx, dy);
-    if (r0 == 0.0) return {rest, {}};
-    const double c = dx / r0, s = dy / r0; // cos(alpha), sin(alpha)
-    const double alpha = std::atan2(dy, dx);
-    const double shape = amplitude * std::cos(mode * alpha);
+  // The motion at one time: the phase terms are computed once for all wall particles, and
+  // cos(m alpha) of each from cos(alpha) by the Chebyshev recurrence
+  // T_{k+1}(c) = 2 c T_k(c) - T_{k-1}(c), T_m(cos alpha) = cos(m alpha): no trigonometric call
+  // per particle.
+  struct AtTime {
+    Vec3 center;
+    int mode = 0;
+    double radial = 0;   // dr sin(omega (t - t0)) [length]
+    double speed = 0;    // omega dr cos(omega (t - t0)) [length/time]
+    bool moving = false; // t >= t0
+
+    PlacedState place(const Vec3& rest) const {
+      if (!moving) return {rest, {}};
+      const double dx = rest.x - center.x, dy = rest.y - center.y;
+      const double r0 = std::sqrt(dx * dx + dy * dy);
+      if (r0 == 0.0) return {rest, {}};
+      const double c = dx / r0, s = dy / r0; // cos(alpha), sin(alpha)
+      double before = 1.0, shape = c;        // T_0, T_1
+      for (int k = 1; k < mode; ++k) {
+        const double next = 2.0 * c * shape - before;
+        before = shape;
+        shape = next;
+      }
+      if (mode == 0) shape = 1.0;
+      const double r = r0 + shape * radial;
+      const double rdot = shape * speed;
+      return {{center.x + r * c, center.y + r * s, rest.z}, {rdot * c, rdot * s, 0.0}};
+    }
+  };
+  AtTime at_time(double t) const {
+    if (t < t0) return {};
     const double phase = omega * (t - t0);
-    const double r = r0 + shape * std::sin(phase);
-    const double rdot = omega * shape * std::cos(phase);
-    return {{center.x + r * c, center.y + r * s, rest.z}, {rdot * c, rdot * s, 0.0}};
+    return {center, std::abs(mode), amplitude * std::sin(phase),
+            omega * amplitude * std::cos(phase), true};
   }
   double max_excursion() const { return std::abs(amplitude); }
 };
 
 using WallMotion = std::variant<StaticMotion, RadialCosineMotion>;
+using WallMotionAtTime = std::variant<StaticMotion::AtTime, RadialCosineMotion::AtTime>;
 
+inline WallMotionAtTime at_time(const WallMotion& m, double t) {
+  return std::visit([&](const auto& motion) -> WallMotionAtTime { return motion.at_time(t); }, m);
+}
+inline PlacedState place(const WallMotionAtTime& m, const Vec3& rest) {
+  return std::visit([&](const auto& motion) { return motion.place(rest); }, m);
+}
 inline PlacedState place(const WallMotion& m, const Vec3& rest, double t) {
-  return std::visit([&](const auto& motion) { return motion.at(rest, t); }, m);
+  return place(at_time(m, t), rest);
 }
 
 } // namespace yuxi

@@ -109,9 +109,12 @@ std::size_t Simulation::n_grains() const {
 bool Simulation::place_walls(double t) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool moved_far = false;
+  std::vector<WallMotionAtTime> now;
+  now.reserve(motions_.size());
+  for (const WallMotion& m : motions_) now.push_back(at_time(m, t));
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i)) continue;
-    const PlacedState p = place(motions_[store_.motion[i]], store_.x_rest[i], t);
+    const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
     store_.x[i] = p.position;
     store_.v[i] = p.velocity;
     if (!(norm2(p.position - store_.x_build[i]) <= limit2)) moved_far = true;
