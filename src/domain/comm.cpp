@@ -81,6 +81,21 @@ std::string Comm::send_receive(int dest, const std::string& out, int source, int
   return in;
 }
 
+void Comm::send_receive(int dest, const std::string& out, int source, std::string& in,
+                        std::size_t in_bytes, int tag) const {
+  if (size_ == 1) {
+    in = source < 0 ? std::string() : out;
+    return;
+  }
+  const MPI_Comm c = to_mpi(handle_);
+  dest = dest < 0 ? MPI_PROC_NULL : dest;
+  source = source < 0 ? MPI_PROC_NULL : source;
+  in.resize(source == MPI_PROC_NULL ? 0 : in_bytes);
+  MPI_Sendrecv(out.data(), dest == MPI_PROC_NULL ? 0 : static_cast<int>(out.size()), MPI_BYTE, dest,
+               tag, in.data(), static_cast<int>(in.size()), MPI_BYTE, source, tag, c,
+               MPI_STATUS_IGNORE);
+}
+
 std::vector<std::string> Comm::gather(std::string mine) const {
   if (size_ == 1) {
     std::vector<std::string> out;
@@ -175,6 +190,10 @@ bool Comm::any(bool v) const {
 }
 std::string Comm::send_receive(int, const std::string& out, int source, int) const {
   return source < 0 ? std::string() : out;
+}
+void Comm::send_receive(int, const std::string& out, int source, std::string& in, std::size_t,
+                        int) const {
+  in = source < 0 ? std::string() : out;
 }
 std::vector<std::string> Comm::gather(std::string mine) const {
   std::vector<std::string> out;

@@ -30,6 +30,10 @@ public:
   bool any(bool v) const;
   // Sends `out` to `dest` and receives from `source` (either may be this rank).
   std::string send_receive(int dest, const std::string& out, int source, int tag) const;
+  // The same when both sides know the sizes: receives exactly `in_bytes` into `in` (reused
+  // storage), in one message instead of two.
+  void send_receive(int dest, const std::string& out, int source, std::string& in,
+                    std::size_t in_bytes, int tag) const;
   // Rank 0 gets every rank's bytes, in rank order; the others get nothing.
   // (Taken by value: on one rank the bytes move through without a copy.)
   std::vector<std::string> gather(std::string mine) const;

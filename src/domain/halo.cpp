@@ -94,15 +94,16 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
       }
       continue;
     }
-    std::string out;
-    out.reserve(w.sends.size() * 3 * sizeof(Vec3));
+    std::string& out = out_;
+    std::string& in = in_;
+    out.clear();
     for (auto i : w.sends) {
       put(out, s.x[i] + w.shift);
       put(out, s.v[i]);
       put(out, s.w[i]);
     }
-    const std::string in =
-        comm.send_receive(w.send_to, out, w.receive_from, 200 + 2 * static_cast<int>(k));
+    comm.send_receive(w.send_to, out, w.receive_from, in, w.count * 3 * sizeof(Vec3),
+                      200 + 2 * static_cast<int>(k));
     std::size_t at = 0;
     for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {
       s.x[g] = take<Vec3>(in, at);
@@ -122,12 +123,13 @@ template <class... Field> void Halo::reverse_add(const Comm& comm, Field&... fie
       }
       continue;
     }
-    std::string out;
-    out.reserve(w.count * (sizeof(fields[0]) + ...));
+    std::string& out = out_;
+    std::string& in = in_;
+    out.clear();
     for (std::uint32_t g = w.first; g < w.first + w.count; ++g) (put(out, fields[g]), ...);
     // back the way the ghosts came: to the rank they were received from
-    const std::string in =
-        comm.send_receive(w.receive_from, out, w.send_to, 400 + 2 * static_cast<int>(k));
+    comm.send_receive(w.receive_from, out, w.send_to, in,
+                      w.sends.size() * (sizeof(fields[0]) + ...), 400 + 2 * static_cast<int>(k));
     std::size_t at = 0;
     for (auto i : w.sends) ((fields[i] += take<std::decay_t<decltype(fields[i])>>(in, at)), ...);
   }

@@ -51,6 +51,7 @@ private:
   };
   std::vector<Swap> swaps_;
   std::size_t n_ghosts_ = 0;
+  mutable std::string out_, in_; // message buffers of forward() and reverse(), kept between steps
 };
 
 } // namespace yuxi
