@@ -57,7 +57,9 @@ std::string resolved_scene_toml(const Scene& s) {
       {"gravity", vec(s.sim.gravity)},
       {"skin", s.sim.skin},
       {"on_escape", s.sim.on_escape == EscapePolicy::remove ? "remove" : "stop"},
-      {"max_overlap_ratio", s.sim.max_overlap_ratio}};
+      {"max_overlap_ratio", s.sim.max_overlap_ratio},
+      {"ranks", toml::array{s.sim.ranks[0], s.sim.ranks[1], s.sim.ranks[2]}},
+      {"rebalance_every", s.sim.rebalance_every}};
   if (s.sim.cell_size > 0) domain.insert("cell_size", s.sim.cell_size);
   for (Boundary x : b)
     if (x == Boundary::wall)

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <toml++/toml.h>
 
 namespace yuxi {
 namespace {
@@ -74,6 +75,20 @@ TEST(SceneReader, ResolvedSceneReadsBackIdentically) {
   const Scene b = read_scene_text(echo, "resolved.toml");
   const auto body = [](const std::string& t) { return t.substr(t.find("\nmaterials")); };
   EXPECT_EQ(body(resolved_scene_toml(b)), body(echo));
+  EXPECT_EQ(b.sim.ranks, a.sim.ranks);
+  EXPECT_EQ(b.sim.rebalance_every, a.sim.rebalance_every);
+  // Nothing is dropped: every key of the shipped scene's tables is in the resolved scene
+  // (a resumed run reads its scene from there).
+  const toml::table original = toml::parse_file(std::string(YUXI_SCENES_DIR) + "/basin-small.toml");
+  const toml::table resolved = toml::parse(echo);
+  for (const auto& [name, node] : original) {
+    const auto* table = node.as_table();
+    if (!table) continue;
+    const auto* other = resolved[name].as_table();
+    ASSERT_NE(other, nullptr) << "[" << name.str() << "] is missing";
+    for (const auto& [key, value] : *table)
+      EXPECT_TRUE(other->contains(key.str())) << name.str() << "." << key.str() << " is missing";
+  }
   const Scene c =
       read_scene_text(resolved_scene_toml(read_scene_text(base_scene, "base.toml")), "r.toml");
   EXPECT_EQ(c.particles.size(), 1u);
