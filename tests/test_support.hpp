@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace yuxi::test {
@@ -46,6 +47,28 @@ inline ParticleStore store_of(const std::vector<ParticleSpec>& specs) {
   GlobalId id = 0;
   for (const auto& p : specs) s.add(p, id++);
   return s;
+}
+
+// Two grains (radius 0.5, mass 1) meeting head-on at relative speed 20 on soft springs
+// (k_n = 10): the overlap would peak at v sqrt(m_eff / k_n) = 4.5, far beyond the radius.
+inline Simulation head_on(double gap, Comm comm = Comm::self()) {
+  auto cfg = test::open_box(4.0, {0, 0, 0}, 1e-3);
+  cfg.ranks = {comm.size(), 1, 1};
+  cfg.rebalance_every = 0; // even cuts in x: the grains meet (at x = 1.5) on the last rank
+  const std::vector<ParticleSpec> specs{test::sphere({1.5 - gap / 2, 0, 0}, 0.5, 1.0, {10, 0, 0}),
+                                        test::sphere({1.5 + gap / 2, 0, 0}, 0.5, 1.0, {-10, 0, 0})};
+  return Simulation(cfg, test::store_of(specs), {}, {}, test::linear_law({10, 0, 0, 0, 0, 0}),
+                    comm);
+}
+
+// The diagnosis of a run of `steps` steps that fails ("" if it does not).
+inline std::string failure_of(Simulation& sim, std::int64_t steps) {
+  try {
+    sim.run(steps);
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  return {};
 }
 
 // Index of the owned particle with global id `id` (the simulation reorders particles).

@@ -98,6 +98,7 @@ private:
 
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim) {
+  sim.stop_if_unhealthy(); // only good states are kept
   // Streamed to the file piece by piece: a checkpoint of a large run is not copied in memory.
   ArchiveWriter mine;
   sim.checkpoint(mine);

@@ -53,10 +53,15 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   // A signal reaches one rank or all; every rank must stop at the same step.
   const auto stop_requested = [&] { return sim.comm().any(options.stop && *options.stop != 0); };
   // A checkpoint is written after a step that rebuilt the neighbour list (see
-  // Simulation::checkpoint), so whether one is due is decided before the step.
+  // Simulation::checkpoint), so whether one is due is decided before the step. The signal and
+  // the clock are polled every poll_steps steps only: each poll is a collective, and one per
+  // step costs more than the step itself on small systems split over ranks.
+  constexpr std::int64_t poll_steps = 50;
   const auto checkpoint_due = [&](std::int64_t next) {
-    if (next == last || stop_requested()) return true;
+    if (next == last) return true;
     if (policy.every_steps > 0 && next % policy.every_steps == 0) return true;
+    if (next % poll_steps != 0) return false;
+    if (stop_requested()) return true;
     const double minutes =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() /
         60.0;

@@ -19,6 +19,7 @@ struct StaticMotion {
   // The motion at one time, for all its wall particles.
   struct AtTime {
     PlacedState place(const Vec3& rest) const { return {rest, {}}; }
+    bool at_rest() const { return true; } // every particle at its rest place, still
   };
   AtTime at_time(double) const { return {}; }
 };
@@ -46,6 +47,7 @@ struct RadialCosineMotion {
     double speed = 0;    // omega dr cos(omega (t - t0)) [length/time]
     bool moving = false; // t >= t0
 
+    bool at_rest() const { return !moving; }
     PlacedState place(const Vec3& rest) const {
       if (!moving) return {rest, {}};
       const double dx = rest.x - center.x, dy = rest.y - center.y;
@@ -78,6 +80,9 @@ using WallMotionAtTime = std::variant<StaticMotion::AtTime, RadialCosineMotion::
 
 inline WallMotionAtTime at_time(const WallMotion& m, double t) {
   return std::visit([&](const auto& motion) -> WallMotionAtTime { return motion.at_time(t); }, m);
+}
+inline bool at_rest(const WallMotionAtTime& m) {
+  return std::visit([](const auto& motion) { return motion.at_rest(); }, m);
 }
 inline PlacedState place(const WallMotionAtTime& m, const Vec3& rest) {
   return std::visit([&](const auto& motion) { return motion.place(rest); }, m);

@@ -94,10 +94,11 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
 }
 
 void Simulation::refresh() {
-  place_walls(time_);
+  place_walls(time_, true);
   rebuild();
   start_forces_from_gravity();
   compute_forces(false);
+  stop_together(health_error_);
 }
 
 std::size_t Simulation::n_grains() const {
@@ -106,14 +107,18 @@ std::size_t Simulation::n_grains() const {
   return static_cast<std::size_t>(comm_.sum(n));
 }
 
-bool Simulation::place_walls(double t) {
+bool Simulation::place_walls(double t, bool every_one) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool moved_far = false;
   std::vector<WallMotionAtTime> now;
+  std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
   now.reserve(motions_.size());
-  for (const WallMotion& m : motions_) now.push_back(at_time(m, t));
+  for (const WallMotion& m : motions_) {
+    now.push_back(at_time(m, t));
+    skip.push_back(!every_one && at_rest(now.back()) ? 1 : 0);
+  }
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (store_.is_grain(i)) continue;
+    if (store_.is_grain(i) || skip[store_.motion[i]]) continue;
     const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
     store_.x[i] = p.position;
     store_.v[i] = p.velocity;
@@ -155,8 +160,14 @@ void Simulation::step() {
   if (place_walls(time_)) must_rebuild = true;
   timers_.integrate += seconds_since(t0);
   t0 = Clock::now();
-  must_rebuild = comm_.any(must_rebuild);
+  // One collective answers two questions: must any rank rebuild, and did the last force
+  // evaluation on any rank find an overlap beyond the limit (check_health)? The latter stops
+  // the run here, one drift after the step that found it, with that step's diagnosis.
+  double flags[2] = {must_rebuild ? 1.0 : 0.0, health_error_.empty() ? 0.0 : 1.0};
+  comm_.max(flags, 2);
   timers_.comm += seconds_since(t0);
+  if (flags[1] > 0) stop_together(health_error_);
+  must_rebuild = flags[0] > 0;
 
   // 2. Neighbour list or ghost refresh.
   t0 = Clock::now();
@@ -483,10 +494,10 @@ void Simulation::compute_forces(bool advance_history) {
   check_health();
 }
 
-void Simulation::check_health() const {
-  std::string error;
+void Simulation::check_health() {
+  health_error_.clear();
   if (tally_.max_overlap_ratio > config_.max_overlap_ratio)
-    error = (fmt::format(
+    health_error_ = (fmt::format(
         "step {}, t = {}: overlap of {:.3g} times the smaller radius (limit {}) at {}; the time "
         "step is too large for the contact stiffness or the impact speed",
         step_, time_, tally_.max_overlap_ratio, config_.max_overlap_ratio,

@@ -154,6 +154,10 @@ public:
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
   void request_rebuild() { rebuild_requested_ = true; }
+  // Collective: throws SimulationError on every rank if the last force evaluation on any rank
+  // found an overlap beyond the limit (a step finds out at its next collective; a checkpoint
+  // must not keep such a state).
+  void stop_if_unhealthy() const { stop_together(health_error_); }
 
   // Setup access: changes to particles must be followed by refresh(), before the first step.
   ParticleStore& particles_mutable() { return store_; }
@@ -163,7 +167,8 @@ public:
 
 private:
   // Walls to their prescribed place at t; true if one moved more than half the skin.
-  bool place_walls(double t);
+  // `every_one` false skips those of a motion at rest: placed before, they stay there.
+  bool place_walls(double t, bool every_one = false);
   void rebuild(bool stash_history = true);
   void migrate();
   void rebalance();
@@ -176,7 +181,9 @@ private:
   // spring is incremented and nothing is dissipated).
   void start_forces_from_gravity();
   void compute_forces(bool advance_history = true);
-  void check_health() const;
+  // Notes (in health_error_) an overlap beyond max_overlap_ratio; the next collective stops
+  // every rank with it.
+  void check_health();
   void check_energy_books() const;
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
@@ -215,7 +222,8 @@ private:
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
-  bool merging_ = false; // load_redistributed() is reading sections
+  std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)
+  bool merging_ = false;     // load_redistributed() is reading sections
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };

@@ -185,6 +185,17 @@ TEST(Mpi, ContactAcrossAndPairMigratingKeepTheirSprings) {
   }
 }
 
+// An overlap beyond the limit found on one rank (the grains meet at x = 1.5, on the last rank
+// of two or four) stops every rank at the same step with that rank's diagnosis.
+TEST(Mpi, AnOverlapBeyondTheLimitStopsEveryRank) {
+  const Comm world = Comm::world();
+  Simulation sim = test::head_on(1.1, world);
+  const std::string diagnosis = test::failure_of(sim, 1000);
+  EXPECT_NE(diagnosis.find("overlap of"), std::string::npos) << diagnosis;
+  const double step = static_cast<double>(sim.step_count());
+  EXPECT_EQ(world.max(step), -world.max(-step)) << "every rank stopped at the same step";
+}
+
 // The basin: wall particles with prescribed motion across ranks, balanced cuts.
 Scene small_basin() {
   Scene scene = read_scene_file(std::string(YUXI_SCENES_DIR) + "/basin-small.toml");

@@ -51,6 +51,10 @@ TEST(WallMotion, AtRestBeforeTheStartAndOnTheAxis) {
   const PlacedState still = StaticMotion{}.at_time(10.5).place(rest);
   EXPECT_EQ(still.position, rest);
   EXPECT_EQ(still.velocity, Vec3{});
+  // What the engine skips when placing walls: a motion at rest leaves every particle in place.
+  EXPECT_TRUE(at_rest(at_time(WallMotion{m}, 9.999)));
+  EXPECT_FALSE(at_rest(at_time(WallMotion{m}, 10.0)));
+  EXPECT_TRUE(at_rest(at_time(WallMotion{StaticMotion{}}, 10.5)));
 }
 
 } // namespace
