@@ -2,7 +2,8 @@
 # Strong scaling of yuxi on 1 and 2 MPI ranks, side by side in one invocation: runs alternate
 # A B A B (1 rank, 2 ranks, ...) so that machine drift affects both alike. Prints, per scene and
 # rank count, the median particle-steps/s, the parallel efficiency ps(2) / (2 ps(1)), and the
-# load imbalance (owned particles, max/mean) after balancing.
+# load imbalance after balancing (max/mean over ranks, of the last run): in owned particles and
+# in compute time (pair + neighbour + integrate).
 # usage: bench/scaling.sh [REPEATS]      (build first: cmake --build --preset release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,25 +14,28 @@ trap 'rm -rf "$work"' EXIT
 # scene | simulated time | label
 cases=("scenes/chute-lammps.toml|0.1|chute, 32,000 spheres, 1,000 steps"
        "scenes/basin-small.toml|0.5|basin-small, 4,220 particles, 5,000 steps")
-printf "%-44s %5s %16s %11s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" "max/mean"
+printf "%-44s %5s %16s %11s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
+  "particles" "compute"
 for c in "${cases[@]}"; do
   IFS='|' read -r scene t_end label <<< "$c"
   declare -A rates=()
   declare -A imbalance=()
+  declare -A busy=()
   for r in $(seq 1 "$repeats"); do
     for np in 1 2; do
       log=$work/np$np.log
       mpirun --allow-run-as-root --oversubscribe -np "$np" "$yuxi" run "$scene" --t-end "$t_end" \
         -o "$work/out" --overwrite --no-progress > "$log" 2>&1
       rates[$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$log") "
-      imbalance[$np]=$(grep -oP 'owned particles max/mean \K[0-9.]+' "$log" || echo 1.000)
+      imbalance[$np]=$(grep -oP 'load max/mean \K[0-9.]+(?= in particles)' "$log" || echo 1.000)
+      busy[$np]=$(grep -oP '\K[0-9.]+(?= in compute time)' "$log" || echo 1.000)
     done
   done
   median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
   p1=$(echo "${rates[1]}" | median)
   p2=$(echo "${rates[2]}" | median)
   eff=$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.1f %%", 100 * b / (2 * a)}')
-  printf "%-44s %5s %16.4g %11s %10s\n" "$label" 1 "$p1" "" "${imbalance[1]}"
-  printf "%-44s %5s %16.4g %11s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}"
-  unset rates imbalance
+  printf "%-44s %5s %16.4g %11s %10s %10s\n" "$label" 1 "$p1" "" "${imbalance[1]}" "${busy[1]}"
+  printf "%-44s %5s %16.4g %11s %10s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}" "${busy[2]}"
+  unset rates imbalance busy
 done

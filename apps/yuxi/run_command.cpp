@@ -167,6 +167,11 @@ int run_command(const RunCommandOptions& o) {
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
   const double imbalance = sim->imbalance(); // collective
+  // The load that balancing evens out: each rank's time in pair, neighbour and integrate (the
+  // rest is waiting for the others, or output), max over the mean.
+  const double busy = t.pair + t.neighbor + t.integrate;
+  const double busy_mean = sim->comm().sum(busy) / sim->comm().size();
+  const double busy_imbalance = busy_mean > 0 ? sim->comm().max(busy) / busy_mean : 1.0;
   const double data_bytes = sim->comm().sum(static_cast<double>(sim->memory_bytes()));
   const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
   if (!sim->comm().root())
@@ -182,7 +187,9 @@ int run_command(const RunCommandOptions& o) {
                100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall,
                100 * t.integrate / wall, 100 * (wall - t.total()) / wall, sim->rebuilds(),
                sim->comm().size() > 1
-                   ? fmt::format("; load max/mean {:.3f} (rank 0's times)", imbalance)
+                   ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
+                                 "{:.3f} in compute time",
+                                 imbalance, busy_imbalance)
                    : std::string());
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states",
