@@ -8,7 +8,7 @@
 
 namespace yuxi {
 
-std::array<int, 3> choose_layout(const Box& box, int n, std::array<int, 3> fixed) {
+std::array<int, 3> choose_layout(Vec3 lengths, int n, std::array<int, 3> fixed) {
   std::array<int, 3> best{0, 0, 0};
   double best_surface = std::numeric_limits<double>::infinity();
   for (int px = 1; px <= n; ++px)
@@ -19,7 +19,7 @@ std::array<int, 3> choose_layout(const Box& box, int n, std::array<int, 3> fixed
       bool ok = true;
       for (int a = 0; a < 3; ++a) ok = ok && (fixed[a] == 0 || fixed[a] == p[a]);
       if (!ok) continue;
-      const double lx = box.length(0) / px, ly = box.length(1) / py, lz = box.length(2) / pz;
+      const double lx = lengths.x / px, ly = lengths.y / py, lz = lengths.z / pz;
       const double surface = lx * ly + ly * lz + lz * lx;
       if (surface < best_surface - 1e-12) best_surface = surface, best = p;
     }
@@ -29,8 +29,12 @@ std::array<int, 3> choose_layout(const Box& box, int n, std::array<int, 3> fixed
   return best;
 }
 
-Decomposition::Decomposition(const Box& box, const Comm& comm, std::array<int, 3> layout)
-    : box_(box), dims_(choose_layout(box, comm.size(), layout)) {
+Decomposition::Decomposition(const Box& box, const Comm& comm, std::array<int, 3> layout,
+                             Vec3 occupied)
+    : box_(box) {
+  Vec3 lengths;
+  for (int a = 0; a < 3; ++a) lengths[a] = occupied[a] > 0 ? occupied[a] : box.length(a);
+  dims_ = choose_layout(lengths, comm.size(), layout);
   int r = comm.rank();
   coords_ = {r % dims_[0], (r / dims_[0]) % dims_[1], r / (dims_[0] * dims_[1])};
   for (int a = 0; a < 3; ++a) {

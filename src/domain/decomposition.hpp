@@ -16,8 +16,10 @@ namespace yuxi {
 
 class Decomposition {
 public:
-  // `layout`: ranks per axis; zeros are chosen so that sub-domains are as cubic as possible.
-  Decomposition(const Box& box, const Comm& comm, std::array<int, 3> layout = {0, 0, 0});
+  // `layout`: ranks per axis; zeros are chosen so that sub-domains of the occupied region
+  // (`occupied`: its lengths along x, y, z; zeros: the whole box) are as cubic as possible.
+  Decomposition(const Box& box, const Comm& comm, std::array<int, 3> layout = {0, 0, 0},
+                Vec3 occupied = {});
 
   const Box& box() const { return box_; }
   std::array<int, 3> dims() const { return dims_; }
@@ -60,7 +62,8 @@ private:
   double min_slab_ = 0.0;
 };
 
-// Ranks per axis for `n` ranks on `box`: the factorisation with the least sub-domain surface.
-std::array<int, 3> choose_layout(const Box& box, int n, std::array<int, 3> fixed = {0, 0, 0});
+// Ranks per axis for `n` ranks on a region of these lengths: the factorisation with the least
+// sub-domain surface.
+std::array<int, 3> choose_layout(Vec3 lengths, int n, std::array<int, 3> fixed = {0, 0, 0});
 
 } // namespace yuxi

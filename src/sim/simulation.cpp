@@ -45,6 +45,23 @@ void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
   }
 }
 
+// Lengths of the region the particles occupy (the whole box along periodic axes), for the
+// choice of the rank layout: a tall box over a shallow bed is cut across the bed, not through
+// it (every rank holds every particle when the simulation is built).
+Vec3 occupied_lengths(const Box& box, const ParticleStore& s) {
+  if (s.n_owned() == 0) return {};
+  Vec3 lo = s.x[0], hi = s.x[0];
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], s.x[i][a] - s.radius[i]);
+      hi[a] = std::max(hi[a], s.x[i][a] + s.radius[i]);
+    }
+  Vec3 lengths;
+  for (int a = 0; a < 3; ++a)
+    lengths[a] = box.periodic(a) ? box.length(a) : std::min(box.length(a), hi[a] - lo[a]);
+  return lengths;
+}
+
 double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
   const double reach = contact_reach(s);
   if (c.cell_size > 0.0) {
@@ -64,7 +81,8 @@ double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
 Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                        std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
                        AnyContactLaw law, Comm comm)
-    : config_(std::move(config)), comm_(comm), decomp_(config_.box, comm_, config_.ranks),
+    : config_(std::move(config)), comm_(comm),
+      decomp_(config_.box, comm_, config_.ranks, occupied_lengths(config_.box, particles)),
       store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
       law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),

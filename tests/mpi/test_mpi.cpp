@@ -196,6 +196,20 @@ TEST(Mpi, AnOverlapBeyondTheLimitStopsEveryRank) {
   EXPECT_EQ(world.max(step), -world.max(-step)) << "every rank stopped at the same step";
 }
 
+// A shallow bed at the bottom of a cubic box: the automatic layout cuts across the bed (x and
+// y), not through it, as the least surface over the whole box would (1 x 1 x 2 for two ranks).
+TEST(Mpi, LayoutCutsAcrossAShallowBed) {
+  const auto cfg = test::open_box(20.0, {0, 0, -1}, 1e-4);
+  std::vector<ParticleSpec> bed;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 2; ++k)
+        bed.push_back(test::sphere({-19 + 2.0 * i, -19 + 2.0 * j, -19 + 1.0 * k}, 0.45, 1.0));
+  const Simulation sim(cfg, test::store_of(bed), {}, {}, test::linear_law({1e3, 0, 0, 0, 0, 0}),
+                       Comm::world());
+  EXPECT_EQ(sim.decomposition().dims()[2], 1) << sim.decomposition().describe();
+}
+
 // The basin: wall particles with prescribed motion across ranks, balanced cuts.
 Scene small_basin() {
   Scene scene = read_scene_file(std::string(YUXI_SCENES_DIR) + "/basin-small.toml");
