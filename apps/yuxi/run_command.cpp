@@ -169,9 +169,7 @@ int run_command(const RunCommandOptions& o) {
   const double imbalance = sim->imbalance(); // collective
   // The load that balancing evens out: each rank's time in pair, neighbour and integrate (the
   // rest is waiting for the others, or output), max over the mean.
-  const double busy = t.pair + t.neighbor + t.integrate;
-  const double busy_mean = sim->comm().sum(busy) / sim->comm().size();
-  const double busy_imbalance = busy_mean > 0 ? sim->comm().max(busy) / busy_mean : 1.0;
+  const double busy_imbalance = sim->comm().max_over_mean(t.pair + t.neighbor + t.integrate);
   const double data_bytes = sim->comm().sum(static_cast<double>(sim->memory_bytes()));
   const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
   if (!sim->comm().root())

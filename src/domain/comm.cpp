@@ -217,4 +217,9 @@ double Comm::sum(double v) const {
   return v;
 }
 
+double Comm::max_over_mean(double v) const {
+  const double mean = sum(v) / size_;
+  return mean > 0 ? max(v) / mean : 1.0;
+}
+
 } // namespace yuxi

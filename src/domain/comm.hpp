@@ -28,6 +28,8 @@ public:
   double max(double v) const;
   void max(double* values, int n) const; // element-wise, in place
   bool any(bool v) const;
+  // Largest v over the ranks divided by the mean (1 if the mean is 0): a load imbalance.
+  double max_over_mean(double v) const;
   // Sends `out` to `dest` and receives from `source` (either may be this rank).
   std::string send_receive(int dest, const std::string& out, int source, int tag) const;
   // The same when both sides know the sizes: receives exactly `in_bytes` into `in` (reused

@@ -116,7 +116,7 @@ void Simulation::refresh() {
   rebuild();
   start_forces_from_gravity();
   compute_forces(false);
-  stop_together(health_error_);
+  stop_if_unhealthy();
 }
 
 std::size_t Simulation::n_grains() const {
@@ -375,9 +375,7 @@ void Simulation::stop_together(const std::string& local_error) const {
 }
 
 double Simulation::imbalance() const {
-  const double n = static_cast<double>(store_.n_owned());
-  const double mean = comm_.sum(n) / comm_.size();
-  return mean > 0 ? comm_.max(n) / mean : 1.0;
+  return comm_.max_over_mean(static_cast<double>(store_.n_owned()));
 }
 
 std::size_t Simulation::memory_bytes() const {
