@@ -27,6 +27,17 @@ struct ContactRecord {
   std::vector<double> pair_elastic; // energy stored in the contact
   std::vector<Vec3> plane_force;    // force on the grain from the flat wall
   std::vector<double> plane_elastic;
+
+  void keep_pair(std::size_t p, const Vec3& force, double elastic) {
+    if (!enabled) return;
+    pair_force[p] = force;
+    pair_elastic[p] = elastic;
+  }
+  void keep_plane(std::size_t k, const Vec3& force, double elastic) {
+    if (!enabled) return;
+    plane_force[k] = force;
+    plane_elastic[k] = elastic;
+  }
 };
 
 } // namespace yuxi
