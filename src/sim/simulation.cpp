@@ -158,19 +158,36 @@ void Simulation::step() {
   // The forces of the last step are spent here, so the same pass starts the new ones from
   // gravity (one sweep over the particles instead of two).
   const Vec3 gravity = config_.gravity;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!store_.is_grain(i)) {
-      store_.f[i] = Vec3{};
-      store_.torque[i] = Vec3{};
-      continue;
+  {
+    // Raw pointers: the compiler need not reload each array's address after every store.
+    const Kind* kind = store_.kind.data();
+    const double* inv_mass = store_.inv_mass.data();
+    const double* inv_inertia = store_.inv_inertia.data();
+    const double* mass = store_.mass.data();
+    const Vec3* x_build = store_.x_build.data();
+    Vec3* x = store_.x.data();
+    Vec3* v = store_.v.data();
+    Vec3* w = store_.w.data();
+    Vec3* f = store_.f.data();
+    Vec3* torque = store_.torque.data();
+    bool moved_far = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (kind[i] != Kind::grain) {
+        f[i] = Vec3{};
+        torque[i] = Vec3{};
+        continue;
+      }
+      const Vec3 vi = v[i] + (0.5 * dt * inv_mass[i]) * f[i];
+      const Vec3 xi = x[i] + dt * vi;
+      v[i] = vi;
+      w[i] += (0.5 * dt * inv_inertia[i]) * torque[i];
+      x[i] = xi;
+      gravity_work += mass[i] * dot(g_periodic, vi) * dt; // m g_p . dx
+      moved_far |= !(norm2(xi - x_build[i]) <= limit2);   // NaN too
+      f[i] = mass[i] * gravity;
+      torque[i] = Vec3{};
     }
-    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
-    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
-    store_.x[i] += dt * store_.v[i];
-    gravity_work += store_.mass[i] * dot(g_periodic, store_.v[i]) * dt;           // m g_p . dx
-    if (!(norm2(store_.x[i] - store_.x_build[i]) <= limit2)) must_rebuild = true; // NaN too
-    store_.f[i] = store_.mass[i] * gravity;
-    store_.torque[i] = Vec3{};
+    must_rebuild = must_rebuild || moved_far;
   }
   gravity_work_ += gravity_work;
   time_ += dt;
@@ -202,10 +219,19 @@ void Simulation::step() {
 
   // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
   t0 = Clock::now();
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
-    store_.v[i] += (0.5 * dt * store_.inv_mass[i]) * store_.f[i];
-    store_.w[i] += (0.5 * dt * store_.inv_inertia[i]) * store_.torque[i];
+  {
+    const Kind* kind = store_.kind.data();
+    const double* inv_mass = store_.inv_mass.data();
+    const double* inv_inertia = store_.inv_inertia.data();
+    const Vec3* f = store_.f.data();
+    const Vec3* torque = store_.torque.data();
+    Vec3* v = store_.v.data();
+    Vec3* w = store_.w.data();
+    for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+      if (kind[i] != Kind::grain) continue;
+      v[i] += (0.5 * dt * inv_mass[i]) * f[i];
+      w[i] += (0.5 * dt * inv_inertia[i]) * torque[i];
+    }
   }
   timers_.integrate += seconds_since(t0);
   dissipated_ += tally_.dissipated;
