@@ -8,6 +8,7 @@
 #include "validate_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -18,6 +19,13 @@ namespace {
 struct MpiSession {
   MpiSession(int& argc, char**& argv) {
 #ifdef YUXI_HAVE_MPI
+    // Open MPI moves a large message between ranks of one machine with a single copy by the
+    // kernel (CMA, process_vm_readv) by default. yuxi's messages are halos of a few hundred
+    // kB at most, every step, and for them the system call costs more than it saves: on the
+    // 2-core test machines the copy through shared-memory buffers halves the communication
+    // time of the chute on 2 ranks (16% -> 8-10% of the step) and of basin-small (66% -> 45%).
+    // A value the user set (environment or mpirun --mca) wins.
+    setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);
     MPI_Init(&argc, &argv);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
