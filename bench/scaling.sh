@@ -12,7 +12,7 @@ yuxi=build/release/apps/yuxi/yuxi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # scene | simulated time | label
-cases=("scenes/chute-lammps.toml|0.1|chute, 32,000 spheres, 1,000 steps"
+cases=("scenes/chute-lammps.toml|1.0|chute, 32,000 spheres, 10,000 steps"
        "scenes/basin-small.toml|0.5|basin-small, 4,220 particles, 5,000 steps")
 printf "%-44s %5s %16s %11s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
   "particles" "compute"

@@ -128,10 +128,7 @@ public:
   }
 
   // Moves every non-default state into the stash, keyed by global ids.
-  void stash(const ParticleStore& s, const NeighborList& list) {
-    stash_ = entries(s, list);
-    by_owner_.clear();
-  }
+  void stash(const ParticleStore& s, const NeighborList& list) { stash_ = entries(s, list); }
 
   // Saves the states of the current list, or loads them into the stash for the next restore().
   template <class Archive>
@@ -141,7 +138,6 @@ public:
     ar.vector(all);
     if constexpr (Archive::loading) {
       stash_ = std::move(all);
-      by_owner_.clear();
     }
   }
 
@@ -182,7 +178,6 @@ public:
         plane_live[k] = 1;
       }
     stash_ = std::vector<Entry>(); // its memory too: it is rebuilt at the next rebuild
-    by_owner_.clear();
   }
 
   // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash).
@@ -197,22 +192,23 @@ public:
         stash_.begin(), stash_.end(), [](const Entry& e) { return e.key.first != taken; }));
   }
 
-  // Migration between ranks: the stashed states owned by particle `gid` (the contacts whose
-  // lower global id it has), packed as bytes and removed from the stash; and the reverse.
-  std::string take_owned_by(GlobalId gid) {
-    if (by_owner_.empty() && !stash_.empty())
-      for (std::size_t k = 0; k < stash_.size(); ++k)
-        if (stash_[k].key.first != taken) by_owner_[stash_[k].key.first].push_back(k);
-    std::string out;
-    const auto it = by_owner_.find(gid);
-    if (it == by_owner_.end()) return out;
-    for (const std::size_t k : it->second) {
-      Entry& e = stash_[k];
-      if (e.key.first != gid) continue;
-      out.append(reinterpret_cast<const char*>(&e), sizeof e);
+  // Migration between ranks: the stashed states owned by the particles `gids` (the contacts
+  // whose lower global id they have), packed as bytes, one string per particle, and removed
+  // from the stash; and the reverse. One pass over the stash for all the particles that leave
+  // (a few hundred at a rebuild, against thousands of stashed contacts).
+  std::vector<std::string> take_owned_by(const std::vector<GlobalId>& gids) {
+    std::vector<std::string> out(gids.size());
+    if (gids.empty()) return out;
+    std::unordered_map<GlobalId, std::size_t> leaving;
+    leaving.reserve(gids.size());
+    for (std::size_t k = 0; k < gids.size(); ++k) leaving.emplace(gids[k], k);
+    for (Entry& e : stash_) {
+      if (e.key.first == taken) continue;
+      const auto it = leaving.find(e.key.first);
+      if (it == leaving.end()) continue;
+      out[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
       e.key.first = taken;
     }
-    by_owner_.erase(it);
     return out;
   }
   void give(const std::string& bytes) {
@@ -220,10 +216,8 @@ public:
       Entry e;
       std::memcpy(&e, bytes.data() + at, sizeof e);
       stash_.push_back(e);
-      if (!by_owner_.empty()) by_owner_[e.key.first].push_back(stash_.size() - 1); // may move on
     }
   }
-  void forget_owner_index() { by_owner_.clear(); }
   // Every stashed state as bytes (for give()).
   std::string stashed_bytes() const {
     std::string out;
@@ -239,7 +233,6 @@ private:
   static constexpr GlobalId taken = -1; // key.first of an entry that has left (migration)
   std::vector<std::uint32_t> free_;     // slots of `states` that no contact holds
   std::vector<Entry> stash_;            // later entries win over earlier ones with their key
-  std::unordered_map<GlobalId, std::vector<std::size_t>> by_owner_; // built on first migration
 };
 
 } // namespace yuxi

@@ -53,17 +53,22 @@ void ParticleStore::permute_owned(std::span<const std::uint32_t> order) {
   });
 }
 
-void ParticleStore::remove_owned(std::span<const std::uint8_t> remove_flag) {
+void ParticleStore::remove_owned(std::span<const std::size_t> removed) {
   clear_ghosts();
-  std::vector<std::uint32_t> keep;
-  keep.reserve(n_owned_);
-  for (std::size_t i = 0; i < n_owned_; ++i)
-    if (!remove_flag[i]) keep.push_back(static_cast<std::uint32_t>(i));
-  for_each_field([&keep](auto& field) {
-    for (std::size_t k = 0; k < keep.size(); ++k) field[k] = field[keep[k]];
-    field.resize(keep.size());
+  if (removed.empty()) return;
+  // Members before the first removed one stay where they are.
+  for_each_field([&removed, n = n_owned_](auto& field) {
+    std::size_t to = removed.front(), r = 0;
+    for (std::size_t i = removed.front(); i < n; ++i) {
+      if (r < removed.size() && removed[r] == i) {
+        ++r;
+        continue;
+      }
+      field[to++] = field[i];
+    }
+    field.resize(to);
   });
-  n_owned_ = keep.size();
+  n_owned_ -= removed.size();
 }
 
 double ParticleStore::max_radius() const {

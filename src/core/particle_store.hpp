@@ -103,8 +103,8 @@ public:
   }
   // Reorders the owned particles: new index k holds old particle order[k]. Ghosts are dropped.
   void permute_owned(std::span<const std::uint32_t> order);
-  // Removes the owned particles whose flag is set (ghosts are dropped).
-  void remove_owned(std::span<const std::uint8_t> remove_flag);
+  // Removes the owned particles `removed` (ascending indices); ghosts are dropped.
+  void remove_owned(std::span<const std::size_t> removed);
 
   bool is_grain(std::size_t i) const { return kind[i] == Kind::grain; }
 

@@ -143,9 +143,10 @@ void Halo::reverse_sum(std::vector<double>& per_particle, const Comm& comm) cons
   reverse_add(comm, per_particle);
 }
 
-void Halo::migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
-                   const std::function<std::string(std::size_t)>& payload,
-                   const std::function<void(std::size_t, const std::string&)>& arrived) {
+void Halo::migrate(
+    ParticleStore& s, const Decomposition& d, const Comm& comm,
+    const std::function<std::vector<std::string>(const std::vector<std::size_t>&)>& payloads,
+    const std::function<void(std::size_t, const std::string&)>& arrived) {
   s.clear_ghosts();
   const Vec3 lo = d.lo(), hi = d.hi();
   for (int a = 0; a < 3; ++a) {
@@ -153,19 +154,18 @@ void Halo::migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
     for (int dir : {-1, +1}) {
       const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
       std::string out;
-      std::vector<std::uint8_t> leaving(s.n_owned(), 0);
+      std::vector<std::size_t> leaving;
       Vec3 shift;
       if (d.wraps(a, dir)) shift[a] = -dir * d.box().length(a);
       if (to >= 0)
-        for (std::size_t i = 0; i < s.n_owned(); ++i) {
-          const bool out_here = dir < 0 ? s.x[i][a] < lo[a] : s.x[i][a] >= hi[a];
-          if (!out_here) continue;
-          leaving[i] = 1;
-          pack_particle(s, i, shift, out);
-          const std::string p = payload(i);
-          put(out, static_cast<std::uint64_t>(p.size()));
-          out += p;
-        }
+        for (std::size_t i = 0; i < s.n_owned(); ++i)
+          if (dir < 0 ? s.x[i][a] < lo[a] : s.x[i][a] >= hi[a]) leaving.push_back(i);
+      const std::vector<std::string> carried = payloads(leaving);
+      for (std::size_t k = 0; k < leaving.size(); ++k) {
+        pack_particle(s, leaving[k], shift, out);
+        put(out, static_cast<std::uint64_t>(carried[k].size()));
+        out += carried[k];
+      }
       s.remove_owned(leaving);
       const std::string in = comm.send_receive(to, out, from, 600 + 4 * a + (dir > 0 ? 2 : 0));
       std::size_t at = 0;

@@ -34,12 +34,13 @@ public:
   void reverse_sum(std::vector<double>& per_particle, const Comm& comm) const;
   std::size_t n_ghosts() const { return n_ghosts_; }
 
-  // Sends owned particles outside the sub-domain to their new owners. `payload(i)` packs what
-  // travels with particle i (called before it leaves); `arrived(i, bytes)` receives the payload
-  // of a particle that arrived as owned particle i.
-  static void migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
-                      const std::function<std::string(std::size_t)>& payload,
-                      const std::function<void(std::size_t, const std::string&)>& arrived);
+  // Sends owned particles outside the sub-domain to their new owners. `payloads(leaving)`
+  // packs what travels with each of the particles `leaving` (called before they leave);
+  // `arrived(i, bytes)` receives the payload of a particle that arrived as owned particle i.
+  static void
+  migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
+          const std::function<std::vector<std::string>(const std::vector<std::size_t>&)>& payloads,
+          const std::function<void(std::size_t, const std::string&)>& arrived);
 
 private:
   template <class... Field> void reverse_add(const Comm& comm, Field&... fields) const;

@@ -101,9 +101,9 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
     // keep this sub-domain's.
     if (config_.rebalance_every > 0)
       decomp_.balance(store_.x, std::vector<double>(store_.n_owned(), 1.0), comm_);
-    std::vector<std::uint8_t> elsewhere(store_.n_owned());
+    std::vector<std::size_t> elsewhere;
     for (std::size_t i = 0; i < store_.n_owned(); ++i)
-      elsewhere[i] = decomp_.owns(config_.box.wrap(store_.x[i])) ? 0 : 1;
+      if (!decomp_.owns(config_.box.wrap(store_.x[i]))) elsewhere.push_back(i);
     store_.remove_owned(elsewhere);
     grid_ = CellGrid(decomp_.local_box(), cell_edge_);
   }
@@ -372,7 +372,11 @@ void Simulation::migrate() {
         [&](auto& f) {
           Halo::migrate(
               store_, decomp_, comm_,
-              [&](std::size_t i) { return f.history.take_owned_by(store_.gid[i]); },
+              [&](const std::vector<std::size_t>& leaving) {
+                std::vector<GlobalId> gids(leaving.size());
+                for (std::size_t k = 0; k < leaving.size(); ++k) gids[k] = store_.gid[leaving[k]];
+                return f.history.take_owned_by(gids);
+              },
               [&](std::size_t, const std::string& bytes) { f.history.give(bytes); });
         },
         forces_);
@@ -380,7 +384,6 @@ void Simulation::migrate() {
     for (std::size_t i = 0; i < store_.n_owned() && !stray; ++i) stray = !decomp_.owns(store_.x[i]);
     if (!comm_.any(stray)) break;
   }
-  std::visit([&](auto& f) { f.history.forget_owner_index(); }, forces_);
 }
 
 void Simulation::rebalance() {
@@ -487,8 +490,7 @@ void Simulation::handle_escapes() {
 
 void Simulation::handle_escapes_here() {
   const std::size_t n = store_.n_owned();
-  std::vector<std::uint8_t> gone(n, 0);
-  std::size_t count = 0;
+  std::vector<std::size_t> gone;
   for (std::size_t i = 0; i < n; ++i) {
     if (!is_finite(store_.x[i]) || !is_finite(store_.v[i]) || !is_finite(store_.w[i]))
       throw SimulationError(fmt::format("step {}, t = {}: non-finite state of {}; its contacts: {}",
@@ -501,13 +503,12 @@ void Simulation::handle_escapes_here() {
                                         step_, time_, describe_particle(i), config_.box.lo.x,
                                         config_.box.hi.x, config_.box.lo.y, config_.box.hi.y,
                                         config_.box.lo.z, config_.box.hi.z, describe_contacts(i)));
-    gone[i] = 1;
+    gone.push_back(i);
     removed_energy_ += mechanical_energy(i);
-    ++count;
   }
-  if (count == 0) return;
+  if (gone.empty()) return;
   store_.remove_owned(gone);
-  escaped_ += count;
+  escaped_ += gone.size();
 }
 
 void Simulation::start_forces_from_gravity() {
