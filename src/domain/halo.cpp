@@ -94,22 +94,25 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
       }
       continue;
     }
-    std::string& out = out_;
-    std::string& in = in_;
-    out.clear();
-    for (auto i : w.sends) {
-      put(out, s.x[i] + w.shift);
-      put(out, s.v[i]);
-      put(out, s.w[i]);
+    // One block per field ([x][v][w], each in send order), so that the receiver copies each
+    // block into its ghosts whole.
+    const std::size_t n_out = w.sends.size();
+    out_.resize(n_out * 3 * sizeof(Vec3));
+    char* out = out_.data();
+    for (std::size_t m = 0; m < n_out; ++m) {
+      const std::uint32_t i = w.sends[m];
+      const Vec3 shifted = s.x[i] + w.shift;
+      std::memcpy(out + m * sizeof(Vec3), &shifted, sizeof(Vec3));
+      std::memcpy(out + (n_out + m) * sizeof(Vec3), &s.v[i], sizeof(Vec3));
+      std::memcpy(out + (2 * n_out + m) * sizeof(Vec3), &s.w[i], sizeof(Vec3));
     }
-    comm.send_receive(w.send_to, out, w.receive_from, in, w.count * 3 * sizeof(Vec3),
+    comm.send_receive(w.send_to, out_, w.receive_from, in_, w.count * 3 * sizeof(Vec3),
                       200 + 2 * static_cast<int>(k));
-    std::size_t at = 0;
-    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) {
-      s.x[g] = take<Vec3>(in, at);
-      s.v[g] = take<Vec3>(in, at);
-      s.w[g] = take<Vec3>(in, at);
-    }
+    const std::size_t block = w.count * sizeof(Vec3);
+    if (block == 0) continue;
+    std::memcpy(&s.x[w.first], in_.data(), block);
+    std::memcpy(&s.v[w.first], in_.data() + block, block);
+    std::memcpy(&s.w[w.first], in_.data() + 2 * block, block);
   }
 }
 
@@ -123,15 +126,26 @@ template <class... Field> void Halo::reverse_add(const Comm& comm, Field&... fie
       }
       continue;
     }
-    std::string& out = out_;
-    std::string& in = in_;
-    out.clear();
-    for (std::uint32_t g = w.first; g < w.first + w.count; ++g) (put(out, fields[g]), ...);
+    // The ghosts of a swap are contiguous: one block per field, copied whole.
+    out_.clear();
+    if (w.count > 0)
+      (out_.append(reinterpret_cast<const char*>(&fields[w.first]), w.count * sizeof(fields[0])),
+       ...);
     // back the way the ghosts came: to the rank they were received from
-    comm.send_receive(w.receive_from, out, w.send_to, in,
-                      w.sends.size() * (sizeof(fields[0]) + ...), 400 + 2 * static_cast<int>(k));
+    const std::size_t n_in = w.sends.size();
+    comm.send_receive(w.receive_from, out_, w.send_to, in_, n_in * (sizeof(fields[0]) + ...),
+                      400 + 2 * static_cast<int>(k));
     std::size_t at = 0;
-    for (auto i : w.sends) ((fields[i] += take<std::decay_t<decltype(fields[i])>>(in, at)), ...);
+    const auto add_block = [&](auto& field) {
+      using T = std::decay_t<decltype(field[0])>;
+      for (std::size_t m = 0; m < n_in; ++m) {
+        T value;
+        std::memcpy(&value, in_.data() + at + m * sizeof(T), sizeof(T));
+        field[w.sends[m]] += value;
+      }
+      at += n_in * sizeof(T);
+    };
+    (add_block(fields), ...);
   }
 }
 
