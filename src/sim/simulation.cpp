@@ -131,10 +131,13 @@ bool Simulation::place_walls(double t, bool every_one) {
   std::vector<WallMotionAtTime> now;
   std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
   now.reserve(motions_.size());
+  bool all_at_rest = true;
   for (const WallMotion& m : motions_) {
     now.push_back(at_time(m, t));
     skip.push_back(!every_one && at_rest(now.back()) ? 1 : 0);
+    all_at_rest = all_at_rest && skip.back();
   }
+  if (all_at_rest) return false; // (frozen bases, a basin before its start)
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i) || skip[store_.motion[i]]) continue;
     const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
