@@ -14,6 +14,7 @@
 #pragma once
 
 #include "contact/frictional_spring.hpp"
+#include "contact/linear_spring_dashpot.hpp"
 #include "core/always_inline.hpp"
 
 #include <cmath>
@@ -47,6 +48,34 @@ struct LinearBatch {
   alignas(64) double elastic[capacity], dissipated[capacity];           // [energy]
 
   bool full() const { return size == capacity; }
+
+  // Fills lane k with one contact: d = x_i - x_j, v = v_i - v_j, its law's coefficients and
+  // its tangential spring.
+  void set_lane(std::size_t k, const Vec3& d, double radius_i, double radius_j, const Vec3& v,
+                const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum,
+                const LinearSpringDashpot::Coeffs& c, const SliderState& spring) {
+    dx[k] = d.x, dy[k] = d.y, dz[k] = d.z;
+    a_i[k] = radius_i, a_j[k] = radius_j;
+    vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
+    wix[k] = w_i.x, wiy[k] = w_i.y, wiz[k] = w_i.z;
+    wjx[k] = w_j.x, wjy[k] = w_j.y, wjz[k] = w_j.z;
+    inv_mass_sum[k] = inverse_mass_sum;
+    k_n[k] = c.k_n, k_t[k] = c.k_t;
+    gamma_n[k] = c.gamma_n, gamma_t[k] = c.gamma_t;
+    mu_s[k] = c.mu_s, mu_d[k] = c.mu_d;
+    sx[k] = spring.spring.x, sy[k] = spring.spring.y, sz[k] = spring.spring.z;
+    s_k[k] = spring.k;
+    sliding[k] = spring.sliding ? 1.0 : 0.0;
+  }
+
+  // The tangential spring of lane k after evaluate().
+  SliderState spring(std::size_t k) const {
+    SliderState st;
+    st.spring = {sx[k], sy[k], sz[k]};
+    st.k = s_k[k];
+    st.sliding = sliding[k] != 0.0 ? 1 : 0;
+    return st;
+  }
 
   // Evaluates every lane (the state arrays are updated in place).
   void evaluate(CapOn cap, Carry carry, double dt) {

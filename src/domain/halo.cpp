@@ -132,18 +132,12 @@ template <class... Field> void Halo::reverse_add(const Comm& comm, Field&... fie
       (out_.append(reinterpret_cast<const char*>(&fields[w.first]), w.count * sizeof(fields[0])),
        ...);
     // back the way the ghosts came: to the rank they were received from
-    const std::size_t n_in = w.sends.size();
-    comm.send_receive(w.receive_from, out_, w.send_to, in_, n_in * (sizeof(fields[0]) + ...),
-                      400 + 2 * static_cast<int>(k));
+    comm.send_receive(w.receive_from, out_, w.send_to, in_,
+                      w.sends.size() * (sizeof(fields[0]) + ...), 400 + 2 * static_cast<int>(k));
     std::size_t at = 0;
     const auto add_block = [&](auto& field) {
-      using T = std::decay_t<decltype(field[0])>;
-      for (std::size_t m = 0; m < n_in; ++m) {
-        T value;
-        std::memcpy(&value, in_.data() + at + m * sizeof(T), sizeof(T));
-        field[w.sends[m]] += value;
-      }
-      at += n_in * sizeof(T);
+      for (const std::uint32_t i : w.sends)
+        field[i] += take<std::decay_t<decltype(field[i])>>(in_, at);
     };
     (add_block(fields), ...);
   }

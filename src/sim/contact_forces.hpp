@@ -37,24 +37,31 @@ public:
       record.plane_force.assign(list.planes.size(), Vec3{});
       record.plane_elastic.assign(list.planes.size(), 0.0);
     }
+    bool batched = false;
     if constexpr (std::is_same_v<Model, LinearSpringDashpot>) {
       if (batch_) {
         compute_pairs_in_batches(s, list, dt, tally, record);
-        compute_planes(s, list, planes, t, dt, tally, record);
-        return;
+        batched = true;
       }
     }
-    compute_pairs(s, list, dt, tally, record);
+    if (!batched) compute_pairs(s, list, dt, tally, record);
     compute_planes(s, list, planes, t, dt, tally, record);
   }
 
 private:
-  static void track_overlap(const ContactGeometry& g, double smaller_radius, std::size_t i,
+  static void track_overlap(double overlap, double smaller_radius, std::size_t i,
                             ContactTally& tally) {
-    if (g.overlap > tally.max_overlap_ratio * smaller_radius) { // divides only on a new maximum
-      tally.max_overlap_ratio = g.overlap / smaller_radius;
+    if (overlap > tally.max_overlap_ratio * smaller_radius) { // divides only on a new maximum
+      tally.max_overlap_ratio = overlap / smaller_radius;
       tally.worst_particle = i;
     }
+  }
+
+  // Work of a wall particle's prescribed motion on its partner (force on i, -force on j).
+  static void book_wall_work(const ParticleStore& s, std::uint32_t i, std::uint32_t j,
+                             const Vec3& force, double dt, ContactTally& tally) {
+    if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
+    if (s.kind[i] == Kind::wall) tally.wall_work -= dot(force, s.v[i]) * dt;
   }
 
   static void book(const ContactResult& r, ContactTally& tally) {
@@ -64,9 +71,9 @@ private:
     tally.touching += r.touching ? 1 : 0;
   }
 
-  // Calls touching(i, j, p, d, a_i, a_j) for every listed pair p = (i, j) that overlaps
-  // (d = x_i - x_j), in list order, and ends the contacts that have opened: the energy their
-  // springs still hold is lost.
+  // Calls touching(i, j, p, d, r2, a_i, a_j) for every listed pair p = (i, j) that overlaps
+  // (d = x_i - x_j, r2 = |d|^2), in list order, and ends the contacts that have opened: the energy
+  // their springs still hold is lost.
   template <class Touching>
   YUXI_ALWAYS_INLINE void sweep(const ParticleStore& s, const NeighborList& list,
                                 ContactTally& tally, Touching&& touching) {
@@ -79,9 +86,10 @@ private:
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
         const std::uint32_t j = partners[p];
         const Vec3 d = xi - x[j];
+        const double r2 = norm2(d);
         const double aj = radius[j];
         const double touch = ai + aj;
-        if (norm2(d) >= touch * touch) {
+        if (r2 >= touch * touch) {
           if (const auto slot = history.pair_slot[p]; slot != history.none) {
             tally.dissipated +=
                 Model::release(law_.coeffs(s.material[i], s.material[j]), history.states[slot]);
@@ -89,7 +97,7 @@ private:
           }
           continue;
         }
-        touching(i, j, p, d, ai, aj);
+        touching(i, j, p, d, r2, ai, aj);
       }
     }
   }
@@ -97,10 +105,10 @@ private:
   void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
                      ContactRecord& record) {
     sweep(s, list, tally,
-          [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double ai,
-              double aj) {
+          [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double r2,
+              double ai, double aj) {
             State& state = history.open(p);
-            const double dist = std::sqrt(norm2(d));
+            const double dist = std::sqrt(r2);
             const double touch = ai + aj;
             ContactGeometry g;
             g.n = d * (1.0 / dist);
@@ -122,9 +130,8 @@ private:
             s.torque[j] += r.torque_j;
             book(r, tally);
             record.keep_pair(p, r.force, r.elastic);
-            if (s.kind[j] == Kind::wall) tally.wall_work += dot(r.force, s.v[j]) * dt;
-            if (s.kind[i] == Kind::wall) tally.wall_work -= dot(r.force, s.v[i]) * dt;
-            track_overlap(g, std::min(ai, aj), i, tally);
+            book_wall_work(s, i, j, r.force, dt, tally);
+            track_overlap(g.overlap, std::min(ai, aj), i, tally);
           });
   }
 
@@ -167,26 +174,12 @@ private:
     LinearBatch& lanes = b.lanes;
     lanes.size = 0;
     sweep(s, list, tally,
-          [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double ai,
+          [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double, double ai,
               double aj) {
-            const SliderState& spring = history.open(p).tangential;
-            const auto& c = law_.coeffs(s.material[i], s.material[j]);
             const std::size_t k = lanes.size++;
-            const Vec3 v = s.v[i] - s.v[j];
-            const Vec3 wi = s.w[i], wj = s.w[j];
-            lanes.dx[k] = d.x, lanes.dy[k] = d.y, lanes.dz[k] = d.z;
-            lanes.a_i[k] = ai, lanes.a_j[k] = aj;
-            lanes.vx[k] = v.x, lanes.vy[k] = v.y, lanes.vz[k] = v.z;
-            lanes.wix[k] = wi.x, lanes.wiy[k] = wi.y, lanes.wiz[k] = wi.z;
-            lanes.wjx[k] = wj.x, lanes.wjy[k] = wj.y, lanes.wjz[k] = wj.z;
-            lanes.inv_mass_sum[k] = s.inv_mass[i] + s.inv_mass[j];
-            lanes.k_n[k] = c.k_n, lanes.k_t[k] = c.k_t;
-            lanes.gamma_n[k] = c.gamma_n, lanes.gamma_t[k] = c.gamma_t;
-            lanes.mu_s[k] = c.mu_s, lanes.mu_d[k] = c.mu_d;
-            lanes.sx[k] = spring.spring.x, lanes.sy[k] = spring.spring.y;
-            lanes.sz[k] = spring.spring.z;
-            lanes.s_k[k] = spring.k;
-            lanes.sliding[k] = spring.sliding ? 1.0 : 0.0;
+            lanes.set_lane(k, d, ai, aj, s.v[i] - s.v[j], s.w[i], s.w[j],
+                           s.inv_mass[i] + s.inv_mass[j], law_.coeffs(s.material[i], s.material[j]),
+                           history.open(p).tangential);
             b.row[k] = i, b.partner[k] = j, b.pair[k] = p;
             if (lanes.full()) flush(s, dt, tally, record);
           });
@@ -211,17 +204,9 @@ private:
       tally.dissipated += lanes.dissipated[k];
       ++tally.touching;
       record.keep_pair(p, force, lanes.elastic[k]);
-      if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
-      if (s.kind[i] == Kind::wall) tally.wall_work -= dot(force, s.v[i]) * dt;
-      const double smaller = std::min(lanes.a_i[k], lanes.a_j[k]);
-      if (lanes.overlap[k] > tally.max_overlap_ratio * smaller) {
-        tally.max_overlap_ratio = lanes.overlap[k] / smaller;
-        tally.worst_particle = i;
-      }
-      SliderState& spring = history.states[history.pair_slot[p]].tangential;
-      spring.spring = {lanes.sx[k], lanes.sy[k], lanes.sz[k]};
-      spring.k = lanes.s_k[k];
-      spring.sliding = lanes.sliding[k] != 0.0 ? 1 : 0;
+      book_wall_work(s, i, j, force, dt, tally);
+      track_overlap(lanes.overlap[k], std::min(lanes.a_i[k], lanes.a_j[k]), i, tally);
+      history.states[history.pair_slot[p]].tangential = lanes.spring(k);
     }
     lanes.size = 0;
   }
@@ -262,7 +247,7 @@ private:
       book(r, tally);
       record.keep_plane(k, r.force, r.elastic);
       tally.wall_work += dot(r.force, v_wall) * dt;
-      track_overlap(g, ai, i, tally);
+      track_overlap(g.overlap, ai, i, tally);
     }
   }
 

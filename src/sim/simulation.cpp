@@ -223,6 +223,7 @@ void Simulation::step() {
   // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
   t0 = Clock::now();
   {
+    // The pointers are taken again: a rebuild may have moved the arrays.
     const Kind* kind = store_.kind.data();
     const double* inv_mass = store_.inv_mass.data();
     const double* inv_inertia = store_.inv_inertia.data();
