@@ -50,24 +50,47 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   bool ghosts_outside = true;
   for (std::size_t j = n; j < s.size() && ghosts_outside; ++j)
     ghosts_outside = on_layer(grid.cell_of(s.x[j]), 1);
+  // Candidates are written at the cursor unconditionally and kept by advancing it: about one
+  // candidate in five is kept, in no pattern a branch predictor could learn, so a branch on the
+  // outcome would be mispredicted more often than the whole test costs. Room for every
+  // candidate of a cell is made before the cell is scanned.
+  const Vec3* x = s.x.data();
+  const double* radius = s.radius.data();
+  const Kind* kind = s.kind.data();
+  const GlobalId* gid = s.gid.data();
+  std::size_t kept = 0;
+  list.partners.resize(std::max<std::size_t>(list.partners.capacity(), 64));
+  const auto make_room = [&](std::size_t candidates) {
+    if (kept + candidates > list.partners.size())
+      list.partners.resize(std::max(2 * list.partners.size(), kept + candidates));
+  };
   for (std::uint32_t i = 0; i < n; ++i) {
-    list.offsets[i] = static_cast<std::uint32_t>(list.partners.size());
-    const Vec3 xi = s.x[i];
-    const double ri = s.radius[i];
-    const bool wall_i = s.kind[i] == Kind::wall;
-    const GlobalId gid_i = s.gid[i];
+    list.offsets[i] = static_cast<std::uint32_t>(kept);
+    const Vec3 xi = x[i];
+    const double ri = radius[i];
+    const bool wall_i = kind[i] == Kind::wall;
+    const GlobalId gid_i = gid[i];
     const auto c = grid.cell_of(xi);
     const auto here = static_cast<std::ptrdiff_t>(grid.linear(c[0], c[1], c[2]));
-    // The tests that need only indices come first: most candidates fail them.
-    const auto add_if_near = [&](std::uint32_t j) {
-      if (wall_i && s.kind[j] == Kind::wall) return;
-      const double cut = ri + s.radius[j] + range; // as within() adds them
-      if (norm2(xi - s.x[j]) < cut * cut) list.partners.push_back(j);
+    // Keeps j when it is near, not a second wall particle, and `ours` (the pair rules).
+    const auto keep_if_near = [&](std::uint32_t j, bool ours) {
+      const double cut = ri + radius[j] + range; // as within() adds them
+      const bool near = norm2(xi - x[j]) < cut * cut;
+      const bool walls = wall_i & (kind[j] == Kind::wall);
+      list.partners[kept] = j;
+      kept += static_cast<std::size_t>(near & !walls & ours);
     };
-    const auto ghost_is_ours = [&](std::uint32_t j) { return gid_i < s.gid[j]; };
+    // A ghost pair is ours when i has the lower global id.
+    const auto ghost_is_ours = [&](std::uint32_t j) { return gid_i < gid[j]; };
     // The cell itself: owned partners after i, and ghosts by the owned-ghost rule.
-    for (std::uint32_t j : grid.particles_in(static_cast<std::size_t>(here)))
-      if (j < n ? j > i : ghost_is_ours(j)) add_if_near(j);
+    {
+      const auto cell = grid.particles_in(static_cast<std::size_t>(here));
+      make_room(cell.size());
+      for (std::uint32_t j : cell) {
+        const bool owned = j < n;
+        keep_if_near(j, (owned & (j > i)) | (!owned & ghost_is_ours(j)));
+      }
+    }
     const auto scan = [&](std::size_t cell_index, bool ghosts_only) {
       auto cell = grid.particles_in(cell_index);
       // A cell lists its particles by ascending index, so its ghosts (indices >= n) come
@@ -79,8 +102,8 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
             std::lower_bound(cell.begin(), cell.end(), static_cast<std::uint32_t>(n)) -
             cell.begin()));
       }
-      for (std::uint32_t j : cell)
-        if (j < n || ghost_is_ours(j)) add_if_near(j);
+      make_room(cell.size());
+      for (std::uint32_t j : cell) keep_if_near(j, (j < n) | ghost_is_ours(j));
     };
     const bool interior = !on_layer(c, 1);
     const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell,
@@ -90,9 +113,9 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
         return;
       }
       for (const auto& o : shell) {
-        const int x = c[0] + o[0], y = c[1] + o[1], z = c[2] + o[2];
-        if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
-        scan(grid.linear(x, y, z), ghosts_only);
+        const int cx = c[0] + o[0], cy = c[1] + o[1], cz = c[2] + o[2];
+        if (cx < 0 || cy < 0 || cz < 0 || cx >= dims[0] || cy >= dims[1] || cz >= dims[2]) continue;
+        scan(grid.linear(cx, cy, cz), ghosts_only);
       }
     };
     // The upper half shell: every owned partner, ghosts by the rule; the lower half: ghosts
@@ -101,7 +124,8 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     if (has_ghosts && (!ghosts_outside || on_layer(c, 2)))
       visit(CellGrid::lower_shell(), lower, true);
   }
-  list.offsets[n] = static_cast<std::uint32_t>(list.partners.size());
+  list.partners.resize(kept);
+  list.offsets[n] = static_cast<std::uint32_t>(kept);
 }
 
 void build_neighbor_list_brute_force(const ParticleStore& s, double range, NeighborList& list) {
