@@ -126,6 +126,7 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   }
   list.partners.resize(kept);
   list.offsets[n] = static_cast<std::uint32_t>(kept);
+  list.index_rows();
 }
 
 void build_neighbor_list_brute_force(const ParticleStore& s, double range, NeighborList& list) {
@@ -141,6 +142,7 @@ void build_neighbor_list_brute_force(const ParticleStore& s, double range, Neigh
     }
   }
   list.offsets[n] = static_cast<std::uint32_t>(list.partners.size());
+  list.index_rows();
 }
 
 } // namespace yuxi

@@ -33,14 +33,22 @@ struct PlaneContactRef {
 struct NeighborList {
   std::vector<std::uint32_t> offsets;  // n_owned + 1 row offsets into partners
   std::vector<std::uint32_t> partners; // j of each pair, grouped by i
+  std::vector<std::uint32_t> rows;     // i of each pair (aligned with partners)
   std::vector<PlaneContactRef> planes; // grain-plane candidate contacts (filled by the owner)
 
   std::size_t memory_bytes() const {
-    return (offsets.capacity() + partners.capacity()) * sizeof(std::uint32_t) +
+    return (offsets.capacity() + partners.capacity() + rows.capacity()) * sizeof(std::uint32_t) +
            planes.capacity() * sizeof(PlaneContactRef);
   }
 
   std::size_t n_pairs() const { return partners.size(); }
+
+  // Fills `rows` from `offsets` (the builders call it last).
+  void index_rows() {
+    rows.resize(partners.size());
+    for (std::uint32_t i = 0; i + 1 < offsets.size(); ++i)
+      for (std::uint32_t p = offsets[i]; p < offsets[i + 1]; ++p) rows[p] = i;
+  }
 };
 
 // Builds the pair rows. `grid` must have binned all particles of `store` (owned and ghosts).

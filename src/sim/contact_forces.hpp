@@ -8,6 +8,7 @@
 #include "contact/linear_batch.hpp"
 #include "core/always_inline.hpp"
 #include "core/neighbor_list.hpp"
+#include "core/overlap_scan.hpp"
 #include "core/particle_store.hpp"
 #include "scene/plane_wall.hpp"
 #include "sim/contact_tally.hpp"
@@ -72,64 +73,37 @@ private:
   }
 
   // Calls touching(i, j, p, d, r2, a_i, a_j) for every listed pair p = (i, j) that overlaps
-  // (d = x_i - x_j, r2 = |d|^2), in list order, and ends the contacts that have opened: the energy
-  // their springs still hold is lost.
-  //
-  // In two passes over chunks of the list: the first tests every pair and writes down those
-  // that touch without a branch on the outcome (most listed pairs are near misses, in no
-  // pattern a branch predictor could learn, and a mispredicted branch costs more than the test);
-  // the second hands the touching ones on. The few contacts that have come apart are ended in
-  // the first.
+  // (d = x_i - x_j, r2 = |d|^2), in list order, and ends the contacts that have come apart: the
+  // energy their springs still hold is lost. Chunk by chunk: first the overlap test of every
+  // pair (overlap_scan.hpp), then the contact law on the pairs that passed.
   template <class Touching>
   YUXI_ALWAYS_INLINE void sweep(const ParticleStore& s, const NeighborList& list,
                                 ContactTally& tally, Touching&& touching) {
+    static_assert(ContactHistory<State>::none == no_slot);
     const Vec3* x = s.x.data();
     const double* radius = s.radius.data();
     const std::uint32_t* partners = list.partners.data();
-    const std::uint32_t* slot = history.pair_slot.data();
+    const std::uint32_t* rows = list.rows.data();
     constexpr std::uint32_t chunk = 256;
-    std::uint32_t hit_row[chunk], hit_pair[chunk];
-    std::uint32_t hits = 0;
-    const auto hand_on = [&] {
-      for (std::uint32_t k = 0; k < hits; ++k) {
-        const std::uint32_t i = hit_row[k], p = hit_pair[k], j = partners[p];
+    std::uint32_t touching_pairs[chunk], parted_pairs[chunk];
+    const auto n_pairs = static_cast<std::uint32_t>(list.n_pairs());
+    for (std::uint32_t begin = 0; begin < n_pairs; begin += chunk) {
+      const std::uint32_t end = std::min(begin + chunk, n_pairs);
+      const OverlapScanCounts found =
+          scan_overlaps(x, radius, rows, partners, history.pair_slot.data(), begin, end,
+                        touching_pairs, parted_pairs);
+      for (std::uint32_t k = 0; k < found.parted; ++k) {
+        const std::uint32_t p = parted_pairs[k];
+        tally.dissipated +=
+            Model::release(law_.coeffs(s.material[rows[p]], s.material[partners[p]]),
+                           history.states[history.pair_slot[p]]);
+        history.close(p);
+      }
+      for (std::uint32_t k = 0; k < found.touching; ++k) {
+        const std::uint32_t p = touching_pairs[k], i = rows[p], j = partners[p];
         const Vec3 d = x[i] - x[j];
         touching(i, j, p, d, norm2(d), radius[i], radius[j]);
       }
-      hits = 0;
-    };
-    if (list.offsets.size() < 2) return; // (no list built yet, or no owned particle)
-    const std::uint32_t* offsets = list.offsets.data();
-    const std::uint32_t rows = static_cast<std::uint32_t>(list.offsets.size() - 1);
-    std::uint32_t i = 0, p = offsets[0];
-    while (i < rows) {
-      // Test pairs until the chunk could overflow (each pair adds at most one hit), from row i,
-      // pair p on; a row may be split between chunks.
-      while (i < rows && hits < chunk) {
-        const std::uint32_t row_end = offsets[i + 1];
-        const std::uint32_t stop = std::min(row_end, p + (chunk - hits));
-        const Vec3 xi = x[i];
-        const double ai = radius[i];
-        for (; p < stop; ++p) {
-          const std::uint32_t j = partners[p];
-          const Vec3 d = xi - x[j];
-          const double touch = ai + radius[j];
-          const std::uint32_t touches = norm2(d) < touch * touch;
-          hit_row[hits] = i;
-          hit_pair[hits] = p;
-          hits += touches;
-          // Not touching but holding a state: (touches - 1) is all ones only when not
-          // touching, slot ^ none is zero only without a state. One branch, almost never taken.
-          if (((touches - 1u) & (slot[p] ^ history.none)) != 0) [[unlikely]] {
-            tally.dissipated +=
-                Model::release(law_.coeffs(s.material[i], s.material[j]), history.states[slot[p]]);
-            history.close(p);
-          }
-        }
-        if (p < row_end) break;
-        ++i;
-      }
-      hand_on();
     }
   }
 
