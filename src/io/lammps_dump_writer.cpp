@@ -1,5 +1,6 @@
 #include "io/lammps_dump_writer.hpp"
 
+#include <charconv>
 #include <fmt/format.h>
 #include <fstream>
 #include <stdexcept>
@@ -61,13 +62,30 @@ void LammpsDumpWriter::write(const ParticleStore& s, std::int64_t step) {
     fmt::format_to(std::back_inserter(buf), "{:.10g} {:.10g}\n", box_.lo[a], box_.hi[a]);
   fmt::format_to(std::back_inserter(buf), "ITEM: ATOMS id type radius mass x y z vx vy vz omegax "
                                           "omegay omegaz fx fy fz\n");
+  // One line per particle, written with std::to_chars: the same text as printf's %.8g and
+  // %.10g (the standard defines it so), at about half the cost of fmt's precision formatting,
+  // which matters for the paper's 300,000 particles at every snapshot.
+  char line[512];
+  char* const line_end = line + sizeof line; // (room kept for the separator after each field)
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 &x = s.x[i], &v = s.v[i], &w = s.w[i], &f = s.f[i];
-    fmt::format_to(std::back_inserter(buf),
-                   "{} {} {:.8g} {:.8g} {:.10g} {:.10g} {:.10g} {:.8g} {:.8g} {:.8g} {:.8g} {:.8g} "
-                   "{:.8g} {:.8g} {:.8g} {:.8g}\n",
-                   s.gid[i], s.material[i] + 1, s.radius[i], s.mass[i], x.x, x.y, x.z, v.x, v.y,
-                   v.z, w.x, w.y, w.z, f.x, f.y, f.z);
+    char* at = line;
+    const auto integer = [&](long long value) {
+      at = std::to_chars(at, line_end - 1, value).ptr;
+      *at++ = ' ';
+    };
+    const auto real = [&](double value, int digits) {
+      at = std::to_chars(at, line_end - 1, value, std::chars_format::general, digits).ptr;
+      *at++ = ' ';
+    };
+    integer(s.gid[i]);
+    integer(s.material[i] + 1);
+    real(s.radius[i], 8);
+    real(s.mass[i], 8);
+    for (const double c : {s.x[i].x, s.x[i].y, s.x[i].z}) real(c, 10);
+    for (const Vec3* vec : {&s.v[i], &s.w[i], &s.f[i]})
+      for (const double c : {vec->x, vec->y, vec->z}) real(c, 8);
+    at[-1] = '\n';
+    buf.append(line, at);
   }
   if (std::fwrite(buf.data(), 1, buf.size(), file_) != buf.size() || std::fflush(file_) != 0)
     throw std::runtime_error("error while writing the LAMMPS dump");
