@@ -60,9 +60,13 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   const GlobalId* gid = s.gid.data();
   std::size_t kept = 0;
   list.partners.resize(std::max<std::size_t>(list.partners.capacity(), 64));
+  // (Grown by a quarter at a time, reserved exactly: resize() alone would double the memory.)
   const auto make_room = [&](std::size_t candidates) {
-    if (kept + candidates > list.partners.size())
-      list.partners.resize(std::max(2 * list.partners.size(), kept + candidates));
+    if (kept + candidates <= list.partners.size()) return;
+    const std::size_t grown =
+        std::max(list.partners.size() + list.partners.size() / 4, kept + candidates + 64);
+    list.partners.reserve(grown);
+    list.partners.resize(grown);
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     list.offsets[i] = static_cast<std::uint32_t>(kept);

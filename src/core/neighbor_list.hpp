@@ -45,6 +45,7 @@ struct NeighborList {
 
   // Fills `rows` from `offsets` (the builders call it last).
   void index_rows() {
+    rows.reserve(partners.size()); // (exactly: resize() alone would double the memory)
     rows.resize(partners.size());
     for (std::uint32_t i = 0; i + 1 < offsets.size(); ++i)
       for (std::uint32_t p = offsets[i]; p < offsets[i + 1]; ++p) rows[p] = i;
