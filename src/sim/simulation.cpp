@@ -163,7 +163,6 @@ void Simulation::step() {
   const Vec3 gravity = config_.gravity;
   {
     // Raw pointers: the compiler need not reload each array's address after every store.
-    const Kind* kind = store_.kind.data();
     const double* inv_mass = store_.inv_mass.data();
     const double* inv_inertia = store_.inv_inertia.data();
     const double* mass = store_.mass.data();
@@ -174,12 +173,12 @@ void Simulation::step() {
     Vec3* f = store_.f.data();
     Vec3* torque = store_.torque.data();
     bool moved_far = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (kind[i] != Kind::grain) {
-        f[i] = Vec3{};
-        torque[i] = Vec3{};
-        continue;
-      }
+    // Grains, then wall particles (the order of rebuild()); walls keep no force.
+    for (std::size_t i = owned_grains_; i < n; ++i) {
+      f[i] = Vec3{};
+      torque[i] = Vec3{};
+    }
+    for (std::size_t i = 0; i < owned_grains_; ++i) {
       const Vec3 vi = v[i] + (0.5 * dt * inv_mass[i]) * f[i];
       const Vec3 xi = x[i] + dt * vi;
       v[i] = vi;
@@ -224,15 +223,13 @@ void Simulation::step() {
   t0 = Clock::now();
   {
     // The pointers are taken again: a rebuild may have moved the arrays.
-    const Kind* kind = store_.kind.data();
     const double* inv_mass = store_.inv_mass.data();
     const double* inv_inertia = store_.inv_inertia.data();
     const Vec3* f = store_.f.data();
     const Vec3* torque = store_.torque.data();
     Vec3* v = store_.v.data();
     Vec3* w = store_.w.data();
-    for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-      if (kind[i] != Kind::grain) continue;
+    for (std::size_t i = 0; i < owned_grains_; ++i) {
       v[i] += (0.5 * dt * inv_mass[i]) * f[i];
       w[i] += (0.5 * dt * inv_inertia[i]) * torque[i];
     }
@@ -337,16 +334,20 @@ void Simulation::rebuild(bool stash_history) {
     store_.x[i] = wrapped;
   }
   if (comm_.size() > 1) migrate();
-  // Sort owned particles by cell so that neighbours sit close in memory.
+  // Sort owned particles by cell so that neighbours sit close in memory: the grains first,
+  // then the wall particles (so the integration runs over the grains alone, with no test of
+  // the kind, which alternates unpredictably along cells that hold both).
   {
-    const std::size_t n = store_.n_owned();
-    std::vector<std::uint32_t> cell(n), count(grid_.n_cells() + 1, 0), order(n);
+    const std::size_t n = store_.n_owned(), cells = grid_.n_cells();
+    std::vector<std::uint32_t> key(n), count(2 * cells + 1, 0), order(n);
     for (std::size_t i = 0; i < n; ++i) {
-      cell[i] = static_cast<std::uint32_t>(grid_.cell_index(store_.x[i]));
-      ++count[cell[i] + 1];
+      key[i] = static_cast<std::uint32_t>(grid_.cell_index(store_.x[i]) +
+                                          (store_.is_grain(i) ? 0 : cells));
+      ++count[key[i] + 1];
     }
-    for (std::size_t c = 0; c < grid_.n_cells(); ++c) count[c + 1] += count[c];
-    for (std::size_t i = 0; i < n; ++i) order[count[cell[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t c = 0; c < 2 * cells; ++c) count[c + 1] += count[c];
+    owned_grains_ = count[cells];
+    for (std::size_t i = 0; i < n; ++i) order[count[key[i]]++] = static_cast<std::uint32_t>(i);
     store_.permute_owned(order);
   }
   halo_.build(store_, decomp_, comm_, cell_edge_);

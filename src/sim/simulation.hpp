@@ -208,7 +208,8 @@ private:
   Forces forces_;
   double cell_edge_ = 0.0; // linked-cell edge >= largest contact distance + skin
   CellGrid grid_;
-  double range_ = 0.0; // neighbour range beyond touching (the skin)
+  double range_ = 0.0;           // neighbour range beyond touching (the skin)
+  std::size_t owned_grains_ = 0; // owned particles [0, owned_grains_) are grains, the rest walls
   NeighborList list_;
   Halo halo_;
   ContactTally tally_;
