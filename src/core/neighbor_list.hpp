@@ -12,8 +12,9 @@
 //    copy without depending on floating-point cell positions.
 // Wall-wall pairs are never listed: wall particles move by prescription.
 //
-// Rows are grouped by the owned particle i (CSR: offsets/partners) so the kernel can keep i's
-// force in registers; the contact history is stored aligned with `partners`.
+// Rows are grouped by the owned particle i (CSR: offsets/partners), and `rows` gives each pair's
+// i as well, so that the pair loop scans all pairs as one flat range (core/overlap_scan.hpp);
+// the contact history is stored aligned with `partners`.
 #pragma once
 
 #include "core/cell_grid.hpp"
