@@ -18,77 +18,11 @@ repeats=${2:-3}
 basin_steps=${3:-5000}
 yuxi=$PWD/build/release/apps/yuxi/yuxi
 data=$(realpath ../shared/data/data.chute)
-if ! command -v lmp > /dev/null; then
-  if [[ $(id -u) -eq 0 ]]; then apt-get install -y -q lammps > /dev/null; else sudo apt-get install -y -q lammps > /dev/null; fi
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 particles=32000
-mpi=(mpirun --allow-run-as-root --oversubscribe --bind-to none)
-export OMP_NUM_THREADS=1
-# yuxi moves its halos through Open MPI's shared-memory buffers rather than single kernel copies
-# (apps/yuxi/main.cpp); LAMMPS gets the same transport, so the comparison is of the codes.
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-
-# Each rank runs under /usr/bin/time, which writes its peak resident memory (kB) to mem.<rank>.
-cat > "$work/timed" <<'WRAP'
-#!/usr/bin/env bash
-exec /usr/bin/time -f %M -o "$MEMDIR/mem.${OMPI_COMM_WORLD_RANK:-0}" "$@"
-WRAP
-chmod +x "$work/timed"
-export MEMDIR=$work
-peak_kb() { cat "$work"/mem.* | sort -n | tail -1; }
-
-declare -A rates=() memory=() breakdown=()
-# Runs one case with LAMMPS: run_lammps CASE NP PARTICLES STEPS LMP-ARGS...; records its rate
-# (from the loop time), peak memory and time breakdown.
-run_lammps() {
-  local case=$1 np=$2 particles=$3 steps=$4
-  shift 4
-  rm -f "$work"/mem.*
-  (cd "$work" && "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" lmp "$@" -log "$work/lammps.log" \
-     -screen none)
-  local loop
-  loop=$(grep -oP 'Loop time of \K[0-9.e+-]+' "$work/lammps.log")
-  rates[lammps,$case,$np]+="$(awk -v t="$loop" -v n="$particles" -v s="$steps" 'BEGIN {print n * s / t}') "
-  memory[lammps,$case,$np]=$(peak_kb)
-  breakdown[lammps,$case,$np]=$(awk '/^Pair  *\|/ {p=$(NF)} /^Neigh *\|/ {n=$(NF)} /^Comm  *\|/ {c=$(NF)}
-    /^Output *\|/ {o=$(NF)} /^Modify *\|/ {m=$(NF)} /^Other *\|/ {x=$(NF)}
-    END {printf "pair %s%% neigh %s%% comm %s%% output %s%% modify %s%% other %s%%", p, n, c, o, m, x}' \
-    "$work/lammps.log")
-}
-# The same with yuxi: run_yuxi CASE NP YUXI-RUN-ARGS...
-run_yuxi() {
-  local case=$1 np=$2
-  shift 2
-  rm -f "$work"/mem.*
-  "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" "$yuxi" run "$@" --no-progress --no-plots \
-    > "$work/yuxi.log" 2>&1
-  rates[yuxi,$case,$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$work/yuxi.log") "
-  memory[yuxi,$case,$np]=$(peak_kb)
-  breakdown[yuxi,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
-}
+source bench/side_by_side.sh
 
 # The basin scenes in LAMMPS conventions (excited from t0 = 10 tau, and never), settled by yuxi.
-python3 - "$work" <<'PY'
-import sys
-work = sys.argv[1]
-s = open("scenes/basin-small.toml").read()
-s = s[: s.index("[analysis]")]
-law = """k_n = 2.5e5
-k_t = 0.57e5
-gamma_n = 100.0
-gamma_t = 32.0
-mu_s = 0.5
-"""
-s = (s[: s.index("[[contact.pair]]")]
-     + "".join(f'[[contact.pair]]\nmaterials = ["grain", "{m}"]\n{law}\n' for m in ("grain", "wall"))
-     + s[s.index("[basin]"):])
-s = s.replace('model = "linear"', 'model = "linear"\npreset = "lammps"')
-s = s.replace("snapshot_interval = 0.25", "snapshot_interval = 10.0")
-open(f"{work}/basin-vibrating.toml", "w").write(s)
-open(f"{work}/basin-still.toml", "w").write(s.replace("t0 = 10.0", "t0 = 1.0e9"))
-PY
+python3 bench/lammps_basin_scene.py scenes/basin-small.toml "$work"
 for motion in vibrating still; do
   "$yuxi" run "$work/basin-$motion.toml" --t-end 10 -o "$work/settled-$motion" --no-progress \
     --no-plots > /dev/null
@@ -113,26 +47,6 @@ for r in $(seq 1 "$repeats"); do
     done
   done
 done
-median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-report() {
-  local case=$1 title=$2 n=$3
-  printf "\n%s (medians of %d)\n" "$title" "$repeats"
-  printf "%-7s %5s %16s %8s %12s  %s\n" code ranks particle-steps/s ratio "B/particle" breakdown
-  for np in 1 2; do
-    local l y
-    l=$(echo "${rates[lammps,$case,$np]}" | median)
-    y=$(echo "${rates[yuxi,$case,$np]}" | median)
-    for code in lammps yuxi; do
-      local rate ratio bytes
-      rate=$([[ $code == lammps ]] && echo "$l" || echo "$y")
-      ratio=$(awk -v a="$rate" -v b="$l" 'BEGIN {printf "%.2f", a / b}')
-      bytes=$(awk -v kb="${memory[$code,$case,$np]}" -v n="$n" -v np="$np" \
-        'BEGIN {printf "%.0f", kb * 1024 / (n / np)}')
-      printf "%-7s %5s %16.4g %8s %12s  %s\n" "$code" "$np" "$rate" "$ratio" "$bytes" \
-        "${breakdown[$code,$case,$np]}"
-    done
-  done
-}
 report chute "chute, $particles spheres, $steps steps" "$particles"
 report basin-still "basin-small settled at t = 10 tau, walls still, $basin_particles particles, $basin_steps steps" "$basin_particles"
 report basin-vibrating "basin-small from t = 10 tau, side wall vibrating (omega = 400, dr = 0.9), $basin_steps steps" "$basin_particles"

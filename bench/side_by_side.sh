@@ -1,0 +1,77 @@
+# Shared by the side-by-side benchmarks (versus_lammps.sh, basin_paper.sh), which source it:
+# installs LAMMPS from Debian if missing, makes the work folder ($work), and defines
+#   run_lammps CASE NP PARTICLES STEPS LMP-ARGS...   and   run_yuxi CASE NP YUXI-RUN-ARGS...
+# which record each run's rate, peak memory and time breakdown, and
+#   report CASE TITLE PARTICLES                      (uses $repeats)
+# which prints medians and yuxi/LAMMPS ratios per rank count.
+# Expects $yuxi (the binary) to be set.
+if ! command -v lmp > /dev/null; then
+  if [[ $(id -u) -eq 0 ]]; then apt-get install -y -q lammps > /dev/null; else sudo apt-get install -y -q lammps > /dev/null; fi
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mpi=(mpirun --allow-run-as-root --oversubscribe --bind-to none)
+export OMP_NUM_THREADS=1
+# yuxi moves its halos through Open MPI's shared-memory buffers rather than single kernel copies
+# (apps/yuxi/main.cpp); LAMMPS gets the same transport, so the comparison is of the codes.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+
+# Each rank runs under /usr/bin/time, which writes its peak resident memory (kB) to mem.<rank>.
+cat > "$work/timed" <<'WRAP'
+#!/usr/bin/env bash
+exec /usr/bin/time -f %M -o "$MEMDIR/mem.${OMPI_COMM_WORLD_RANK:-0}" "$@"
+WRAP
+chmod +x "$work/timed"
+export MEMDIR=$work
+peak_kb() { cat "$work"/mem.* | sort -n | tail -1; }
+
+declare -A rates=() memory=() breakdown=()
+# Runs one case with LAMMPS: run_lammps CASE NP PARTICLES STEPS LMP-ARGS...; records its rate
+# (from the loop time), peak memory and time breakdown.
+run_lammps() {
+  local case=$1 np=$2 particles=$3 steps=$4
+  shift 4
+  rm -f "$work"/mem.*
+  (cd "$work" && "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" lmp "$@" -log "$work/lammps.log" \
+     -screen none)
+  local loop
+  loop=$(grep -oP 'Loop time of \K[0-9.e+-]+' "$work/lammps.log")
+  rates[lammps,$case,$np]+="$(awk -v t="$loop" -v n="$particles" -v s="$steps" 'BEGIN {print n * s / t}') "
+  memory[lammps,$case,$np]=$(peak_kb)
+  breakdown[lammps,$case,$np]=$(awk '/^Pair  *\|/ {p=$(NF)} /^Neigh *\|/ {n=$(NF)} /^Comm  *\|/ {c=$(NF)}
+    /^Output *\|/ {o=$(NF)} /^Modify *\|/ {m=$(NF)} /^Other *\|/ {x=$(NF)}
+    END {printf "pair %s%% neigh %s%% comm %s%% output %s%% modify %s%% other %s%%", p, n, c, o, m, x}' \
+    "$work/lammps.log")
+}
+# The same with yuxi: run_yuxi CASE NP YUXI-RUN-ARGS...
+run_yuxi() {
+  local case=$1 np=$2
+  shift 2
+  rm -f "$work"/mem.*
+  "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" "$yuxi" run "$@" --no-progress --no-plots \
+    > "$work/yuxi.log" 2>&1
+  rates[yuxi,$case,$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$work/yuxi.log") "
+  memory[yuxi,$case,$np]=$(peak_kb)
+  breakdown[yuxi,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
+}
+
+median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+report() {
+  local case=$1 title=$2 n=$3
+  printf "\n%s (medians of %d)\n" "$title" "$repeats"
+  printf "%-7s %5s %16s %8s %12s  %s\n" code ranks particle-steps/s ratio "B/particle" breakdown
+  for np in 1 2; do
+    local l y
+    l=$(echo "${rates[lammps,$case,$np]}" | median)
+    y=$(echo "${rates[yuxi,$case,$np]}" | median)
+    for code in lammps yuxi; do
+      local rate ratio bytes
+      rate=$([[ $code == lammps ]] && echo "$l" || echo "$y")
+      ratio=$(awk -v a="$rate" -v b="$l" 'BEGIN {printf "%.2f", a / b}')
+      bytes=$(awk -v kb="${memory[$code,$case,$np]}" -v n="$n" -v np="$np" \
+        'BEGIN {printf "%.0f", kb * 1024 / (n / np)}')
+      printf "%-7s %5s %16.4g %8s %12s  %s\n" "$code" "$np" "$rate" "$ratio" "$bytes" \
+        "${breakdown[$code,$case,$np]}"
+    done
+  done
+}
