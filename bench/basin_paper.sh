@@ -34,7 +34,8 @@ centre=$(grep -oP '^hi *= *\[\K[0-9.]+' scenes/basin-paper.toml | awk '{print $1
 for r in $(seq 1 "$repeats"); do
   for np in 1 2; do
     run_lammps paper "$np" "$particles" "$steps" -var datafile "$work/basin.data" \
-      -var steps "$steps" -var excite 1 -var xc "$centre" -var yc "$centre" -in "$PWD/bench/in.basin"
+      -var steps "$steps" -var excite 1 -var xc "$centre" -var yc "$centre" \
+      -var skin "$(scene_skin scenes/basin-paper.toml)" -in "$PWD/bench/in.basin"
     rm -rf "$work/resumed" && cp -r "$settled" "$work/resumed"
     run_yuxi paper "$np" --resume "$work/resumed" --t-end "$t_end"
   done

@@ -3,6 +3,7 @@
 #   run_lammps CASE NP PARTICLES STEPS LMP-ARGS...   and   run_yuxi CASE NP YUXI-RUN-ARGS...
 # which record each run's rate, peak memory and time breakdown, and
 #   report CASE TITLE PARTICLES                      (uses $repeats)
+# and scene_skin SCENE, the Verlet skin LAMMPS is given so that both codes rebuild alike.
 # which prints medians and yuxi/LAMMPS ratios per rank count.
 # Expects $yuxi (the binary) to be set.
 if ! command -v lmp > /dev/null; then
@@ -54,6 +55,9 @@ run_yuxi() {
   memory[yuxi,$case,$np]=$(peak_kb)
   breakdown[yuxi,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
 }
+
+# The Verlet skin of a scene ([domain] skin, 0.2 when not given), for LAMMPS's `neighbor` to match.
+scene_skin() { grep -oP '^skin *= *\K[0-9.e+-]+' "$1" || echo 0.2; }
 
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 report() {

@@ -41,7 +41,8 @@ for r in $(seq 1 "$repeats"); do
     for motion in still vibrating; do
       run_lammps "basin-$motion" "$np" "$basin_particles" "$basin_steps" \
         -var datafile "$work/basin-$motion.data" -var steps "$basin_steps" \
-        -var excite "$([[ $motion == vibrating ]] && echo 1 || echo 0)" -in "$PWD/bench/in.basin"
+        -var excite "$([[ $motion == vibrating ]] && echo 1 || echo 0)" \
+        -var skin "$(scene_skin scenes/basin-small.toml)" -in "$PWD/bench/in.basin"
       rm -rf "$work/resumed" && cp -r "$work/settled-$motion" "$work/resumed"
       run_yuxi "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
     done
