@@ -20,4 +20,18 @@ execute_process(COMMAND ${YUXI} run -o ${WORK}/short --t-end 0.02 RESULT_VARIABL
 if(NOT rc2 EQUAL 2 OR NOT err2 MATCHES "already holds a run")
   message(FATAL_ERROR "an existing run was not protected: ${rc2} ${err2}")
 endif()
+# A resumed run logs its own list builds, not the count since t = 0 that the checkpoint keeps:
+# the grains fall 1e-3 sigma in either segment, so each builds only for its final checkpoint.
+execute_process(COMMAND ${YUXI} run --resume ${WORK}/short --t-end 0.04 --no-plots
+  RESULT_VARIABLE rc3 ERROR_VARIABLE err3 OUTPUT_VARIABLE out3)
+if(NOT rc3 EQUAL 0)
+  message(FATAL_ERROR "resuming failed (${rc3}): ${err3}")
+endif()
+string(REGEX MATCH "\\(([0-9]+) list builds\\)" first "${out}${err}")
+set(first_builds ${CMAKE_MATCH_1})
+string(REGEX MATCH "\\(([0-9]+) list builds\\)" resumed "${out3}${err3}")
+set(resumed_builds ${CMAKE_MATCH_1})
+if(first_builds STREQUAL "" OR NOT resumed_builds STREQUAL first_builds)
+  message(FATAL_ERROR "list builds: ${first_builds} in the first run, ${resumed_builds} resumed")
+endif()
 message(STATUS "ok")
