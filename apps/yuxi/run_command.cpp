@@ -175,6 +175,8 @@ int run_command(const RunCommandOptions& o) {
   const double busy_imbalance = sim->comm().max_over_mean(t.pair + t.neighbor + t.integrate);
   const double data_bytes = sim->comm().sum(static_cast<double>(sim->memory_bytes()));
   const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
+  const double listed_pairs =
+      sim->comm().sum(static_cast<double>(sim->neighbor_list().n_pairs())); // each pair once
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -193,8 +195,9 @@ int run_command(const RunCommandOptions& o) {
                                            imbalance, busy_imbalance)
                              : std::string());
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
-               "list and contact states",
-               data_bytes / std::max(n_particles, 1.0));
+               "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle)",
+               data_bytes / std::max(n_particles, 1.0), listed_pairs,
+               listed_pairs / std::max(n_particles, 1.0));
   spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,
