@@ -27,6 +27,7 @@ if [[ ! -s $settled/particles.lammpstrj ]] || ! ls "$settled"/checkpoints/* > /d
 fi
 python3 bench/lammps_data_from_dump.py "$settled/particles.lammpstrj" "$work/basin.data" --heavy 2
 particles=$(grep -oP '^\d+(?= atoms)' "$work/basin.data")
+skin=$(run_skin "$settled")
 t_end=$(awk -v s="$steps" 'BEGIN {printf "%.6f", 10 + s * 1e-4}')
 # The basin's axis: the middle of the domain in x and y.
 centre=$(grep -oP '^hi *= *\[\K[0-9.]+' scenes/basin-paper.toml | awk '{print $1 / 2}')
@@ -35,7 +36,7 @@ for r in $(seq 1 "$repeats"); do
   for np in 1 2; do
     run_lammps paper "$np" "$particles" "$steps" -var datafile "$work/basin.data" \
       -var steps "$steps" -var excite 1 -var xc "$centre" -var yc "$centre" \
-      -var skin "$(scene_skin scenes/basin-paper.toml)" -in "$PWD/bench/in.basin"
+      -var skin "$skin" -in "$PWD/bench/in.basin"
     rm -rf "$work/resumed" && cp -r "$settled" "$work/resumed"
     run_yuxi paper "$np" --resume "$work/resumed" --t-end "$t_end"
   done

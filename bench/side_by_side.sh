@@ -3,8 +3,9 @@
 #   run_lammps CASE NP PARTICLES STEPS LMP-ARGS...   and   run_yuxi CASE NP YUXI-RUN-ARGS...
 # which record each run's rate, peak memory and time breakdown, and
 #   report CASE TITLE PARTICLES                      (uses $repeats)
-# and scene_skin SCENE, the Verlet skin LAMMPS is given so that both codes rebuild alike.
-# which prints medians and yuxi/LAMMPS ratios per rank count.
+# which prints medians and yuxi/LAMMPS ratios per rank count, and
+#   run_skin RUN_DIR
+# the Verlet skin of the yuxi run that both codes continue, for LAMMPS's `neighbor`.
 # Expects $yuxi (the binary) to be set.
 if ! command -v lmp > /dev/null; then
   if [[ $(id -u) -eq 0 ]]; then apt-get install -y -q lammps > /dev/null; else sudo apt-get install -y -q lammps > /dev/null; fi
@@ -56,8 +57,9 @@ run_yuxi() {
   breakdown[yuxi,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
 }
 
-# The Verlet skin of a scene ([domain] skin, 0.2 when not given), for LAMMPS's `neighbor` to match.
-scene_skin() { grep -oP '^skin *= *\K[0-9.e+-]+' "$1" || echo 0.2; }
+# The skin a yuxi run used: its resolved scene holds every setting, defaults included, so a
+# settled folder kept from an earlier invocation gives LAMMPS the skin that yuxi resumes with.
+run_skin() { grep -oP '^skin *= *\K[0-9.e+-]+' "$1/scene.resolved.toml"; }
 
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 report() {

@@ -30,6 +30,7 @@ for motion in vibrating still; do
     "$work/basin-$motion.data" --heavy 2
 done
 basin_particles=$(grep -oP '^\d+(?= atoms)' "$work/basin-still.data")
+basin_skin=$(run_skin "$work/settled-still")
 t_basin=$(awk -v s="$basin_steps" 'BEGIN {printf "%.6f", 10 + s * 1e-4}')
 
 for r in $(seq 1 "$repeats"); do
@@ -42,7 +43,7 @@ for r in $(seq 1 "$repeats"); do
       run_lammps "basin-$motion" "$np" "$basin_particles" "$basin_steps" \
         -var datafile "$work/basin-$motion.data" -var steps "$basin_steps" \
         -var excite "$([[ $motion == vibrating ]] && echo 1 || echo 0)" \
-        -var skin "$(scene_skin scenes/basin-small.toml)" -in "$PWD/bench/in.basin"
+        -var skin "$basin_skin" -in "$PWD/bench/in.basin"
       rm -rf "$work/resumed" && cp -r "$work/settled-$motion" "$work/resumed"
       run_yuxi "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
     done
