@@ -177,6 +177,7 @@ int run_command(const RunCommandOptions& o) {
   const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
   const double listed_pairs =
       sim->comm().sum(static_cast<double>(sim->neighbor_list().n_pairs())); // each pair once
+  const double ghosts = sim->comm().sum(static_cast<double>(sim->particles().n_ghost()));
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -195,9 +196,11 @@ int run_command(const RunCommandOptions& o) {
                                            imbalance, busy_imbalance)
                              : std::string());
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
-               "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle)",
+               "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "
+               "ghosts (periodic images and other ranks' particles, {:.1f} per 100 particles)",
                data_bytes / std::max(n_particles, 1.0), listed_pairs,
-               listed_pairs / std::max(n_particles, 1.0));
+               listed_pairs / std::max(n_particles, 1.0), ghosts,
+               100 * ghosts / std::max(n_particles, 1.0));
   spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,

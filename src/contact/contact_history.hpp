@@ -9,8 +9,16 @@
 // picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
 // state. Only states that differ from a fresh one are stashed: a default state carries nothing.
 //
-// Ownership (for MPI migration and checkpoints): a contact belongs with its particle of lower
-// global id; a grain-plane contact with its grain.
+// Ownership (for MPI ranks and checkpoints): a contact's state lives on the rank that computes
+// the pair, which is the rank that lists it: the owner of both particles, or, for a pair across
+// ranks, the owner of the particle that sees the other in its half shell of ghosts
+// (domain/halo.hpp). A grain-plane contact lives with its grain. Which rank that is can change
+// at a rebuild (particles migrate, cut planes move), so at a rebuild the stashed states travel
+// as copies with the particles they concern: with a particle that migrates (copies_for), and
+// with a particle sent as a ghost for the pairs whose other particle is not owned by the
+// sender (ghost_copies). Every rank that could list the pair after the rebuild then holds its
+// state, and only the one that lists it picks it up: copies elsewhere are dropped with the
+// stash. A contact is therefore never lost, and never duplicated.
 //
 // The stash is a plain array, and restore() walks it: each stashed contact looks for its pair
 // in the rows of its two particles (found by global id), so a rebuild costs no hashing per
@@ -23,6 +31,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -151,8 +161,8 @@ public:
     free_.clear();
     plane.assign(list.planes.size(), State{});
     plane_live.assign(list.planes.size(), 0);
-    if (stash_.empty()) return;
-    const OwnedIndex owned(s);
+    if (stash_.empty()) return forget_copies();
+    const OwnedIndex owned = owned_.has_value() ? std::move(*owned_) : OwnedIndex(s);
     // The row of particle `row` (if owned here) lists the pair when its partner has global id
     // `other`; the state is stored as seen from the lower id.
     const auto place = [&](std::size_t row, GlobalId other, const State& state, bool mirror) {
@@ -162,7 +172,6 @@ public:
     };
     std::unordered_map<ContactKey, const State*, ContactKeyHash> plane_states;
     for (const Entry& e : stash_) {
-      if (e.key.first == taken) continue;
       if (e.key.second < 0) {
         plane_states[e.key] = &e.state;
         continue;
@@ -177,7 +186,7 @@ public:
         plane[k] = *it->second;
         plane_live[k] = 1;
       }
-    stash_ = std::vector<Entry>(); // its memory too: it is rebuilt at the next rebuild
+    forget_copies();
   }
 
   // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash).
@@ -187,28 +196,33 @@ public:
            stash_.capacity() * sizeof(Entry);
   }
 
-  std::size_t stashed() const {
-    return static_cast<std::size_t>(std::count_if(
-        stash_.begin(), stash_.end(), [](const Entry& e) { return e.key.first != taken; }));
-  }
+  std::size_t stashed() const { return stash_.size(); }
 
-  // Migration between ranks: the stashed states owned by the particles `gids` (the contacts
-  // whose lower global id they have), packed as bytes, one string per particle, and removed
-  // from the stash; and the reverse. One pass over the stash for all the particles that leave
-  // (a few hundred at a rebuild, against thousands of stashed contacts).
-  std::vector<std::string> take_owned_by(const std::vector<GlobalId>& gids) {
+  // Migration between ranks: copies of the stashed states of the contacts that the particles
+  // `gids` take part in (with either partner, or as the grain of a plane contact), packed as
+  // bytes, one string per particle. The stash keeps them: the pair may still be computed here,
+  // with the particle that left as a ghost. One pass over the stash for all the particles that
+  // leave (a few hundred at a rebuild, against thousands of stashed contacts).
+  std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const {
     std::vector<std::string> out(gids.size());
     if (gids.empty()) return out;
     std::unordered_map<GlobalId, std::size_t> leaving;
     leaving.reserve(gids.size());
-    for (std::size_t k = 0; k < gids.size(); ++k) leaving.emplace(gids[k], k);
-    for (Entry& e : stash_) {
-      if (e.key.first == taken) continue;
-      const auto it = leaving.find(e.key.first);
-      if (it == leaving.end()) continue;
-      out[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
-      e.key.first = taken;
+    // A bit per id modulo 2^16 screens the stash before the hash lookup: the few leaving ids
+    // set few bits, so most entries are passed over with one load.
+    std::vector<std::uint64_t> maybe(1024, 0);
+    const auto bit = [](GlobalId g) { return static_cast<std::uint64_t>(g) & 0xFFFF; };
+    for (std::size_t k = 0; k < gids.size(); ++k) {
+      leaving.emplace(gids[k], k);
+      maybe[bit(gids[k]) >> 6] |= std::uint64_t{1} << (bit(gids[k]) & 63);
     }
+    for (const Entry& e : stash_)
+      for (const GlobalId g : {e.key.first, e.key.second}) {
+        if (!(maybe[bit(g) >> 6] >> (bit(g) & 63) & 1)) continue;
+        const auto it = leaving.find(g);
+        if (it != leaving.end())
+          out[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
+      }
     return out;
   }
   void give(const std::string& bytes) {
@@ -220,19 +234,88 @@ public:
   }
   // Every stashed state as bytes (for give()).
   std::string stashed_bytes() const {
+    return {reinterpret_cast<const char*>(stash_.data()), stash_.size() * sizeof(Entry)};
+  }
+
+  // The states that travel with ghosts at a halo build (domain/halo.hpp, GhostPayload).
+  // Before the build: the stashed pair contacts with one particle owned here and the other
+  // not, attached to the owned one. A pair whose particles are both owned here is computed
+  // here; one with neither is not (a copy left by a particle that migrated).
+  void prepare_ghost_copies(const ParticleStore& s) {
+    owned_.emplace(s);
+    attached_.clear();
+    has_attached_.assign(s.n_owned(), 0);
+    for (std::uint32_t k = 0; k < stash_.size(); ++k) {
+      const ContactKey key = stash_[k].key;
+      if (key.second < 0) continue;
+      const std::size_t a = owned_->find(key.first), b = owned_->find(key.second);
+      if ((a == OwnedIndex::none) == (b == OwnedIndex::none)) continue;
+      const auto at = static_cast<std::uint32_t>(a != OwnedIndex::none ? a : b);
+      attached_.push_back({at, k});
+      has_attached_[at] = 1;
+    }
+    std::sort(attached_.begin(), attached_.end());
+  }
+  // The attached states of the particles `sent` (local indices, owned or ghosts passed on), as
+  // (position in `sent`, entry) records.
+  std::string ghost_copies(std::span<const std::uint32_t> sent) const {
     std::string out;
-    for (const Entry& e : stash_)
-      if (e.key.first != taken) out.append(reinterpret_cast<const char*>(&e), sizeof e);
+    for (std::uint32_t m = 0; m < sent.size(); ++m) {
+      const std::uint32_t i = sent[m];
+      if (i >= has_attached_.size() || !has_attached_[i]) continue;
+      auto it = std::lower_bound(attached_.begin(), attached_.end(), Attached{i, 0});
+      for (; it != attached_.end() && it->particle == i; ++it) {
+        out.append(reinterpret_cast<const char*>(&m), sizeof m);
+        out.append(reinterpret_cast<const char*>(&stash_[it->entry]), sizeof(Entry));
+      }
+    }
     return out;
+  }
+  // States that came with the ghosts first, first + 1, ...: stashed for restore(), and attached
+  // to their ghost for passing on unless the other particle is owned here (then this rank
+  // computes the pair, if any rank does).
+  void ghost_copies_arrived(const ParticleStore& s, std::uint32_t first, const std::string& bytes) {
+    constexpr std::size_t record = sizeof(std::uint32_t) + sizeof(Entry);
+    if (!owned_) owned_.emplace(s);
+    for (std::size_t at = 0; at + record <= bytes.size(); at += record) {
+      std::uint32_t m;
+      Entry e;
+      std::memcpy(&m, bytes.data() + at, sizeof m);
+      std::memcpy(&e, bytes.data() + at + sizeof m, sizeof e);
+      const std::uint32_t ghost = first + m;
+      const GlobalId other = s.gid[ghost] == e.key.first ? e.key.second : e.key.first;
+      stash_.push_back(e);
+      if (owned_->find(other) != OwnedIndex::none) continue;
+      if (has_attached_.size() <= ghost) has_attached_.resize(ghost + 1, 0);
+      has_attached_[ghost] = 1;
+      attached_.push_back({ghost, static_cast<std::uint32_t>(stash_.size() - 1)});
+    }
   }
 
 private:
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
-  static constexpr GlobalId taken = -1; // key.first of an entry that has left (migration)
-  std::vector<std::uint32_t> free_;     // slots of `states` that no contact holds
-  std::vector<Entry> stash_;            // later entries win over earlier ones with their key
+  // The stash and the copies' bookkeeping go (their memory too): rebuilt at the next rebuild.
+  void forget_copies() {
+    stash_ = std::vector<Entry>();
+    attached_ = std::vector<Attached>();
+    has_attached_ = std::vector<std::uint8_t>();
+    owned_.reset();
+  }
+  struct Attached {
+    std::uint32_t particle; // local index (owned, or a ghost that passes it on)
+    std::uint32_t entry;    // index into stash_
+    auto operator<=>(const Attached&) const = default;
+  };
+  std::vector<std::uint32_t> free_; // slots of `states` that no contact holds
+  std::vector<Entry> stash_;        // copies of one contact hold the same state
+  // During a rebuild, between prepare_ghost_copies() and restore(): the stashed states that
+  // travel with each particle sent as a ghost (sorted by particle: ghosts arrive in order),
+  // a flag per particle that has any, and the owned particles by global id.
+  std::vector<Attached> attached_;
+  std::vector<std::uint8_t> has_attached_;
+  std::optional<OwnedIndex> owned_;
 };
 
 } // namespace yuxi

@@ -16,11 +16,6 @@ bool both_walls(const ParticleStore& s, std::size_t i, std::size_t j) {
   return s.kind[i] == Kind::wall && s.kind[j] == Kind::wall;
 }
 
-// The owned-ghost rule: the pair belongs to the copy whose owned particle has the lower gid.
-bool ghost_pair_is_ours(const ParticleStore& s, std::size_t i, std::size_t ghost) {
-  return s.gid[i] < s.gid[ghost];
-}
-
 } // namespace
 
 void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double range,
@@ -57,7 +52,6 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   const Vec3* x = s.x.data();
   const double* radius = s.radius.data();
   const Kind* kind = s.kind.data();
-  const GlobalId* gid = s.gid.data();
   std::size_t kept = 0;
   list.partners.resize(std::max<std::size_t>(list.partners.capacity(), 64));
   // (Grown by a quarter at a time, reserved exactly: resize() alone would double the memory.)
@@ -73,10 +67,10 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     const Vec3 xi = x[i];
     const double ri = radius[i];
     const bool wall_i = kind[i] == Kind::wall;
-    const GlobalId gid_i = gid[i];
     const auto c = grid.cell_of(xi);
     const auto here = static_cast<std::ptrdiff_t>(grid.linear(c[0], c[1], c[2]));
-    // Keeps j when it is near, not a second wall particle, and `ours` (the pair rules).
+    // Keeps j when it is near, not a second wall particle, and `ours` (the pair rules: every
+    // ghost pair is ours, the halo holding the half shell of ghosts).
     const auto keep_if_near = [&](std::uint32_t j, bool ours) {
       const double cut = ri + radius[j] + range; // as within() adds them
       const bool near = norm2(xi - x[j]) < cut * cut;
@@ -84,16 +78,11 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
       list.partners[kept] = j;
       kept += static_cast<std::size_t>(near & !walls & ours);
     };
-    // A ghost pair is ours when i has the lower global id.
-    const auto ghost_is_ours = [&](std::uint32_t j) { return gid_i < gid[j]; };
-    // The cell itself: owned partners after i, and ghosts by the owned-ghost rule.
+    // The cell itself: owned partners after i, and every ghost.
     {
       const auto cell = grid.particles_in(static_cast<std::size_t>(here));
       make_room(cell.size());
-      for (std::uint32_t j : cell) {
-        const bool owned = j < n;
-        keep_if_near(j, (owned & (j > i)) | (!owned & ghost_is_ours(j)));
-      }
+      for (std::uint32_t j : cell) keep_if_near(j, (j > i) | (j >= n));
     }
     const auto scan = [&](std::size_t cell_index, bool ghosts_only) {
       auto cell = grid.particles_in(cell_index);
@@ -107,7 +96,7 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
             cell.begin()));
       }
       make_room(cell.size());
-      for (std::uint32_t j : cell) keep_if_near(j, (j < n) | ghost_is_ours(j));
+      for (std::uint32_t j : cell) keep_if_near(j, true);
     };
     const bool interior = !on_layer(c, 1);
     const auto visit = [&](const std::array<std::array<int, 3>, 13>& shell,
@@ -122,8 +111,8 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
         scan(grid.linear(cx, cy, cz), ghosts_only);
       }
     };
-    // The upper half shell: every owned partner, ghosts by the rule; the lower half: ghosts
-    // only (owned pairs there are listed from the other side).
+    // The upper half shell: every partner; the lower half: ghosts only (owned pairs there are
+    // listed from the other side).
     visit(CellGrid::half_shell(), upper, false);
     if (has_ghosts && (!ghosts_outside || on_layer(c, 2)))
       visit(CellGrid::lower_shell(), lower, true);
@@ -141,7 +130,7 @@ void build_neighbor_list_brute_force(const ParticleStore& s, double range, Neigh
     list.offsets[i] = static_cast<std::uint32_t>(list.partners.size());
     for (std::uint32_t j = 0; j < s.size(); ++j) {
       if (j == i || both_walls(s, i, j)) continue;
-      if (j < n ? j < i : !ghost_pair_is_ours(s, i, j)) continue;
+      if (j < i) continue; // owned pairs once; every ghost pair (the halo's half shell)
       if (within(s, i, j, range)) list.partners.push_back(j);
     }
   }

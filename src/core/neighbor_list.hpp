@@ -7,9 +7,9 @@
 // Each physical pair is listed exactly once:
 //  - owned-owned pairs through the half shell (the cell itself, later members only, plus 13
 //    neighbour cells), Newton's third law giving the partner's force;
-//  - owned-ghost pairs through all 27 cells, kept only when the owned particle has the lower
-//    global id. The same rule holds on every rank and for every periodic image, so it picks one
-//    copy without depending on floating-point cell positions.
+//  - owned-ghost pairs through all 27 cells, every one: the halo (domain/halo.hpp) gives each
+//    rank the ghosts of a half shell, so of the two copies of a pair across ranks or across a
+//    periodic boundary only one side holds the other as a ghost.
 // Wall-wall pairs are never listed: wall particles move by prescription.
 //
 // Rows are grouped by the owned particle i (CSR: offsets/partners), and `rows` gives each pair's

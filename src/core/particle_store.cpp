@@ -33,17 +33,6 @@ std::size_t ParticleStore::add(const ParticleSpec& s, GlobalId id) {
   return i;
 }
 
-std::size_t ParticleStore::add_ghost(std::size_t source, const Vec3& shift) {
-  const std::size_t g = size();
-  for_each_field([source](auto& field) {
-    const auto value = field[source];
-    field.push_back(value);
-  });
-  x[g] += shift;
-  x_rest[g] += shift;
-  return g;
-}
-
 void ParticleStore::permute_owned(std::span<const std::uint32_t> order) {
   if (order.size() != n_owned_) throw std::logic_error("permutation size mismatch");
   clear_ghosts();

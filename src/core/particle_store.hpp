@@ -87,10 +87,15 @@ public:
 
   // Appends an owned particle (only while there are no ghosts) and returns its index.
   std::size_t add(const ParticleSpec& spec, GlobalId id);
-  // Appends a ghost copy of particle `source` displaced by `shift`; returns its index.
-  std::size_t add_ghost(std::size_t source, const Vec3& shift);
+  // Appends `count` ghosts (every field grown, values to be filled in); returns the first's
+  // index.
+  std::size_t add_ghosts(std::size_t count) {
+    const std::size_t first = size();
+    resize_all(first + count);
+    return first;
+  }
   void clear_ghosts() { resize_all(n_owned_); }
-  // Gives back spare capacity beyond an eighth of the size: ghosts are appended one by one,
+  // Gives back spare capacity beyond an eighth of the size: ghosts are appended swap by swap,
   // and a vector's doubling would otherwise leave up to half of every field unused.
   void trim_capacity() {
     const std::size_t n = size(), keep = n + n / 16;

@@ -41,42 +41,70 @@ int tag_of(int axis, int dir) {
 
 } // namespace
 
-void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff) {
+void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff,
+                 const GhostPayload* payload) {
   s.clear_ghosts();
   swaps_.clear();
   const Vec3 lo = d.local_box().lo, hi = d.local_box().hi;
+  const auto n_owned = static_cast<std::uint32_t>(s.n_owned());
+  bool earlier_ghosts = false; // whether an earlier axis made ghosts (on every rank alike)
   for (int a = 0; a < 3; ++a) {
-    if (d.dims()[a] > 1 || d.box().periodic(a)) {
-      if (d.min_width(a) < cutoff)
-        throw std::invalid_argument("a sub-domain is narrower than the interaction cutoff: use "
-                                    "fewer ranks along that axis");
-    }
-    const std::size_t n_now = s.size();
+    const bool crossed = d.dims()[a] > 1 || d.box().periodic(a);
+    if (crossed && d.min_width(a) < cutoff)
+      throw std::invalid_argument("a sub-domain is narrower than the interaction cutoff: use "
+                                  "fewer ranks along that axis");
+    const auto n_now = static_cast<std::uint32_t>(s.size());
     for (int dir : {-1, +1}) {
+      // Towards the upper neighbour go ghosts of earlier axes only: with none, nothing does.
+      if (dir > 0 && !earlier_ghosts) continue;
       Swap w;
       w.send_to = d.neighbor(a, dir);
       w.receive_from = d.neighbor(a, -dir);
       if (w.send_to < 0 && w.receive_from < 0) continue;
       if (d.wraps(a, dir)) w.shift[a] = -dir * d.box().length(a);
-      std::string out;
       if (w.send_to >= 0)
-        for (std::uint32_t k = 0; k < n_now; ++k) {
-          const bool near = dir < 0 ? s.x[k][a] < lo[a] + cutoff : s.x[k][a] >= hi[a] - cutoff;
-          if (!near) continue;
-          w.sends.push_back(k);
-          pack_particle(s, k, w.shift, out);
+        for (std::uint32_t k = dir < 0 ? 0 : n_owned; k < n_now; ++k)
+          if (dir < 0 ? s.x[k][a] < lo[a] + cutoff : s.x[k][a] >= hi[a] - cutoff)
+            w.sends.push_back(k);
+      // [count][each field's block, in send order][payload bytes]
+      std::string out;
+      put(out, static_cast<std::uint64_t>(w.sends.size()));
+      s.for_each_field([&](const auto& field) {
+        using T = std::decay_t<decltype(field[0])>;
+        const std::size_t at = out.size();
+        out.resize(at + w.sends.size() * sizeof(T));
+        char* block = out.data() + at;
+        const bool position =
+            std::is_same_v<T, Vec3> && (static_cast<const void*>(&field) == &s.x ||
+                                        static_cast<const void*>(&field) == &s.x_rest ||
+                                        static_cast<const void*>(&field) == &s.x_build);
+        for (std::size_t m = 0; m < w.sends.size(); ++m) {
+          T value = field[w.sends[m]];
+          if constexpr (std::is_same_v<T, Vec3>) {
+            if (position) value += w.shift;
+          }
+          std::memcpy(block + m * sizeof(T), &value, sizeof(T));
         }
+      });
+      if (payload) out += payload->pack(w.sends);
       const std::string in = comm.send_receive(w.send_to, out, w.receive_from, tag_of(a, dir));
-      w.first = static_cast<std::uint32_t>(s.size());
-      std::size_t at = 0;
-      while (at < in.size()) {
-        const std::size_t g = s.size();
-        s.add_ghost(0, {}); // grows every field; overwritten next
-        unpack_particle(s, in, at, g);
+      if (!in.empty()) {
+        std::size_t at = 0;
+        const auto count = take<std::uint64_t>(in, at);
+        w.first = static_cast<std::uint32_t>(s.add_ghosts(count));
+        w.count = static_cast<std::uint32_t>(count);
+        s.for_each_field([&](auto& field) {
+          const std::size_t bytes = count * sizeof(field[0]);
+          if (bytes > 0) std::memcpy(&field[w.first], in.data() + at, bytes);
+          at += bytes;
+        });
+        if (payload && at < in.size()) payload->unpack(w.first, in.substr(at));
+      } else {
+        w.first = static_cast<std::uint32_t>(s.size());
       }
-      w.count = static_cast<std::uint32_t>(s.size() - w.first);
       swaps_.push_back(std::move(w));
     }
+    earlier_ghosts = earlier_ghosts || crossed;
   }
   n_ghosts_ = s.n_ghost();
 }
@@ -159,23 +187,30 @@ void Halo::migrate(
   const Vec3 lo = d.lo(), hi = d.hi();
   for (int a = 0; a < 3; ++a) {
     if (d.dims()[a] == 1) continue; // periodic wrap alone is done by the caller
-    for (int dir : {-1, +1}) {
-      const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
-      std::string out;
-      std::vector<std::size_t> leaving;
+    // Both directions at once: one pass to find who leaves, one call for their payloads, one
+    // removal (particles that arrive and lie beyond the other face go in the caller's next
+    // round).
+    const int below = d.neighbor(a, -1), above = d.neighbor(a, +1);
+    std::vector<std::size_t> leaving; // ascending
+    for (std::size_t i = 0; i < s.n_owned(); ++i)
+      if ((below >= 0 && s.x[i][a] < lo[a]) || (above >= 0 && s.x[i][a] >= hi[a]))
+        leaving.push_back(i);
+    const std::vector<std::string> carried = payloads(leaving);
+    std::string out[2];
+    for (std::size_t k = 0; k < leaving.size(); ++k) {
+      const int dir = s.x[leaving[k]][a] < lo[a] ? -1 : +1;
       Vec3 shift;
       if (d.wraps(a, dir)) shift[a] = -dir * d.box().length(a);
-      if (to >= 0)
-        for (std::size_t i = 0; i < s.n_owned(); ++i)
-          if (dir < 0 ? s.x[i][a] < lo[a] : s.x[i][a] >= hi[a]) leaving.push_back(i);
-      const std::vector<std::string> carried = payloads(leaving);
-      for (std::size_t k = 0; k < leaving.size(); ++k) {
-        pack_particle(s, leaving[k], shift, out);
-        put(out, static_cast<std::uint64_t>(carried[k].size()));
-        out += carried[k];
-      }
-      s.remove_owned(leaving);
-      const std::string in = comm.send_receive(to, out, from, 600 + 4 * a + (dir > 0 ? 2 : 0));
+      std::string& o = out[dir > 0 ? 1 : 0];
+      pack_particle(s, leaving[k], shift, o);
+      put(o, static_cast<std::uint64_t>(carried[k].size()));
+      o += carried[k];
+    }
+    s.remove_owned(leaving);
+    for (int dir : {-1, +1}) {
+      const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
+      const std::string in =
+          comm.send_receive(to, out[dir > 0 ? 1 : 0], from, 600 + 4 * a + (dir > 0 ? 2 : 0));
       std::size_t at = 0;
       while (at < in.size()) {
         ParticleSpec dummy;

@@ -1,9 +1,23 @@
 // Ghosts and migration across sub-domain faces (and periodic images), as plans of swaps.
 //
-// build(): for x, then y, then z, and towards the lower then the upper neighbour, every
-// particle (owned, or a ghost from an earlier axis, so edges and corners are covered) within
-// `cutoff` of that face is sent; what arrives is appended as ghosts. Crossing the periodic
-// boundary shifts positions by a box length. With one rank along a periodic axis the
+// The ghosts form a half shell: of every pair of particles on different ranks (or on one rank
+// and a periodic image), exactly one side receives the other as a ghost and computes the pair.
+// A ghost's offset is the sum of the unit steps between sub-domains that carried it here; the
+// side that computes the pair is the one that sees the other particle at an "upper" offset,
+// whose first non-zero component (x, then y, then z) is positive. The opposite side sees the
+// negated offset, so exactly one side holds the ghost. The rule is topological (no
+// floating-point comparison decides it), and each rank receives half the ghosts of a full
+// shell, so forward and reverse exchanges move half the bytes.
+//
+// build(): for x, then y, then z, particles within `cutoff` of a face are sent across it; what
+// arrives is appended as ghosts. Towards the lower neighbour go owned particles and ghosts
+// from earlier axes (the receiver sees them at an upper offset); towards the upper neighbour
+// only ghosts from earlier axes, whose offset is upper already (an owned particle sent there
+// would be at a lower offset). A ghost that is not upper never becomes upper on a later axis,
+// so no rank relays one it does not need itself. This is the import region of the half-shell
+// method: the slab above the upper x face (spanning y and z with their ghost layers), the slab
+// above the upper y face (spanning z), and the slab above the upper z face. Crossing the
+// periodic boundary shifts positions by a box length; with one rank along a periodic axis the
 // neighbour is the rank itself, and the swap makes its periodic images.
 // forward(): the same swaps again, moving positions and velocities only.
 // reverse(): the swaps backwards, moving forces and torques on ghosts back to the particles
@@ -19,14 +33,26 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace yuxi {
 
+// What travels with the ghosts at a build besides their fields: the contact states of their
+// pairs with particles of other ranks, packed by the contact history (the domain layer never
+// sees contact models).
+struct GhostPayload {
+  // The bytes that go with the particles `sent` (local indices, in send order).
+  std::function<std::string(std::span<const std::uint32_t> sent)> pack;
+  // The bytes that came with the ghosts first, first + 1, ... (in the sender's order).
+  std::function<void(std::uint32_t first, const std::string& bytes)> unpack;
+};
+
 class Halo {
 public:
-  void build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff);
+  void build(ParticleStore& s, const Decomposition& d, const Comm& comm, double cutoff,
+             const GhostPayload* payload = nullptr);
   void forward(ParticleStore& s, const Comm& comm) const;
   void reverse(ParticleStore& s, const Comm& comm) const;
   // The same for one quantity per particle (owned, then ghosts): ghosts' values are added to

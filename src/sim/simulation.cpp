@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
 
 namespace yuxi {
 namespace {
@@ -350,7 +351,18 @@ void Simulation::rebuild(bool stash_history) {
     for (std::size_t i = 0; i < n; ++i) order[count[key[i]]++] = static_cast<std::uint32_t>(i);
     store_.permute_owned(order);
   }
-  halo_.build(store_, decomp_, comm_, cell_edge_);
+  // Ghosts, each with copies of the contact states it may be needed for on its receiver.
+  std::visit(
+      [&](auto& f) {
+        f.history.prepare_ghost_copies(store_);
+        const GhostPayload copies{
+            [&](std::span<const std::uint32_t> sent) { return f.history.ghost_copies(sent); },
+            [&](std::uint32_t first, const std::string& bytes) {
+              f.history.ghost_copies_arrived(store_, first, bytes);
+            }};
+        halo_.build(store_, decomp_, comm_, cell_edge_, &copies);
+      },
+      forces_);
   store_.trim_capacity();
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
@@ -369,9 +381,10 @@ void Simulation::rebuild(bool stash_history) {
 }
 
 void Simulation::migrate() {
-  // Particles go to the rank that owns their place now, each with the contact history it owns
-  // (the contacts whose lower global id it has); repeated until every rank holds only its own
-  // (one round unless the cut planes have just moved).
+  // Particles go to the rank that owns their place now, each with copies of the states of its
+  // contacts (contact_history.hpp: the rank that computes a pair after the rebuild may be
+  // either partner's); repeated until every rank holds only its own (one round unless the cut
+  // planes have just moved).
   for (int round = 0; round < 64; ++round) {
     std::visit(
         [&](auto& f) {
@@ -380,7 +393,7 @@ void Simulation::migrate() {
               [&](const std::vector<std::size_t>& leaving) {
                 std::vector<GlobalId> gids(leaving.size());
                 for (std::size_t k = 0; k < leaving.size(); ++k) gids[k] = store_.gid[leaving[k]];
-                return f.history.take_owned_by(gids);
+                return f.history.copies_for(gids);
               },
               [&](std::size_t, const std::string& bytes) { f.history.give(bytes); });
         },
@@ -563,16 +576,21 @@ std::string Simulation::describe_particle(std::size_t i) const {
 }
 
 std::string Simulation::describe_contacts(std::size_t i) const {
-  // A diagnosis, not a hot path: every particle (ghost images too) that overlaps i.
+  // A diagnosis, not a hot path: every particle that overlaps i, owned (through the nearest
+  // periodic image) or a ghost from another rank, each once. The halo holds the ghosts of a
+  // half shell only, so partners owned by the ranks below are not seen here.
   const auto& s = store_;
-  std::string out;
+  std::map<GlobalId, std::pair<bool, double>> touching; // gid -> grain?, overlap
   for (std::size_t j = 0; j < s.size(); ++j) {
-    if (j == i || s.gid[j] == s.gid[i]) continue;
-    const double overlap = s.radius[i] + s.radius[j] - norm(s.x[i] - s.x[j]);
-    if (overlap > 0)
-      out += fmt::format("{}{} {} (overlap {:.4g})", out.empty() ? "" : ", ",
-                         s.is_grain(j) ? "grain" : "wall particle", s.gid[j], overlap);
+    if (s.gid[j] == s.gid[i]) continue;
+    const Vec3 d = j < s.n_owned() ? config_.box.minimum_image(s.x[i], s.x[j]) : s.x[i] - s.x[j];
+    const double overlap = s.radius[i] + s.radius[j] - norm(d);
+    if (overlap > 0) touching.emplace(s.gid[j], std::pair{s.is_grain(j), overlap});
   }
+  std::string out;
+  for (const auto& [gid, contact] : touching)
+    out += fmt::format("{}{} {} (overlap {:.4g})", out.empty() ? "" : ", ",
+                       contact.first ? "grain" : "wall particle", gid, contact.second);
   for (const auto& p : planes_) {
     const double overlap = s.radius[i] - p.distance(s.x[i], time_);
     if (overlap > 0)

@@ -84,6 +84,71 @@ TEST(Mpi, DensePackingMatchesTheSerialRun) {
   }
 }
 
+// The ownership rule (domain/halo.hpp): of every pair within the list's range, exactly one rank
+// lists it, the one that holds the other particle in its half shell of ghosts; across the cut
+// planes and the periodic boundaries alike. A full shell of ghosts would list pairs across
+// ranks twice; a shell too thin, or a relay dropped at an edge, would miss some.
+TEST(Mpi, EveryPairIsListedOnceOverAllRanks) {
+  // Spheres anywhere in a box periodic along all three axes (overlaps allowed: only the list
+  // matters here), a fifth of them wall particles, whose pairs are never listed.
+  Random rng(29);
+  auto cfg = test::open_box(6.0, {}, 1e-4);
+  cfg.box.boundary = {Boundary::periodic, Boundary::periodic, Boundary::periodic};
+  cfg.skin = 0.2;
+  cfg.max_overlap_ratio = 1e9;
+  std::vector<ParticleSpec> specs;
+  for (int k = 0; k < 1500; ++k) {
+    auto p = test::sphere({rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-6, 6)},
+                          rng.uniform(0.3, 0.6), 1.0);
+    if (rng.uniform() < 0.2) p.kind = Kind::wall;
+    specs.push_back(p);
+  }
+  const Simulation sim(cfg, test::store_of(specs), {}, {}, test::linear_law({1e3, 0, 0, 0, 0, 0}),
+                       Comm::world());
+  const auto& s = sim.particles();
+  const auto& list = sim.neighbor_list();
+  std::vector<double> gids; // (lower, higher) global id of each listed pair
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    for (auto p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
+      const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
+      gids.insert(gids.end(),
+                  {static_cast<double>(std::min(a, b)), static_cast<double>(std::max(a, b))});
+    }
+  ArchiveWriter out;
+  out.vector(gids);
+  const auto parts = sim.comm().gather(out.data());
+  const ParticleStore all = sim.gather_particles(); // collective
+  if (!sim.comm().root()) return;
+  std::map<std::pair<GlobalId, GlobalId>, int> listed;
+  for (const auto& part : parts) {
+    ArchiveReader in(part);
+    std::vector<double> v;
+    in.vector(v);
+    for (std::size_t k = 0; k + 1 < v.size(); k += 2)
+      ++listed[{static_cast<GlobalId>(v[k]), static_cast<GlobalId>(v[k + 1])}];
+  }
+  std::map<std::pair<GlobalId, GlobalId>, int> expected;
+  const double range = sim.config().skin;
+  for (std::size_t i = 0; i < all.n_owned(); ++i)
+    for (std::size_t j = i + 1; j < all.n_owned(); ++j) {
+      if (!all.is_grain(i) && !all.is_grain(j)) continue;
+      const double cut = all.radius[i] + all.radius[j] + range;
+      if (norm2(sim.config().box.minimum_image(all.x[i], all.x[j])) < cut * cut)
+        expected[{std::min(all.gid[i], all.gid[j]), std::max(all.gid[i], all.gid[j])}] = 1;
+    }
+  EXPECT_GT(expected.size(), 3000u);
+  int across = 0; // pairs through a periodic boundary: the test covers the images too
+  for (std::size_t i = 0; i < all.n_owned(); ++i)
+    for (std::size_t j = i + 1; j < all.n_owned(); ++j) {
+      const double cut = all.radius[i] + all.radius[j] + range;
+      across += norm2(all.x[i] - all.x[j]) >= cut * cut &&
+                norm2(sim.config().box.minimum_image(all.x[i], all.x[j])) < cut * cut &&
+                (all.is_grain(i) || all.is_grain(j));
+    }
+  EXPECT_GT(across, 100);
+  EXPECT_EQ(listed, expected);
+}
+
 // Per-grain elastic energy (half of each contact's to each partner; the analysis of Figs. 8-10):
 // over all particles it adds up to the engine's total less the flat walls' halves, and each
 // particle's share is the serial run's, whichever rank computed its contacts.
