@@ -54,18 +54,29 @@ struct LinearBatch {
   void set_lane(std::size_t k, const Vec3& d, double radius_i, double radius_j, const Vec3& v,
                 const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum,
                 const LinearSpringDashpot::Coeffs& c, const SliderState& spring) {
+    set_contact(k, d, radius_i, radius_j, v, w_i, w_j, inverse_mass_sum, spring);
+    set_coeffs(k, c);
+  }
+  // The same without the coefficients: where every pair of materials has the same law, the
+  // lanes hold it from the start (set_coeffs on every lane once) and each contact fills the
+  // rest.
+  void set_contact(std::size_t k, const Vec3& d, double radius_i, double radius_j, const Vec3& v,
+                   const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum,
+                   const SliderState& spring) {
     dx[k] = d.x, dy[k] = d.y, dz[k] = d.z;
     a_i[k] = radius_i, a_j[k] = radius_j;
     vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     wix[k] = w_i.x, wiy[k] = w_i.y, wiz[k] = w_i.z;
     wjx[k] = w_j.x, wjy[k] = w_j.y, wjz[k] = w_j.z;
     inv_mass_sum[k] = inverse_mass_sum;
-    k_n[k] = c.k_n, k_t[k] = c.k_t;
-    gamma_n[k] = c.gamma_n, gamma_t[k] = c.gamma_t;
-    mu_s[k] = c.mu_s, mu_d[k] = c.mu_d;
     sx[k] = spring.spring.x, sy[k] = spring.spring.y, sz[k] = spring.spring.z;
     s_k[k] = spring.k;
     sliding[k] = spring.sliding ? 1.0 : 0.0;
+  }
+  void set_coeffs(std::size_t k, const LinearSpringDashpot::Coeffs& c) {
+    k_n[k] = c.k_n, k_t[k] = c.k_t;
+    gamma_n[k] = c.gamma_n, gamma_t[k] = c.gamma_t;
+    mu_s[k] = c.mu_s, mu_d[k] = c.mu_d;
   }
 
   // The tangential spring of lane k after evaluate().

@@ -30,8 +30,10 @@ public:
   const ContactLaw<Model>& law() const { return law_; }
   ContactHistory<State> history;
 
+  // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
   void compute(ParticleStore& s, const NeighborList& list, const std::vector<PlaneWall>& planes,
-               double t, double dt, ContactTally& tally, ContactRecord& record) {
+               double t, double dt, bool walls_still, ContactTally& tally, ContactRecord& record) {
+    walls_still_ = walls_still;
     if (record.enabled) {
       record.pair_force.assign(list.n_pairs(), Vec3{});
       record.pair_elastic.assign(list.n_pairs(), 0.0);
@@ -58,9 +60,11 @@ private:
     }
   }
 
-  // Work of a wall particle's prescribed motion on its partner (force on i, -force on j).
-  static void book_wall_work(const ParticleStore& s, std::uint32_t i, std::uint32_t j,
-                             const Vec3& force, double dt, ContactTally& tally) {
+  // Work of a wall particle's prescribed motion on its partner (force on i, -force on j); none
+  // while the walls are still (the sum would only add zeros).
+  void book_wall_work(const ParticleStore& s, std::uint32_t i, std::uint32_t j, const Vec3& force,
+                      double dt, ContactTally& tally) const {
+    if (walls_still_) return;
     if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
     if (s.kind[i] == Kind::wall) tally.wall_work -= dot(force, s.v[i]) * dt;
   }
@@ -148,6 +152,7 @@ private:
     std::uint32_t pair[LinearBatch::capacity];
     CapOn cap; // the friction convention, the same for every pair of materials
     Carry carry;
+    bool uniform; // one law for every pair of materials: the lanes hold its coefficients
   };
 
   // A batch where every pair of materials allows one (else null).
@@ -167,6 +172,17 @@ private:
       auto b = std::make_unique<Batch>();
       b->cap = first->friction_cap;
       b->carry = first->carry;
+      b->uniform = true;
+      for (std::size_t a = 0; a < table.n_materials(); ++a)
+        for (std::size_t c = 0; c < table.n_materials(); ++c) {
+          if (!table.has(a, c)) continue;
+          const auto& x = table(a, c);
+          b->uniform = b->uniform && x.k_n == first->k_n && x.k_t == first->k_t &&
+                       x.gamma_n == first->gamma_n && x.gamma_t == first->gamma_t &&
+                       x.mu_s == first->mu_s && x.mu_d == first->mu_d;
+        }
+      if (b->uniform)
+        for (std::size_t k = 0; k < LinearBatch::capacity; ++k) b->lanes.set_coeffs(k, *first);
       return b;
     } else {
       return nullptr;
@@ -175,6 +191,15 @@ private:
 
   void compute_pairs_in_batches(ParticleStore& s, const NeighborList& list, double dt,
                                 ContactTally& tally, ContactRecord& record) {
+    if (batch_->uniform)
+      fill_batches<true>(s, list, dt, tally, record);
+    else
+      fill_batches<false>(s, list, dt, tally, record);
+  }
+
+  template <bool uniform>
+  void fill_batches(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
+                    ContactRecord& record) {
     Batch& b = *batch_;
     LinearBatch& lanes = b.lanes;
     lanes.size = 0;
@@ -182,9 +207,9 @@ private:
           [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double, double ai,
               double aj) {
             const std::size_t k = lanes.size++;
-            lanes.set_lane(k, d, ai, aj, s.v[i] - s.v[j], s.w[i], s.w[j],
-                           s.inv_mass[i] + s.inv_mass[j], law_.coeffs(s.material[i], s.material[j]),
-                           history.open(p).tangential);
+            lanes.set_contact(k, d, ai, aj, s.v[i] - s.v[j], s.w[i], s.w[j],
+                              s.inv_mass[i] + s.inv_mass[j], history.open(p).tangential);
+            if constexpr (!uniform) lanes.set_coeffs(k, law_.coeffs(s.material[i], s.material[j]));
             b.row[k] = i, b.partner[k] = j, b.pair[k] = p;
             if (lanes.full()) flush(s, dt, tally, record);
           });
@@ -258,6 +283,7 @@ private:
 
   ContactLaw<Model> law_;
   std::unique_ptr<Batch> batch_; // null where the law needs the one-by-one loop
+  bool walls_still_ = false;     // of the step being computed
 };
 
 } // namespace yuxi

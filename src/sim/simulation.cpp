@@ -132,13 +132,15 @@ bool Simulation::place_walls(double t, bool every_one) {
   std::vector<WallMotionAtTime> now;
   std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
   now.reserve(motions_.size());
-  bool all_at_rest = true;
+  walls_still_ = true;
   for (const WallMotion& m : motions_) {
     now.push_back(at_time(m, t));
+    walls_still_ = walls_still_ && at_rest(now.back());
     skip.push_back(!every_one && at_rest(now.back()) ? 1 : 0);
-    all_at_rest = all_at_rest && skip.back();
   }
-  if (all_at_rest) return false; // (frozen bases, a basin before its start)
+  // Motions only start (never stop), and refresh() places every wall particle: while all are
+  // at rest, every wall particle stands with zero velocity, and none needs placing again.
+  if (walls_still_ && !every_one) return false; // (frozen bases, a basin before its start)
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i) || skip[store_.motion[i]]) continue;
     const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
@@ -546,8 +548,9 @@ void Simulation::compute_forces(bool advance_history) {
   }
   tally_ = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
-  std::visit([&](auto& f) { f.compute(store_, list_, planes_, time_, dt, tally_, record_); },
-             forces_);
+  std::visit(
+      [&](auto& f) { f.compute(store_, list_, planes_, time_, dt, walls_still_, tally_, record_); },
+      forces_);
   timers_.pair += seconds_since(t0);
   t0 = Clock::now();
   halo_.reverse(store_, comm_);

@@ -211,6 +211,7 @@ private:
   double range_ = 0.0;           // neighbour range beyond touching (the skin)
   std::size_t owned_grains_ = 0; // owned particles [0, owned_grains_) are grains, the rest walls
   NeighborList list_;
+  bool walls_still_ = false; // every wall particle at rest (place_walls)
   Halo halo_;
   ContactTally tally_;
   ContactRecord record_;
