@@ -36,13 +36,17 @@ run_lammps() {
   rm -f "$work"/mem.*
   (cd "$work" && "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" lmp "$@" -log "$work/lammps.log" \
      -screen none)
+  # A case of several runs (settling, then shaking) prints a loop time and a breakdown for each:
+  # their times are added up.
   local loop
-  loop=$(grep -oP 'Loop time of \K[0-9.e+-]+' "$work/lammps.log")
+  loop=$(grep -oP 'Loop time of \K[0-9.e+-]+' "$work/lammps.log" | awk '{t += $1} END {print t}')
   rates[lammps,$case,$np]+="$(awk -v t="$loop" -v n="$particles" -v s="$steps" 'BEGIN {print n * s / t}') "
   memory[lammps,$case,$np]=$(peak_kb)
-  breakdown[lammps,$case,$np]=$(awk '/^Pair  *\|/ {p=$(NF)} /^Neigh *\|/ {n=$(NF)} /^Comm  *\|/ {c=$(NF)}
-    /^Output *\|/ {o=$(NF)} /^Modify *\|/ {m=$(NF)} /^Other *\|/ {x=$(NF)}
-    END {printf "pair %s%% neigh %s%% comm %s%% output %s%% modify %s%% other %s%%", p, n, c, o, m, x}' \
+  breakdown[lammps,$case,$np]=$(awk -F'|' -v loop="$loop" '
+    $1 ~ /^(Pair|Neigh|Comm|Output|Modify|Other) *$/ {name = $1; gsub(/ /, "", name); t[name] += $3}
+    END {printf "pair %.2f%% neigh %.2f%% comm %.2f%% output %.2f%% modify %.2f%% other %.2f%%",
+      100 * t["Pair"] / loop, 100 * t["Neigh"] / loop, 100 * t["Comm"] / loop,
+      100 * t["Output"] / loop, 100 * t["Modify"] / loop, 100 * t["Other"] / loop}' \
     "$work/lammps.log")
 }
 # The same with yuxi: run_yuxi CASE NP YUXI-RUN-ARGS...

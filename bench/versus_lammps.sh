@@ -9,6 +9,8 @@
 # friction coefficient (mu_s = mu_d) and the grain-grain law for every pair, as bench/in.basin
 # runs it in LAMMPS: yuxi settles it to t = 10 tau, both codes start from that state for
 # BASIN_STEPS steps, once with every wall particle still and once with the side wall vibrating.
+# Last the whole scene as it is shipped: both codes start from yuxi's initial state (t = 0), let
+# the grains fall and settle to t0 = 10 tau with the walls still and shake them to t_end = 11 tau.
 # Installs LAMMPS from Debian if it is missing. Build yuxi first (cmake --build --preset release).
 # usage: bench/versus_lammps.sh [STEPS] [REPEATS] [BASIN_STEPS]
 set -euo pipefail
@@ -32,6 +34,13 @@ done
 basin_particles=$(grep -oP '^\d+(?= atoms)' "$work/basin-still.data")
 basin_skin=$(run_skin "$work/settled-still")
 t_basin=$(awk -v s="$basin_steps" 'BEGIN {printf "%.6f", 10 + s * 1e-4}')
+# The whole run: yuxi's first frame (t = 0) for LAMMPS; steps to t0 and from t0 to t_end.
+python3 bench/lammps_data_from_dump.py "$work/settled-vibrating/particles.lammpstrj" \
+  "$work/basin-start.data" --frame first --heavy 2
+scene_value() { grep -oP "^ *$1 *= *\K[0-9.e+-]+" "$work/basin-vibrating.toml" | head -1; }
+settle_steps=$(awk -v t="$(scene_value t0)" -v dt="$(scene_value dt)" 'BEGIN {printf "%d", t / dt + 0.5}')
+shake_steps=$(awk -v t="$(scene_value t_end)" -v t0="$(scene_value t0)" -v dt="$(scene_value dt)" \
+  'BEGIN {printf "%d", (t - t0) / dt + 0.5}')
 
 for r in $(seq 1 "$repeats"); do
   for np in 1 2; do
@@ -47,8 +56,13 @@ for r in $(seq 1 "$repeats"); do
       rm -rf "$work/resumed" && cp -r "$work/settled-$motion" "$work/resumed"
       run_yuxi "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
     done
+    run_lammps basin-whole "$np" "$basin_particles" $((settle_steps + shake_steps)) \
+      -var datafile "$work/basin-start.data" -var settle "$settle_steps" \
+      -var steps "$shake_steps" -var excite 1 -var skin "$basin_skin" -in "$PWD/bench/in.basin"
+    run_yuxi basin-whole "$np" "$work/basin-vibrating.toml" -o "$work/whole" --overwrite
   done
 done
 report chute "chute, $particles spheres, $steps steps" "$particles"
 report basin-still "basin-small settled at t = 10 tau, walls still, $basin_particles particles, $basin_steps steps" "$basin_particles"
 report basin-vibrating "basin-small from t = 10 tau, side wall vibrating (omega = 400, dr = 0.9), $basin_steps steps" "$basin_particles"
+report basin-whole "basin-small whole run from t = 0: $settle_steps steps of settling, $shake_steps of shaking" "$basin_particles"
