@@ -623,6 +623,7 @@ EnergyReport Simulation::energies() const {
     e.gravitational -= store_.mass[i] * dot(g_potential, store_.x[i]);
     ++e.grains;
   }
+  // One reduction for all: the counts ride along as doubles, exact below 2^53.
   double sums[] = {e.translational,
                    e.rotational,
                    e.gravitational,
@@ -640,10 +641,9 @@ EnergyReport Simulation::energies() const {
   e.relaxation = sums[11];
   e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
   e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
-  // Counts are summed as integers (the doubles above only carried them along).
-  e.grains = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(e.grains)));
-  e.contacts = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(tally_.touching)));
-  e.escaped = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(escaped_)));
+  e.grains = static_cast<std::size_t>(std::llround(sums[7]));
+  e.contacts = static_cast<std::size_t>(std::llround(sums[8]));
+  e.escaped = static_cast<std::size_t>(std::llround(sums[9]));
   return e;
 }
 
