@@ -32,4 +32,11 @@ OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::
                                 std::uint32_t begin, std::uint32_t end, std::uint32_t* touching,
                                 std::uint32_t* parted);
 
+// The same over the pairs pairs[begin], ..., pairs[end - 1] (ascending indices into the list:
+// the near pairs, core/near_pairs.hpp).
+OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
+                                const std::uint32_t* partner, const std::uint32_t* slot,
+                                const std::uint32_t* pairs, std::uint32_t begin, std::uint32_t end,
+                                std::uint32_t* touching, std::uint32_t* parted);
+
 } // namespace yuxi

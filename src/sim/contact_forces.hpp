@@ -7,6 +7,7 @@
 #include "contact/contact_model.hpp"
 #include "contact/linear_batch.hpp"
 #include "core/always_inline.hpp"
+#include "core/near_pairs.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/overlap_scan.hpp"
 #include "core/particle_store.hpp"
@@ -31,9 +32,12 @@ public:
   ContactHistory<State> history;
 
   // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
-  void compute(ParticleStore& s, const NeighborList& list, const std::vector<PlaneWall>& planes,
-               double t, double dt, bool walls_still, ContactTally& tally, ContactRecord& record) {
+  // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
+  void compute(ParticleStore& s, const NeighborList& list, const NearPairs* near,
+               const std::vector<PlaneWall>& planes, double t, double dt, bool walls_still,
+               ContactTally& tally, ContactRecord& record) {
     walls_still_ = walls_still;
+    near_ = near && near->hold() ? near : nullptr;
     if (record.enabled) {
       record.pair_force.assign(list.n_pairs(), Vec3{});
       record.pair_elastic.assign(list.n_pairs(), 0.0);
@@ -79,7 +83,8 @@ private:
   // Calls touching(i, j, p, d, r2, a_i, a_j) for every listed pair p = (i, j) that overlaps
   // (d = x_i - x_j, r2 = |d|^2), in list order, and ends the contacts that have come apart: the
   // energy their springs still hold is lost. Chunk by chunk: first the overlap test of every
-  // pair (overlap_scan.hpp), then the contact law on the pairs that passed.
+  // pair (overlap_scan.hpp), then the contact law on the pairs that passed. The near pairs,
+  // where they hold, stand for the list (the same pairs touch, in the same order).
   template <class Touching>
   YUXI_ALWAYS_INLINE void sweep(const ParticleStore& s, const NeighborList& list,
                                 ContactTally& tally, Touching&& touching) {
@@ -90,12 +95,15 @@ private:
     const std::uint32_t* rows = list.rows.data();
     constexpr std::uint32_t chunk = 256;
     std::uint32_t touching_pairs[chunk], parted_pairs[chunk];
-    const auto n_pairs = static_cast<std::uint32_t>(list.n_pairs());
+    const std::uint32_t* near = near_ ? near_->pairs.data() : nullptr;
+    const auto n_pairs = static_cast<std::uint32_t>(near ? near_->pairs.size() : list.n_pairs());
     for (std::uint32_t begin = 0; begin < n_pairs; begin += chunk) {
       const std::uint32_t end = std::min(begin + chunk, n_pairs);
-      const OverlapScanCounts found =
-          scan_overlaps(x, radius, rows, partners, history.pair_slot.data(), begin, end,
-                        touching_pairs, parted_pairs);
+      const std::uint32_t* slot = history.pair_slot.data();
+      const OverlapScanCounts found = near ? scan_overlaps(x, radius, rows, partners, slot, near,
+                                                           begin, end, touching_pairs, parted_pairs)
+                                           : scan_overlaps(x, radius, rows, partners, slot, begin,
+                                                           end, touching_pairs, parted_pairs);
       for (std::uint32_t k = 0; k < found.parted; ++k) {
         const std::uint32_t p = parted_pairs[k];
         tally.dissipated +=
@@ -282,8 +290,9 @@ private:
   }
 
   ContactLaw<Model> law_;
-  std::unique_ptr<Batch> batch_; // null where the law needs the one-by-one loop
-  bool walls_still_ = false;     // of the step being computed
+  std::unique_ptr<Batch> batch_;    // null where the law needs the one-by-one loop
+  bool walls_still_ = false;        // of the step being computed
+  const NearPairs* near_ = nullptr; // the near pairs scanned this step, if they hold
 };
 
 } // namespace yuxi

@@ -96,6 +96,12 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                                               store_.gid[i], store_.motion[i], motions_.size()));
   add_box_walls(config_, planes_);
   range_ = config_.skin;
+  // Positions are rounded at every step: a bound of a few units in the last place of the
+  // largest coordinate a particle in the box can have, for each step's displacement.
+  for (int a = 0; a < 3; ++a)
+    position_round_off_ =
+        std::max({position_round_off_, std::abs(config_.box.lo[a]), std::abs(config_.box.hi[a])});
+  position_round_off_ *= 8.0 * std::numeric_limits<double>::epsilon();
   decomp_.set_min_slab(cell_edge_);
   if (comm_.size() > 1) {
     // Every rank holds every particle here: cut by particle count (unless balancing is off),
@@ -126,7 +132,7 @@ std::size_t Simulation::n_grains() const {
   return static_cast<std::size_t>(comm_.sum(n));
 }
 
-bool Simulation::place_walls(double t, bool every_one) {
+bool Simulation::place_walls(double t, bool every_one, double* moved2) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool moved_far = false;
   std::vector<WallMotionAtTime> now;
@@ -144,6 +150,7 @@ bool Simulation::place_walls(double t, bool every_one) {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i) || skip[store_.motion[i]]) continue;
     const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
+    if (moved2) *moved2 = std::max(*moved2, norm2(p.position - store_.x[i]));
     store_.x[i] = p.position;
     store_.v[i] = p.velocity;
     if (!(norm2(p.position - store_.x_build[i]) <= limit2)) moved_far = true;
@@ -164,6 +171,7 @@ void Simulation::step() {
   // The forces of the last step are spent here, so the same pass starts the new ones from
   // gravity (one sweep over the particles instead of two).
   const Vec3 gravity = config_.gravity;
+  double moved2 = 0.0; // largest squared displacement of a particle in this step
   {
     // Raw pointers: the compiler need not reload each array's address after every store.
     const double* inv_mass = store_.inv_mass.data();
@@ -184,11 +192,13 @@ void Simulation::step() {
     // Component by component (the arithmetic of the Vec3 operators, in their order): the
     // compiler keeps every value in a register, where Vec3 temporaries went through the stack.
     const double half_dt = 0.5 * dt;
+    double fastest2 = 0.0; // largest |v|^2 of a grain this step
     for (std::size_t i = 0; i < owned_grains_; ++i) {
       const double kick = half_dt * inv_mass[i], spin = half_dt * inv_inertia[i], m = mass[i];
       const double vx = v[i].x + f[i].x * kick, vy = v[i].y + f[i].y * kick,
                    vz = v[i].z + f[i].z * kick;
       const double xx = x[i].x + vx * dt, xy = x[i].y + vy * dt, xz = x[i].z + vz * dt;
+      fastest2 = std::max(fastest2, vx * vx + vy * vy + vz * vz);
       v[i].x = vx, v[i].y = vy, v[i].z = vz;
       w[i].x += torque[i].x * spin, w[i].y += torque[i].y * spin, w[i].z += torque[i].z * spin;
       x[i].x = xx, x[i].y = xy, x[i].z = xz;
@@ -200,21 +210,27 @@ void Simulation::step() {
       torque[i].x = 0.0, torque[i].y = 0.0, torque[i].z = 0.0;
     }
     must_rebuild = must_rebuild || moved_far;
+    moved2 = fastest2 * dt * dt;
   }
   gravity_work_ += gravity_work;
   time_ += dt;
   ++step_;
-  if (place_walls(time_)) must_rebuild = true;
+  if (place_walls(time_, false, &moved2)) must_rebuild = true;
   timers_.integrate += seconds_since(t0);
   t0 = Clock::now();
-  // One collective answers two questions: must any rank rebuild, and did the last force
-  // evaluation on any rank find an overlap beyond the limit (check_health)? The latter stops
-  // the run here, one drift after the step that found it, with that step's diagnosis.
-  double flags[2] = {must_rebuild ? 1.0 : 0.0, health_error_.empty() ? 0.0 : 1.0};
-  comm_.max(flags, 2);
+  // One collective answers three questions: must any rank rebuild, did the last force
+  // evaluation on any rank find an overlap beyond the limit (check_health), and how far did a
+  // particle move (for the near pairs)? The second stops the run here, one drift after the
+  // step that found it, with that step's diagnosis.
+  double flags[3] = {must_rebuild ? 1.0 : 0.0, health_error_.empty() ? 0.0 : 1.0, moved2};
+  comm_.max(flags, 3);
   timers_.comm += seconds_since(t0);
   if (flags[1] > 0) stop_together(health_error_);
   must_rebuild = flags[0] > 0;
+  // The bound on every particle's displacement since the near pairs were picked, with room for
+  // the round-off of positions.
+  last_displacement_ = std::sqrt(flags[2]);
+  near_.moved += last_displacement_ + position_round_off_;
 
   // 2. Neighbour list or ghost refresh.
   t0 = Clock::now();
@@ -377,6 +393,7 @@ void Simulation::rebuild(bool stash_history) {
   store_.trim_capacity();
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
+  near_.picked = false; // (they index the old list)
   list_.planes.clear();
   for (std::uint32_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
@@ -439,7 +456,8 @@ double Simulation::imbalance() const {
 std::size_t Simulation::memory_bytes() const {
   const std::size_t history =
       std::visit([](const auto& f) { return f.history.memory_bytes(); }, forces_);
-  return store_.memory_bytes() + grid_.memory_bytes() + list_.memory_bytes() + history;
+  return store_.memory_bytes() + grid_.memory_bytes() + list_.memory_bytes() +
+         near_.memory_bytes() + history;
 }
 
 std::vector<double> Simulation::particle_elastic_energy() const {
@@ -557,14 +575,36 @@ void Simulation::compute_forces(bool advance_history) {
   }
   tally_ = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
+  refresh_near_pairs();
   std::visit(
-      [&](auto& f) { f.compute(store_, list_, planes_, time_, dt, walls_still_, tally_, record_); },
+      [&](auto& f) {
+        f.compute(store_, list_, &near_, planes_, time_, dt, walls_still_, tally_, record_);
+      },
       forces_);
   timers_.pair += seconds_since(t0);
   t0 = Clock::now();
   halo_.reverse(store_, comm_);
   timers_.comm += seconds_since(t0);
   check_health();
+}
+
+void Simulation::refresh_near_pairs() {
+  if (near_.hold()) return;
+  near_.picked = false;
+  // The margin leaves room for about `lasting` steps at the last step's pace (a pick costs
+  // about one scan of the whole list; a dense packing has many pairs just short of touching,
+  // so a wider margin keeps many more), and at most a fraction of the skin. Near pairs that
+  // would last fewer than `min_steps` steps are not worth picking: the whole list is scanned.
+  constexpr double lasting = 16.0, min_steps = 4.0;
+  const double pace = last_displacement_ + position_round_off_;
+  const double margin = std::min(config_.near_fraction * config_.skin, 2.0 * lasting * pace);
+  if (!(margin > 0.0) || 2.0 * min_steps * pace >= margin) return;
+  std::visit(
+      [&](auto& f) {
+        pick_near_pairs(store_.x.data(), store_.radius.data(), list_, f.history.pair_slot.data(),
+                        margin, near_);
+      },
+      forces_);
 }
 
 void Simulation::check_health() {

@@ -13,6 +13,7 @@
 #include "contact/contact_model.hpp"
 #include "core/box.hpp"
 #include "core/cell_grid.hpp"
+#include "core/near_pairs.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/particle_store.hpp"
 #include "domain/comm.hpp"
@@ -46,6 +47,9 @@ struct SimulationConfig {
   double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
   std::array<int, 3> ranks{0, 0, 0};  // MPI ranks per axis; 0 = chosen automatically
   int rebalance_every = 50;           // move the cut planes every this many rebuilds (0: never)
+  // The near pairs' margin as a fraction of the skin (core/near_pairs.hpp; 0: scan the whole
+  // list every step). The trajectory is the same either way.
+  double near_fraction = 0.25;
 };
 
 // The run cannot go on; what() holds the diagnosis (step, grain, position, velocity).
@@ -92,6 +96,8 @@ public:
   double imbalance() const;
   const std::vector<PlaneWall>& planes() const { return planes_; }
   const NeighborList& neighbor_list() const { return list_; }
+  // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
+  const NearPairs& near_pairs() const { return near_; }
   const CellGrid& grid() const { return grid_; }
   double cell_edge() const { return cell_edge_; }
   const AnyContactLaw& contact_law() const { return law_; }
@@ -168,7 +174,8 @@ public:
 private:
   // Walls to their prescribed place at t; true if one moved more than half the skin.
   // `every_one` false skips those of a motion at rest: placed before, they stay there.
-  bool place_walls(double t, bool every_one = false);
+  // `moved2`, if given, gets the largest squared displacement of a wall particle.
+  bool place_walls(double t, bool every_one = false, double* moved2 = nullptr);
   void rebuild(bool stash_history = true);
   void migrate();
   void rebalance();
@@ -181,6 +188,9 @@ private:
   // spring is incremented and nothing is dissipated).
   void start_forces_from_gravity();
   void compute_forces(bool advance_history = true);
+  // Picks the near pairs again where those held have lapsed and new ones would last a few
+  // steps; drops them where they would not.
+  void refresh_near_pairs();
   // Notes (in health_error_) an overlap beyond max_overlap_ratio; the next collective stops
   // every rank with it.
   void check_health();
@@ -211,7 +221,10 @@ private:
   double range_ = 0.0;           // neighbour range beyond touching (the skin)
   std::size_t owned_grains_ = 0; // owned particles [0, owned_grains_) are grains, the rest walls
   NeighborList list_;
-  bool walls_still_ = false; // every wall particle at rest (place_walls)
+  NearPairs near_;
+  double last_displacement_ = 0.0;  // largest displacement of a particle in the last step
+  double position_round_off_ = 0.0; // bound on the round-off of one step's displacement
+  bool walls_still_ = false;        // every wall particle at rest (place_walls)
   Halo halo_;
   ContactTally tally_;
   ContactRecord record_;
