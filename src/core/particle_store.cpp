@@ -60,6 +60,20 @@ void ParticleStore::remove_owned(std::span<const std::size_t> removed) {
   n_owned_ -= removed.size();
 }
 
+void ParticleStore::remove_owned_unordered(std::span<const std::size_t> removed) {
+  clear_ghosts();
+  // From the highest index down: the particle moved into a gap is never one still to remove
+  // (those below the gap stay where they are, those above it are gone already).
+  for (std::size_t k = removed.size(); k-- > 0;) {
+    const std::size_t gap = removed[k], last = n_owned_ - 1;
+    for_each_field([gap, last](auto& field) {
+      field[gap] = field[last];
+      field.pop_back();
+    });
+    --n_owned_;
+  }
+}
+
 double ParticleStore::max_radius() const {
   double r = 0.0;
   for (std::size_t i = 0; i < n_owned_; ++i) r = std::max(r, radius[i]);

@@ -110,6 +110,10 @@ public:
   void permute_owned(std::span<const std::uint32_t> order);
   // Removes the owned particles `removed` (ascending indices); ghosts are dropped.
   void remove_owned(std::span<const std::size_t> removed);
+  // The same without keeping the order of the others: the last owned particles fill the gaps,
+  // so the cost is that of the few removed, not of the many that stay (migration, before the
+  // particles are sorted by cell anyway).
+  void remove_owned_unordered(std::span<const std::size_t> removed);
 
   bool is_grain(std::size_t i) const { return kind[i] == Kind::grain; }
 

@@ -206,7 +206,7 @@ void Halo::migrate(
       put(o, static_cast<std::uint64_t>(carried[k].size()));
       o += carried[k];
     }
-    s.remove_owned(leaving);
+    s.remove_owned_unordered(leaving); // (the caller sorts the particles next)
     for (int dir : {-1, +1}) {
       const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
       const std::string in =
