@@ -69,6 +69,7 @@ bool Comm::any(bool v) const {
 
 std::string Comm::send_receive(int dest, const std::string& out, int source, int tag) const {
   if (size_ == 1) return source < 0 ? std::string() : out;
+  if (dest == rank_ && source == rank_) return out; // a periodic image of this rank's own
   const MPI_Comm c = to_mpi(handle_);
   dest = dest < 0 ? MPI_PROC_NULL : dest; // no neighbour: nothing is sent or received
   source = source < 0 ? MPI_PROC_NULL : source;
