@@ -173,6 +173,10 @@ int run_command(const RunCommandOptions& o) {
   // The load that balancing evens out: each rank's time in pair, neighbour and integrate (the
   // rest is waiting for the others, or output), max over the mean.
   const double busy_imbalance = sim->comm().max_over_mean(t.pair + t.neighbor + t.integrate);
+  // The pairs each rank lists: the work balancing evens out, free of the machine's noise that
+  // the compute time carries.
+  const double pair_imbalance =
+      sim->comm().max_over_mean(static_cast<double>(sim->neighbor_list().n_pairs()));
   const double data_bytes = sim->comm().sum(static_cast<double>(sim->memory_bytes()));
   const double n_particles = sim->comm().sum(static_cast<double>(sim->particles().n_owned()));
   const double listed_pairs =
@@ -192,8 +196,8 @@ int run_command(const RunCommandOptions& o) {
       100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
       100 * (wall - t.total()) / wall, sim->rebuilds() - builds_before,
       sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
-                                           "{:.3f} in compute time",
-                                           imbalance, busy_imbalance)
+                                           "{:.3f} in listed pairs, {:.3f} in compute time",
+                                           imbalance, pair_imbalance, busy_imbalance)
                              : std::string());
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "
