@@ -84,4 +84,14 @@ report() {
         "${breakdown[$code,$case,$np]}"
     done
   done
+  # Each yuxi run against the LAMMPS run just before it: a burst of load from other jobs on the
+  # machine slows a run or two, and moves this median less than the ratio of the medians.
+  for np in 1 2; do
+    local pairs
+    pairs=$(paste <(echo "${rates[lammps,$case,$np]}" | tr ' ' '\n' | grep -v '^$') \
+      <(echo "${rates[yuxi,$case,$np]}" | tr ' ' '\n' | grep -v '^$') |
+      awk '{printf "%.2f ", $2 / $1}')
+    printf "yuxi/LAMMPS run by run on %d rank(s): %s(median %s)\n" "$np" "$pairs" \
+      "$(echo "$pairs" | median)"
+  done
 }
