@@ -2,8 +2,10 @@
 # Strong scaling of yuxi on 1 and 2 MPI ranks, side by side in one invocation: runs alternate
 # A B A B (1 rank, 2 ranks, ...) so that machine drift affects both alike. Prints, per scene and
 # rank count, the median particle-steps/s, the parallel efficiency ps(2) / (2 ps(1)), and the
-# load imbalance after balancing (max/mean over ranks, of the last run): in owned particles and
-# in compute time (pair + neighbour + integrate).
+# load imbalance after balancing (max/mean over ranks, of the last run): in owned particles, in
+# listed pairs and in compute time (pair + neighbour + integrate). Under each scene, the efficiency
+# of each repeat (its 2-rank run against the 1-rank run just before it) and their median, which
+# a burst of load from other jobs on the machine moves less than the ratio of the medians.
 # usage: bench/scaling.sh [REPEATS]      (build first: cmake --build --preset release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,13 +17,14 @@ trap 'rm -rf "$work"' EXIT
 # first tau is free fall, with hardly a contact). The paper-size basin: bench/basin_paper.sh.
 cases=("scenes/chute-lammps.toml|1.0|chute, 32,000 spheres, 10,000 steps"
        "scenes/basin-small.toml|11.0|basin-small, 4,220 particles, 110,000 steps")
-printf "%-44s %5s %16s %11s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
-  "particles" "compute"
+printf "%-44s %5s %16s %11s %10s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
+  "particles" "pairs" "compute"
 for c in "${cases[@]}"; do
   IFS='|' read -r scene t_end label <<< "$c"
   declare -A rates=()
   declare -A imbalance=()
   declare -A busy=()
+  declare -A pairs=()
   for r in $(seq 1 "$repeats"); do
     for np in 1 2; do
       log=$work/np$np.log
@@ -31,13 +34,19 @@ for c in "${cases[@]}"; do
       rates[$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$log") "
       imbalance[$np]=$(grep -oP 'load max/mean \K[0-9.]+(?= in particles)' "$log" || echo 1.000)
       busy[$np]=$(grep -oP '\K[0-9.]+(?= in compute time)' "$log" || echo 1.000)
+      pairs[$np]=$(grep -oP '\K[0-9.]+(?= in listed pairs)' "$log" || echo 1.000)
     done
   done
   median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
   p1=$(echo "${rates[1]}" | median)
   p2=$(echo "${rates[2]}" | median)
   eff=$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.1f %%", 100 * b / (2 * a)}')
-  printf "%-44s %5s %16.4g %11s %10s %10s\n" "$label" 1 "$p1" "" "${imbalance[1]}" "${busy[1]}"
-  printf "%-44s %5s %16.4g %11s %10s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}" "${busy[2]}"
-  unset rates imbalance busy
+  printf "%-44s %5s %16.4g %11s %10s %10s %10s\n" "$label" 1 "$p1" "" "${imbalance[1]}" \
+    "${pairs[1]}" "${busy[1]}"
+  printf "%-44s %5s %16.4g %11s %10s %10s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}" \
+    "${pairs[2]}" "${busy[2]}"
+  each=$(paste <(echo "${rates[1]}" | tr ' ' '\n' | grep -v '^$') \
+    <(echo "${rates[2]}" | tr ' ' '\n' | grep -v '^$') | awk '{printf "%.1f ", 100 * $2 / (2 * $1)}')
+  printf "%-44s repeat by repeat: %s(median %s %%)\n" "" "$each" "$(echo "$each" | median)"
+  unset rates imbalance busy pairs
 done
