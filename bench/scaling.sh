@@ -10,6 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
+source bench/stats.sh
 yuxi=build/release/apps/yuxi/yuxi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -37,7 +38,6 @@ for c in "${cases[@]}"; do
       pairs[$np]=$(grep -oP '\K[0-9.]+(?= in listed pairs)' "$log" || echo 1.000)
     done
   done
-  median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
   p1=$(echo "${rates[1]}" | median)
   p2=$(echo "${rates[2]}" | median)
   eff=$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.1f %%", 100 * b / (2 * a)}')
@@ -45,8 +45,7 @@ for c in "${cases[@]}"; do
     "${pairs[1]}" "${busy[1]}"
   printf "%-44s %5s %16.4g %11s %10s %10s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}" \
     "${pairs[2]}" "${busy[2]}"
-  each=$(paste <(echo "${rates[1]}" | tr ' ' '\n' | grep -v '^$') \
-    <(echo "${rates[2]}" | tr ' ' '\n' | grep -v '^$') | awk '{printf "%.1f ", 100 * $2 / (2 * $1)}')
+  each=$(run_by_run "${rates[1]}" "${rates[2]}" 50 %.1f) # 100 % * ps(2) / (2 ps(1))
   printf "%-44s repeat by repeat: %s(median %s %%)\n" "" "$each" "$(echo "$each" | median)"
   unset rates imbalance busy pairs
 done

@@ -10,6 +10,8 @@
 if ! command -v lmp > /dev/null; then
   if [[ $(id -u) -eq 0 ]]; then apt-get install -y -q lammps > /dev/null; else sudo apt-get install -y -q lammps > /dev/null; fi
 fi
+# shellcheck source=bench/stats.sh
+source "$(dirname "${BASH_SOURCE[0]}")/stats.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mpi=(mpirun --allow-run-as-root --oversubscribe --bind-to none)
@@ -65,7 +67,6 @@ run_yuxi() {
 # settled folder kept from an earlier invocation gives LAMMPS the skin that yuxi resumes with.
 run_skin() { grep -oP '^skin *= *\K[0-9.e+-]+' "$1/scene.resolved.toml"; }
 
-median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 report() {
   local case=$1 title=$2 n=$3
   printf "\n%s (medians of %d)\n" "$title" "$repeats"
@@ -87,11 +88,9 @@ report() {
   # Each yuxi run against the LAMMPS run just before it: a burst of load from other jobs on the
   # machine slows a run or two, and moves this median less than the ratio of the medians.
   for np in 1 2; do
-    local pairs
-    pairs=$(paste <(echo "${rates[lammps,$case,$np]}" | tr ' ' '\n' | grep -v '^$') \
-      <(echo "${rates[yuxi,$case,$np]}" | tr ' ' '\n' | grep -v '^$') |
-      awk '{printf "%.2f ", $2 / $1}')
-    printf "yuxi/LAMMPS run by run on %d rank(s): %s(median %s)\n" "$np" "$pairs" \
-      "$(echo "$pairs" | median)"
+    local ratios
+    ratios=$(run_by_run "${rates[lammps,$case,$np]}" "${rates[yuxi,$case,$np]}" 1 %.2f)
+    printf "yuxi/LAMMPS run by run on %d rank(s): %s(median %s)\n" "$np" "$ratios" \
+      "$(echo "$ratios" | median)"
   done
 }
