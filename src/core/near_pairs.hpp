@@ -22,9 +22,12 @@
 namespace yuxi {
 
 struct NearPairs {
-  std::vector<std::uint32_t> pairs; // indices into the neighbour list, ascending
-  double margin = 0.0;              // the gap beyond r_i + r_j they were picked within [length]
-  double moved = 0.0; // bound on any particle's displacement since they were picked [length]
+  // Indices into the neighbour list, ascending: those with a ghost partner first where they
+  // were picked apart (NeighborList::ghost_pairs), then the rest.
+  std::vector<std::uint32_t> pairs;
+  std::uint32_t n_ghost = 0; // the pairs with a ghost partner that come first
+  double margin = 0.0;       // the gap beyond r_i + r_j they were picked within [length]
+  double moved = 0.0;        // bound on any particle's displacement since they were picked [length]
   bool picked = false;
 
   // Whether no pair left out can touch yet.
@@ -33,7 +36,8 @@ struct NearPairs {
 };
 
 // Picks the near pairs of `list`: those closer than r_i + r_j + margin, and those whose contact
-// state slot (`slot`, aligned with the list; no_slot for none) is taken.
+// state slot (`slot`, aligned with the list; no_slot for none) is taken. Where the list has
+// its ghost pairs apart, so do the near pairs.
 void pick_near_pairs(const Vec3* x, const double* radius, const NeighborList& list,
                      const std::uint32_t* slot, double margin, NearPairs& near);
 

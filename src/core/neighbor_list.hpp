@@ -15,6 +15,10 @@
 // Rows are grouped by the owned particle i (CSR: offsets/partners), and `rows` gives each pair's
 // i as well, so that the pair loop scans all pairs as one flat range (core/overlap_scan.hpp);
 // the contact history is stored aligned with `partners`.
+//
+// Where the forces on ghosts travel back to another rank, the pair loop computes the pairs with
+// a ghost first, sends those forces, and computes the rest while they travel: `ghost_pairs`
+// lists the former (index_ghost_pairs()); the rest are the pairs whose partner is owned.
 #pragma once
 
 #include "core/cell_grid.hpp"
@@ -32,14 +36,30 @@ struct PlaneContactRef {
 };
 
 struct NeighborList {
-  std::vector<std::uint32_t> offsets;  // n_owned + 1 row offsets into partners
-  std::vector<std::uint32_t> partners; // j of each pair, grouped by i
-  std::vector<std::uint32_t> rows;     // i of each pair (aligned with partners)
-  std::vector<PlaneContactRef> planes; // grain-plane candidate contacts (filled by the owner)
+  std::vector<std::uint32_t> offsets;     // n_owned + 1 row offsets into partners
+  std::vector<std::uint32_t> partners;    // j of each pair, grouped by i
+  std::vector<std::uint32_t> rows;        // i of each pair (aligned with partners)
+  std::vector<PlaneContactRef> planes;    // grain-plane candidate contacts (filled by the owner)
+  std::vector<std::uint32_t> ghost_pairs; // pairs whose partner is a ghost, ascending (or none)
 
   std::size_t memory_bytes() const {
-    return (offsets.capacity() + partners.capacity() + rows.capacity()) * sizeof(std::uint32_t) +
+    return (offsets.capacity() + partners.capacity() + rows.capacity() + ghost_pairs.capacity()) *
+               sizeof(std::uint32_t) +
            planes.capacity() * sizeof(PlaneContactRef);
+  }
+
+  // The owned particles' count (partners at or above it are ghosts).
+  std::uint32_t n_owned() const {
+    return offsets.empty() ? 0 : static_cast<std::uint32_t>(offsets.size() - 1);
+  }
+
+  // Fills `ghost_pairs`; their_own = false leaves it empty (the loop then runs in list order).
+  void index_ghost_pairs(bool their_own) {
+    ghost_pairs.clear();
+    if (!their_own) return ghost_pairs.shrink_to_fit();
+    const std::uint32_t owned = n_owned();
+    for (std::uint32_t p = 0; p < partners.size(); ++p)
+      if (partners[p] >= owned) ghost_pairs.push_back(p);
   }
 
   std::size_t n_pairs() const { return partners.size(); }

@@ -4,21 +4,24 @@ namespace yuxi {
 namespace {
 
 // The scan over the pairs pair(begin), ..., pair(end - 1).
-template <class PairAt>
+// (`limited`: whether partner_limit can pass any pair over; the scan of the near pairs, and of
+// a list without its ghost pairs apart, skips the test.)
+template <bool limited, class PairAt>
 OverlapScanCounts scan(const Vec3* x, const double* radius, const std::uint32_t* row,
                        const std::uint32_t* partner, const std::uint32_t* slot, PairAt pair,
-                       std::uint32_t begin, std::uint32_t end, std::uint32_t* touching,
-                       std::uint32_t* parted) {
+                       std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
+                       std::uint32_t* touching, std::uint32_t* parted) {
   OverlapScanCounts c;
   for (std::uint32_t q = begin; q < end; ++q) {
     const std::uint32_t p = pair(q), i = row[p], j = partner[p];
     const Vec3 d = x[i] - x[j];
     const double touch = radius[i] + radius[j];
-    const std::uint32_t hit = norm2(d) < touch * touch;
+    const std::uint32_t mine = limited ? static_cast<std::uint32_t>(j < partner_limit) : 1u;
+    const std::uint32_t close = norm2(d) < touch * touch;
     touching[c.touching] = p;
-    c.touching += hit;
+    c.touching += close & mine;
     parted[c.parted] = p;
-    c.parted += (hit ^ 1u) & static_cast<std::uint32_t>(slot[p] != no_slot);
+    c.parted += (close ^ 1u) & mine & static_cast<std::uint32_t>(slot[p] != no_slot);
   }
   return c;
 }
@@ -27,19 +30,21 @@ OverlapScanCounts scan(const Vec3* x, const double* radius, const std::uint32_t*
 
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
                                 const std::uint32_t* partner, const std::uint32_t* slot,
-                                std::uint32_t begin, std::uint32_t end, std::uint32_t* touching,
-                                std::uint32_t* parted) {
-  return scan(
-      x, radius, row, partner, slot, [](std::uint32_t q) { return q; }, begin, end, touching,
-      parted);
+                                std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
+                                std::uint32_t* touching, std::uint32_t* parted) {
+  const auto at = [](std::uint32_t q) { return q; };
+  return partner_limit == 0xFFFFFFFFu
+             ? scan<false>(x, radius, row, partner, slot, at, begin, end, 0, touching, parted)
+             : scan<true>(x, radius, row, partner, slot, at, begin, end, partner_limit, touching,
+                          parted);
 }
 
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
                                 const std::uint32_t* partner, const std::uint32_t* slot,
                                 const std::uint32_t* pairs, std::uint32_t begin, std::uint32_t end,
                                 std::uint32_t* touching, std::uint32_t* parted) {
-  return scan(
-      x, radius, row, partner, slot, [pairs](std::uint32_t q) { return pairs[q]; }, begin, end,
+  return scan<false>(
+      x, radius, row, partner, slot, [pairs](std::uint32_t q) { return pairs[q]; }, begin, end, 0,
       touching, parted);
 }
 

@@ -97,6 +97,45 @@ void Comm::send_receive(int dest, const std::string& out, int source, std::strin
                MPI_STATUS_IGNORE);
 }
 
+Comm::Exchange Comm::start_send_receive(int dest, const std::string& out, int source,
+                                        std::string& in, std::size_t in_bytes, int tag) const {
+  Exchange e;
+  if (size_ == 1 || (dest == rank_ && source == rank_)) {
+    in = source < 0 ? std::string() : out;
+    return e;
+  }
+  static_assert(sizeof(MPI_Request) <= sizeof(std::intptr_t));
+  const MPI_Comm c = to_mpi(handle_);
+  dest = dest < 0 ? MPI_PROC_NULL : dest;
+  source = source < 0 ? MPI_PROC_NULL : source;
+  in.resize(source == MPI_PROC_NULL ? 0 : in_bytes);
+  MPI_Request requests[2];
+  MPI_Irecv(in.data(), static_cast<int>(in.size()), MPI_BYTE, source, tag, c, &requests[1]);
+  MPI_Isend(out.data(), dest == MPI_PROC_NULL ? 0 : static_cast<int>(out.size()), MPI_BYTE, dest,
+            tag, c, &requests[0]);
+  for (int k = 0; k < 2; ++k) std::memcpy(&e.requests[k], &requests[k], sizeof(MPI_Request));
+  e.sending = e.receiving = true;
+  return e;
+}
+
+namespace {
+void wait_for(std::intptr_t& stored, bool& pending) {
+  if (!pending || !mpi_running()) return;
+  MPI_Request request;
+  std::memcpy(&request, &stored, sizeof(MPI_Request));
+  MPI_Wait(&request, MPI_STATUS_IGNORE);
+  pending = false;
+}
+} // namespace
+
+void Comm::wait_receive(Exchange& e) const {
+  wait_for(e.requests[1], e.receiving);
+}
+
+void Comm::wait_send(Exchange& e) const {
+  wait_for(e.requests[0], e.sending);
+}
+
 std::vector<std::string> Comm::gather(std::string mine) const {
   if (size_ == 1) {
     std::vector<std::string> out;
@@ -196,6 +235,13 @@ void Comm::send_receive(int, const std::string& out, int source, std::string& in
                         int) const {
   in = source < 0 ? std::string() : out;
 }
+Comm::Exchange Comm::start_send_receive(int, const std::string& out, int source, std::string& in,
+                                        std::size_t, int) const {
+  in = source < 0 ? std::string() : out;
+  return {};
+}
+void Comm::wait_receive(Exchange&) const {}
+void Comm::wait_send(Exchange&) const {}
 std::vector<std::string> Comm::gather(std::string mine) const {
   std::vector<std::string> out;
   out.push_back(std::move(mine));

@@ -36,6 +36,20 @@ public:
   // storage), in one message instead of two.
   void send_receive(int dest, const std::string& out, int source, std::string& in,
                     std::size_t in_bytes, int tag) const;
+  // A send-receive under way (start_send_receive() until finish()): neither its outgoing
+  // string nor its incoming one may be touched meanwhile.
+  struct Exchange {
+    std::intptr_t requests[2] = {0, 0}; // MPI_Request values (send, receive)
+    bool sending = false, receiving = false;
+  };
+  // The second send_receive() split up, so that the caller computes while the bytes travel:
+  // start posts both sides and returns at once; wait_receive() returns once `in` holds the
+  // bytes, wait_send() once `out` may be touched again (the receiver has taken them: a rank
+  // need not wait for the other to reach its wait_receive() until it reuses `out`).
+  Exchange start_send_receive(int dest, const std::string& out, int source, std::string& in,
+                              std::size_t in_bytes, int tag) const;
+  void wait_receive(Exchange& exchange) const;
+  void wait_send(Exchange& exchange) const;
   // Rank 0 gets every rank's bytes, in rank order; the others get nothing.
   // (Taken by value: on one rank the bytes move through without a copy.)
   std::vector<std::string> gather(std::string mine) const;

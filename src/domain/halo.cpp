@@ -107,12 +107,15 @@ void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, dou
     earlier_ghosts = earlier_ghosts || crossed;
   }
   n_ghosts_ = s.n_ghost();
+  last_message_ = swaps_.size();
+  for (std::size_t k = swaps_.size(); k-- > 0;)
+    if (!swaps_[k].local(comm)) last_message_ = k;
 }
 
 void Halo::forward(ParticleStore& s, const Comm& comm) const {
   for (std::size_t k = 0; k < swaps_.size(); ++k) {
     const Swap& w = swaps_[k];
-    if (w.send_to == comm.rank() && w.receive_from == comm.rank()) {
+    if (w.local(comm)) {
       // A periodic image of our own particles: copy, no message.
       for (std::uint32_t n = 0; n < w.count; ++n) {
         const std::uint32_t i = w.sends[n], g = w.first + n;
@@ -144,39 +147,67 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
   }
 }
 
-template <class... Field> void Halo::reverse_add(const Comm& comm, Field&... fields) const {
-  for (std::size_t k = swaps_.size(); k-- > 0;) {
+template <class... Field> void Halo::pack_back(const Swap& w, std::string& out, Field&... fields) {
+  // The ghosts of a swap are contiguous: one block per field, copied whole.
+  out.clear();
+  if (w.count > 0)
+    (out.append(reinterpret_cast<const char*>(&fields[w.first]), w.count * sizeof(fields[0])), ...);
+}
+
+template <class... Field> void Halo::add_back(const Swap& w, Field&... fields) const {
+  std::size_t at = 0;
+  const auto add_block = [&](auto& field) {
+    for (const std::uint32_t i : w.sends)
+      field[i] += take<std::decay_t<decltype(field[i])>>(in_, at);
+  };
+  (add_block(fields), ...);
+}
+
+template <class... Field>
+void Halo::reverse_add(const Comm& comm, std::size_t from, std::size_t down_to,
+                       Field&... fields) const {
+  for (std::size_t k = from; k-- > down_to;) {
     const Swap& w = swaps_[k];
-    if (w.send_to == comm.rank() && w.receive_from == comm.rank()) {
+    if (w.local(comm)) {
       for (std::uint32_t n = 0; n < w.count; ++n) {
         const std::uint32_t i = w.sends[n], g = w.first + n;
         ((fields[i] += fields[g]), ...);
       }
       continue;
     }
-    // The ghosts of a swap are contiguous: one block per field, copied whole.
-    out_.clear();
-    if (w.count > 0)
-      (out_.append(reinterpret_cast<const char*>(&fields[w.first]), w.count * sizeof(fields[0])),
-       ...);
+    pack_back(w, out_, fields...);
     // back the way the ghosts came: to the rank they were received from
     comm.send_receive(w.receive_from, out_, w.send_to, in_,
                       w.sends.size() * (sizeof(fields[0]) + ...), 400 + 2 * static_cast<int>(k));
-    std::size_t at = 0;
-    const auto add_block = [&](auto& field) {
-      for (const std::uint32_t i : w.sends)
-        field[i] += take<std::decay_t<decltype(field[i])>>(in_, at);
-    };
-    (add_block(fields), ...);
+    add_back(w, fields...);
   }
 }
 
 void Halo::reverse(ParticleStore& s, const Comm& comm) const {
-  reverse_add(comm, s.f, s.torque);
+  reverse_add(comm, swaps_.size(), 0, s.f, s.torque);
+}
+
+void Halo::reverse_start(ParticleStore& s, const Comm& comm) const {
+  if (!sends_to_other_ranks()) return reverse(s, comm);
+  const std::size_t k = last_message_;
+  reverse_add(comm, swaps_.size(), k + 1, s.f, s.torque);
+  const Swap& w = swaps_[k];
+  settle(comm);
+  pack_back(w, back_out_, s.f, s.torque);
+  back_ = comm.start_send_receive(w.receive_from, back_out_, w.send_to, in_,
+                                  w.sends.size() * (sizeof(s.f[0]) + sizeof(s.torque[0])),
+                                  400 + 2 * static_cast<int>(k));
+}
+
+void Halo::reverse_finish(ParticleStore& s, const Comm& comm) const {
+  if (!sends_to_other_ranks()) return;
+  comm.wait_receive(back_);
+  add_back(swaps_[last_message_], s.f, s.torque);
+  reverse_add(comm, last_message_, 0, s.f, s.torque);
 }
 
 void Halo::reverse_sum(std::vector<double>& per_particle, const Comm& comm) const {
-  reverse_add(comm, per_particle);
+  reverse_add(comm, swaps_.size(), 0, per_particle);
 }
 
 void Halo::migrate(

@@ -22,6 +22,9 @@
 // forward(): the same swaps again, moving positions and velocities only.
 // reverse(): the swaps backwards, moving forces and torques on ghosts back to the particles
 // they copy, where they are added (each pair force was computed once, on one rank).
+// reverse_start() and reverse_finish() split it around other work: the swaps back run up to
+// the last one that is a message to another rank, which is left travelling; the finish adds
+// what it brought and runs the swaps back after it (periodic images on this rank).
 // migrate(): at a rebuild, owned particles that have left the sub-domain go to the neighbour
 // that owns them now (one hop per axis: nothing moves more than skin/2 between rebuilds),
 // each with an opaque payload (its contact history, packed by the caller).
@@ -55,6 +58,16 @@ public:
              const GhostPayload* payload = nullptr);
   void forward(ParticleStore& s, const Comm& comm) const;
   void reverse(ParticleStore& s, const Comm& comm) const;
+  // reverse() in two halves. The ghosts' forces leave at the start; between the halves the
+  // caller may add forces to owned particles, and the finish adds what came back.
+  void reverse_start(ParticleStore& s, const Comm& comm) const;
+  void reverse_finish(ParticleStore& s, const Comm& comm) const;
+  // Waits until the other rank has taken the forces reverse_start() sent (reverse_finish()
+  // waits only for those coming here; the next reverse_start() settles the last one).
+  void settle(const Comm& comm) const { comm.wait_send(back_); }
+  // Whether forces on ghosts go back to another rank: reverse_start() then leaves a message
+  // travelling that the caller can compute beside.
+  bool sends_to_other_ranks() const { return last_message_ < swaps_.size(); }
   // The same for one quantity per particle (owned, then ghosts): ghosts' values are added to
   // the particles they copy (a per-particle sum of pair contributions, like the forces).
   void reverse_sum(std::vector<double>& per_particle, const Comm& comm) const;
@@ -69,16 +82,31 @@ public:
           const std::function<void(std::size_t, const std::string&)>& arrived);
 
 private:
-  template <class... Field> void reverse_add(const Comm& comm, Field&... fields) const;
+  // The swaps back from swap `from` - 1 down to swap `down_to`, one after the other.
+  template <class... Field>
+  void reverse_add(const Comm& comm, std::size_t from, std::size_t down_to, Field&... fields) const;
+  struct Swap;
+  // The ghosts' values of swap w, one block per field, into `out`.
+  template <class... Field>
+  static void pack_back(const Swap& w, std::string& out, Field&... fields);
+  // Adds what in_ holds (pack_back() of the other side) to the particles w sent.
+  template <class... Field> void add_back(const Swap& w, Field&... fields) const;
   struct Swap {
+    // With this rank itself (a periodic image): copied, no message.
+    bool local(const Comm& comm) const {
+      return send_to == comm.rank() && receive_from == comm.rank();
+    }
     int send_to = -1, receive_from = -1;
     Vec3 shift;                         // added to what is sent (crossing a periodic boundary)
     std::vector<std::uint32_t> sends;   // local indices sent
     std::uint32_t first = 0, count = 0; // where the received ghosts were put
   };
   std::vector<Swap> swaps_;
+  std::size_t last_message_ = 0; // the last swap back that is a message (the size: none)
   std::size_t n_ghosts_ = 0;
   mutable std::string out_, in_; // message buffers of forward() and reverse(), kept between steps
+  mutable Comm::Exchange back_;  // the last swap back, from reverse_start() until settled
+  mutable std::string back_out_; // what it sends
 };
 
 } // namespace yuxi

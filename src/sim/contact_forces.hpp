@@ -22,6 +22,11 @@
 
 namespace yuxi {
 
+// Which listed pairs a call of ContactForces::compute() evaluates: all of them, or (where the
+// list has its ghost pairs apart: NeighborList::ghost_pairs) those with a ghost partner first,
+// then the others with the flat walls.
+enum class PairSet { all, ghost, owned };
+
 template <class Model> class ContactForces {
 public:
   using State = typename Model::State;
@@ -33,12 +38,15 @@ public:
 
   // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
   // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
+  // PairSet::ghost and then PairSet::owned do what one call with PairSet::all does, with
+  // the pairs in another order.
   void compute(ParticleStore& s, const NeighborList& list, const NearPairs* near,
                const std::vector<PlaneWall>& planes, double t, double dt, bool walls_still,
-               ContactTally& tally, ContactRecord& record) {
+               ContactTally& tally, ContactRecord& record, PairSet set = PairSet::all) {
     walls_still_ = walls_still;
     near_ = near && near->hold() ? near : nullptr;
-    if (record.enabled) {
+    set_ = set;
+    if (record.enabled && set != PairSet::owned) {
       record.pair_force.assign(list.n_pairs(), Vec3{});
       record.pair_elastic.assign(list.n_pairs(), 0.0);
       record.plane_force.assign(list.planes.size(), Vec3{});
@@ -52,7 +60,7 @@ public:
       }
     }
     if (!batched) compute_pairs(s, list, dt, tally, record);
-    compute_planes(s, list, planes, t, dt, tally, record);
+    if (set != PairSet::ghost) compute_planes(s, list, planes, t, dt, tally, record);
   }
 
 private:
@@ -95,15 +103,31 @@ private:
     const std::uint32_t* rows = list.rows.data();
     constexpr std::uint32_t chunk = 256;
     std::uint32_t touching_pairs[chunk], parted_pairs[chunk];
-    const std::uint32_t* near = near_ ? near_->pairs.data() : nullptr;
-    const auto n_pairs = static_cast<std::uint32_t>(near ? near_->pairs.size() : list.n_pairs());
-    for (std::uint32_t begin = 0; begin < n_pairs; begin += chunk) {
-      const std::uint32_t end = std::min(begin + chunk, n_pairs);
+    // The pairs scanned: an index list (the near pairs, or the ghost pairs) or the whole list,
+    // from `first` to `last`, passing over partners at or above `partner_limit`.
+    const std::uint32_t* index = near_ ? near_->pairs.data() : nullptr;
+    std::uint32_t first = 0,
+                  last = static_cast<std::uint32_t>(near_ ? near_->pairs.size() : list.n_pairs());
+    std::uint32_t partner_limit = 0xFFFFFFFFu;
+    if (set_ == PairSet::ghost) {
+      if (near_)
+        last = near_->n_ghost;
+      else
+        index = list.ghost_pairs.data(), last = static_cast<std::uint32_t>(list.ghost_pairs.size());
+    } else if (set_ == PairSet::owned) {
+      if (near_)
+        first = near_->n_ghost;
+      else if (!list.ghost_pairs.empty())
+        partner_limit = list.n_owned();
+    }
+    for (std::uint32_t begin = first; begin < last; begin += chunk) {
+      const std::uint32_t end = std::min(begin + chunk, last);
       const std::uint32_t* slot = history.pair_slot.data();
-      const OverlapScanCounts found = near ? scan_overlaps(x, radius, rows, partners, slot, near,
-                                                           begin, end, touching_pairs, parted_pairs)
-                                           : scan_overlaps(x, radius, rows, partners, slot, begin,
-                                                           end, touching_pairs, parted_pairs);
+      const OverlapScanCounts found =
+          index ? scan_overlaps(x, radius, rows, partners, slot, index, begin, end, touching_pairs,
+                                parted_pairs)
+                : scan_overlaps(x, radius, rows, partners, slot, begin, end, partner_limit,
+                                touching_pairs, parted_pairs);
       for (std::uint32_t k = 0; k < found.parted; ++k) {
         const std::uint32_t p = parted_pairs[k];
         tally.dissipated +=
@@ -292,6 +316,7 @@ private:
   ContactLaw<Model> law_;
   std::unique_ptr<Batch> batch_;    // null where the law needs the one-by-one loop
   bool walls_still_ = false;        // of the step being computed
+  PairSet set_ = PairSet::all;      // of the call being computed
   const NearPairs* near_ = nullptr; // the near pairs scanned this step, if they hold
 };
 

@@ -393,6 +393,9 @@ void Simulation::rebuild(bool stash_history) {
   store_.trim_capacity();
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
+  // Where forces on ghosts go back to another rank, the pairs with a ghost come first
+  // (compute_forces()).
+  list_.index_ghost_pairs(halo_.sends_to_other_ranks());
   near_.picked = false; // (they index the old list)
   list_.planes.clear();
   for (std::uint32_t i = 0; i < store_.n_owned(); ++i) {
@@ -576,14 +579,33 @@ void Simulation::compute_forces(bool advance_history) {
   tally_ = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
   refresh_near_pairs();
-  std::visit(
-      [&](auto& f) {
-        f.compute(store_, list_, &near_, planes_, time_, dt, walls_still_, tally_, record_);
-      },
-      forces_);
-  timers_.pair += seconds_since(t0);
-  t0 = Clock::now();
-  halo_.reverse(store_, comm_);
+  const auto compute = [&](PairSet set) {
+    std::visit(
+        [&](auto& f) {
+          f.compute(store_, list_, &near_, planes_, time_, dt, walls_still_, tally_, record_, set);
+        },
+        forces_);
+  };
+  if (list_.ghost_pairs.empty()) {
+    compute(PairSet::all);
+    timers_.pair += seconds_since(t0);
+    t0 = Clock::now();
+    halo_.reverse(store_, comm_);
+  } else {
+    // The pairs with a ghost first: their forces travel back to the ghosts' owners while the
+    // pairs of owned particles are computed, so neither rank waits for the message unless the
+    // other is later than that whole computation.
+    compute(PairSet::ghost);
+    timers_.pair += seconds_since(t0);
+    t0 = Clock::now();
+    halo_.reverse_start(store_, comm_);
+    timers_.comm += seconds_since(t0);
+    t0 = Clock::now();
+    compute(PairSet::owned);
+    timers_.pair += seconds_since(t0);
+    t0 = Clock::now();
+    halo_.reverse_finish(store_, comm_);
+  }
   timers_.comm += seconds_since(t0);
   check_health();
 }

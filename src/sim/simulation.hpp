@@ -77,6 +77,10 @@ public:
   // of ranks that share the simulation (a group of one: serial).
   Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
              std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world());
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+  // Waits for the last forces sent back to another rank to be taken (halo.hpp: settle()).
+  ~Simulation() { halo_.settle(comm_); }
 
   void step();
   void run(std::int64_t n_steps) {

@@ -1,6 +1,7 @@
 // The near pairs (core/near_pairs.hpp) stand for the Verlet list in the overlap test: they hold
 // the pairs closer than r_i + r_j + margin and those with a contact state, and scanning them
-// instead of the whole list changes nothing, to the bit.
+// instead of the whole list changes nothing, to the bit. Where the ghost pairs are computed
+// apart (first), the near pairs keep them apart.
 #include "core/near_pairs.hpp"
 #include "core/random.hpp"
 #include "test_support.hpp"
@@ -28,6 +29,28 @@ TEST(NearPairs, KeepThePairsWithinTheMarginAndThoseInContact) {
   EXPECT_TRUE(near.hold()); // both partners may have closed 0.048 of a 0.05 gap
   near.moved = 0.025;
   EXPECT_FALSE(near.hold());
+}
+
+TEST(NearPairs, ComeGhostPairsFirstWhereTheListHasThemApart) {
+  // The same spheres, the first three owned and the last two ghosts.
+  const std::vector<Vec3> x{{0, 0, 0}, {0.9, 0, 0}, {1.04, 0, 0}, {1.2, 0, 0}, {0, 1.3, 0}};
+  const std::vector<double> radius(5, 0.5);
+  NeighborList list;
+  list.offsets = {0, 4, 4, 4};
+  list.partners = {1, 2, 3, 4};
+  list.index_rows();
+  list.index_ghost_pairs(true);
+  EXPECT_EQ(list.ghost_pairs, (std::vector<std::uint32_t>{2, 3}));
+  const std::vector<std::uint32_t> slot{no_slot, no_slot, no_slot, 7};
+  NearPairs near;
+  pick_near_pairs(x.data(), radius.data(), list, slot.data(), 0.05, near);
+  EXPECT_EQ(near.pairs, (std::vector<std::uint32_t>{3, 0, 1}));
+  EXPECT_EQ(near.n_ghost, 1u);
+  list.index_ghost_pairs(false); // one rank: list order
+  EXPECT_TRUE(list.ghost_pairs.empty());
+  pick_near_pairs(x.data(), radius.data(), list, slot.data(), 0.05, near);
+  EXPECT_EQ(near.pairs, (std::vector<std::uint32_t>{0, 1, 3}));
+  EXPECT_EQ(near.n_ghost, 0u);
 }
 
 // A frictional, polydisperse pile settling under gravity in a box with a periodic axis: slow
