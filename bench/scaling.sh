@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # Strong scaling of yuxi on 1 and 2 MPI ranks, side by side in one invocation: runs alternate
-# A B A B (1 rank, 2 ranks, ...) so that machine drift affects both alike. Prints, per scene and
-# rank count, the median particle-steps/s, the parallel efficiency ps(2) / (2 ps(1)), and the
-# load imbalance after balancing (max/mean over ranks, of the last run): in owned particles, in
-# listed pairs and in compute time (pair + neighbour + integrate). Under each scene, the efficiency
-# of each repeat (its 2-rank run against the 1-rank run just before it) and their median, which
-# a burst of load from other jobs on the machine moves less than the ratio of the medians.
+# (1 rank, 2 ranks, 2 ranks balanced by time, ...) so that machine drift affects all alike.
+# Prints, per scene and variant, the median particle-steps/s, the parallel efficiency
+# ps(2) / (2 ps(1)), and the load imbalance after balancing (max/mean over ranks, of the last
+# run): in owned particles, in listed pairs and in compute time (pair + neighbour + integrate).
+# The 2-rank runs balance the cut planes by listed pairs (domain.balance_by = "pairs", the
+# default) and by each rank's measured compute time (--balance-by time). Under each scene, the
+# efficiency of each repeat (its 2-rank run against the 1-rank run just before it) and their
+# median, which a burst of load from other jobs on the machine moves less than the ratio of the
+# medians.
 # usage: bench/scaling.sh [REPEATS]      (build first: cmake --build --preset release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
+# shellcheck source=bench/stats.sh
 source bench/stats.sh
 yuxi=build/release/apps/yuxi/yuxi
 work=$(mktemp -d)
@@ -18,7 +22,9 @@ trap 'rm -rf "$work"' EXIT
 # first tau is free fall, with hardly a contact). The paper-size basin: bench/basin_paper.sh.
 cases=("scenes/chute-lammps.toml|1.0|chute, 32,000 spheres, 10,000 steps"
        "scenes/basin-small.toml|11.0|basin-small, 4,220 particles, 110,000 steps")
-printf "%-44s %5s %16s %11s %10s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
+# variant: ranks and balancing
+variants=("1 pairs" "2 pairs" "2 time")
+printf "%-44s %-14s %16s %11s %10s %10s %10s\n" "scene" "ranks" "particle-steps/s" "efficiency" \
   "particles" "pairs" "compute"
 for c in "${cases[@]}"; do
   IFS='|' read -r scene t_end label <<< "$c"
@@ -26,26 +32,37 @@ for c in "${cases[@]}"; do
   declare -A imbalance=()
   declare -A busy=()
   declare -A pairs=()
-  for r in $(seq 1 "$repeats"); do
-    for np in 1 2; do
-      log=$work/np$np.log
+  for _ in $(seq 1 "$repeats"); do
+    for v in "${variants[@]}"; do
+      read -r np by <<< "$v"
+      log=$work/run.log
       mpirun --allow-run-as-root --oversubscribe -np "$np" "$yuxi" run "$scene" --t-end "$t_end" \
-        -o "$work/out" --overwrite --no-progress --no-plots \
+        --balance-by "$by" -o "$work/out" --overwrite --no-progress --no-plots \
         > "$log" 2>&1
-      rates[$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$log") "
-      imbalance[$np]=$(grep -oP 'load max/mean \K[0-9.]+(?= in particles)' "$log" || echo 1.000)
-      busy[$np]=$(grep -oP '\K[0-9.]+(?= in compute time)' "$log" || echo 1.000)
-      pairs[$np]=$(grep -oP '\K[0-9.]+(?= in listed pairs)' "$log" || echo 1.000)
+      rates[$v]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$log") "
+      imbalance[$v]=$(grep -oP 'load max/mean \K[0-9.]+(?= in particles)' "$log" || echo 1.000)
+      busy[$v]=$(grep -oP '\K[0-9.]+(?= in compute time)' "$log" || echo 1.000)
+      pairs[$v]=$(grep -oP '\K[0-9.]+(?= in listed pairs)' "$log" || echo 1.000)
     done
   done
-  p1=$(echo "${rates[1]}" | median)
-  p2=$(echo "${rates[2]}" | median)
-  eff=$(awk -v a="$p1" -v b="$p2" 'BEGIN {printf "%.1f %%", 100 * b / (2 * a)}')
-  printf "%-44s %5s %16.4g %11s %10s %10s %10s\n" "$label" 1 "$p1" "" "${imbalance[1]}" \
-    "${pairs[1]}" "${busy[1]}"
-  printf "%-44s %5s %16.4g %11s %10s %10s %10s\n" "" 2 "$p2" "$eff" "${imbalance[2]}" \
-    "${pairs[2]}" "${busy[2]}"
-  each=$(run_by_run "${rates[1]}" "${rates[2]}" 50 %.1f) # 100 % * ps(2) / (2 ps(1))
-  printf "%-44s repeat by repeat: %s(median %s %%)\n" "" "$each" "$(echo "$each" | median)"
+  p1=$(echo "${rates[1 pairs]}" | median)
+  for v in "${variants[@]}"; do
+    read -r np by <<< "$v"
+    p=$(echo "${rates[$v]}" | median)
+    name="1"
+    eff=""
+    if [[ $np == 2 ]]; then
+      name="2, by $by"
+      eff=$(awk -v a="$p1" -v b="$p" 'BEGIN {printf "%.1f %%", 100 * b / (2 * a)}')
+    fi
+    printf "%-44s %-14s %16.4g %11s %10s %10s %10s\n" "$label" "$name" "$p" "$eff" \
+      "${imbalance[$v]}" "${pairs[$v]}" "${busy[$v]}"
+    label=""
+  done
+  for by in pairs time; do
+    each=$(run_by_run "${rates[1 pairs]}" "${rates[2 $by]}" 50 %.1f) # 100 % * ps(2) / (2 ps(1))
+    printf "%-44s 2 by %s, repeat by repeat: %s(median %s %%)\n" "" "$by" "$each" \
+      "$(echo "$each" | median)"
+  done
   unset rates imbalance busy pairs
 done

@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
   run->add_flag("--overwrite", opt.overwrite, "Replace an existing output folder");
   run->add_flag("--force", opt.force_dt, "Run even if dt exceeds t_c/10 of the stiffest contact");
   run->add_option("--t-end", opt.t_end, "Override run.t_end");
+  run->add_option("--balance-by", opt.balance_by, "Override domain.balance_by")
+      ->check(CLI::IsMember({"pairs", "time"}));
   run->add_flag("!--no-progress", opt.progress, "Do not show progress on the terminal");
   run->add_flag("!--no-plots", opt.plots, "Do not draw the plots at the end");
 

@@ -21,6 +21,11 @@ namespace fs = std::filesystem;
 namespace yuxi {
 namespace {
 
+void apply_balance_by(const RunCommandOptions& o, Scene& scene) {
+  if (!o.balance_by.empty())
+    scene.sim.balance_by = o.balance_by == "time" ? BalanceBy::time : BalanceBy::pairs;
+}
+
 Scene load(const RunCommandOptions& o) {
   Scene scene = o.scene_path.empty() ? read_scene_text(default_scene_text, default_scene_name)
                                      : read_scene_file(o.scene_path);
@@ -28,6 +33,7 @@ Scene load(const RunCommandOptions& o) {
     if (!(*o.t_end > 0)) throw SceneError(fmt::format("--t-end: must be > 0 (got {})", *o.t_end));
     scene.run.t_end = *o.t_end;
   }
+  apply_balance_by(o, scene);
   return scene;
 }
 
@@ -108,9 +114,10 @@ bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
   try {
     scene_text = data->scene_text;
     scene = read_scene_text(scene_text, (fs::path(o.resume) / "scene.resolved.toml").string());
-    if (o.t_end) {
-      scene.run.t_end = *o.t_end;
-      scene_text = resolved_scene_toml(scene); // later checkpoints carry the new end
+    if (o.t_end || !o.balance_by.empty()) {
+      if (o.t_end) scene.run.t_end = *o.t_end;
+      apply_balance_by(o, scene);
+      scene_text = resolved_scene_toml(scene); // later checkpoints carry the new settings
     }
     BuildReport report;
     sim = build_simulation(scene, true, &report);

@@ -13,6 +13,7 @@ struct RunCommandOptions {
   bool overwrite = false;
   bool force_dt = false;
   std::optional<double> t_end;
+  std::string balance_by; // empty: the scene's domain.balance_by
   bool progress = true;
   bool plots = true; // draw the energy plot, or the basin figures of an [analysis] table
 };

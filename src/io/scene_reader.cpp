@@ -152,6 +152,8 @@ void read_domain(Scene& scene, TomlReader& root) {
   }
   c.rebalance_every =
       static_cast<int>(d->integer("rebalance_every", c.rebalance_every, 0, 1 << 30));
+  c.balance_by = d->choice("balance_by", {"pairs", "time"}, "pairs") == "time" ? BalanceBy::time
+                                                                               : BalanceBy::pairs;
   const bool has_wall_faces = std::any_of(c.box.boundary.begin(), c.box.boundary.end(),
                                           [](Boundary b) { return b == Boundary::wall; });
   if (has_wall_faces) c.box_wall_material = material_of(scene, *d, "wall_material");

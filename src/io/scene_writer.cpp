@@ -59,7 +59,8 @@ std::string resolved_scene_toml(const Scene& s) {
       {"on_escape", s.sim.on_escape == EscapePolicy::remove ? "remove" : "stop"},
       {"max_overlap_ratio", s.sim.max_overlap_ratio},
       {"ranks", toml::array{s.sim.ranks[0], s.sim.ranks[1], s.sim.ranks[2]}},
-      {"rebalance_every", s.sim.rebalance_every}};
+      {"rebalance_every", s.sim.rebalance_every},
+      {"balance_by", s.sim.balance_by == BalanceBy::time ? "time" : "pairs"}};
   if (s.sim.cell_size > 0) domain.insert("cell_size", s.sim.cell_size);
   for (Boundary x : b)
     if (x == Boundary::wall)

@@ -440,6 +440,19 @@ void Simulation::rebalance() {
   std::vector<double> cost(store_.n_owned(), 1.0);
   for (std::size_t i = 0; i + 1 < list_.offsets.size() && i < cost.size(); ++i)
     cost[i] += list_.offsets[i + 1] - list_.offsets[i];
+  // By time: this rank's costs scaled to sum to the seconds it computed (pairs and
+  // integration; the neighbour timer holds waits for other ranks) since the last balancing.
+  // The cuts then give each rank the share it computes in equal time, as measured on its own
+  // particles: the next balancing corrects what that leaves wrong for the particles that move.
+  const double busy = timers_.pair + timers_.integrate;
+  if (config_.balance_by == BalanceBy::time) {
+    double counted = 0.0;
+    for (double c : cost) counted += c;
+    const double seconds = busy - busy_at_balance_;
+    if (!comm_.any(!(seconds > 0.0)) && counted > 0.0) // (every rank has timed some work)
+      for (double& c : cost) c *= seconds / counted;
+  }
+  busy_at_balance_ = busy;
   decomp_.balance(
       std::vector<Vec3>(store_.x.begin(),
                         store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),

@@ -36,6 +36,9 @@ namespace yuxi {
 // What to do with a grain that leaves the box through an open face.
 enum class EscapePolicy { stop, remove };
 
+// The load the cut planes of a multi-rank run balance (SimulationConfig::balance_by).
+enum class BalanceBy { pairs, time };
+
 struct SimulationConfig {
   Box box;
   Vec3 gravity;
@@ -47,6 +50,11 @@ struct SimulationConfig {
   double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
   std::array<int, 3> ranks{0, 0, 0};  // MPI ranks per axis; 0 = chosen automatically
   int rebalance_every = 50;           // move the cut planes every this many rebuilds (0: never)
+  // What the cut planes balance: each particle's count of listed pairs (the same cuts on every
+  // run: reproducible to the bit), or the compute time each rank measured since the last
+  // balancing (a rank on a slower or busier core gets less; the cuts, and so the round-off of
+  // the sums, then differ from run to run).
+  BalanceBy balance_by = BalanceBy::pairs;
   // The near pairs' margin as a fraction of the skin (core/near_pairs.hpp; 0: scan the whole
   // list every step). The trajectory is the same either way.
   double near_fraction = 0.25;
@@ -239,6 +247,7 @@ private:
   double removed_energy_ = 0.0;
   double gravity_work_ = 0.0;    // work of gravity along periodic axes
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
+  double busy_at_balance_ = 0.0; // pair and integrate seconds at the last balancing
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)

@@ -77,6 +77,11 @@ TEST(SceneReader, ResolvedSceneReadsBackIdentically) {
   EXPECT_EQ(body(resolved_scene_toml(b)), body(echo));
   EXPECT_EQ(b.sim.ranks, a.sim.ranks);
   EXPECT_EQ(b.sim.rebalance_every, a.sim.rebalance_every);
+  EXPECT_EQ(b.sim.balance_by, BalanceBy::pairs);
+  Scene by_time = a;
+  by_time.sim.balance_by = BalanceBy::time;
+  EXPECT_EQ(read_scene_text(resolved_scene_toml(by_time), "t.toml").sim.balance_by,
+            BalanceBy::time);
   // Nothing is dropped: every key of the shipped scene's tables is in the resolved scene
   // (a resumed run reads its scene from there).
   const toml::table original = toml::parse_file(std::string(YUXI_SCENES_DIR) + "/basin-small.toml");
@@ -151,7 +156,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "particle[1].position", 30},
         BadScene{"time step too large", "dt = 1.0e-4", "dt = 1.0e-3", "run.dt: 0.001 is", 4},
         BadScene{"unknown model", "model = \"linear\"", "model = \"hooke\"",
-                 "contact.model: unknown value \"hooke\"", 15}),
+                 "contact.model: unknown value \"hooke\"", 15},
+        BadScene{"unknown balance", "wall_material = \"wall\"",
+                 "wall_material = \"wall\"\nbalance_by = \"luck\"",
+                 "domain.balance_by: unknown value \"luck\"", 13}),
     [](const ::testing::TestParamInfo<BadScene>& param_info) {
       std::string n = param_info.param.what;
       for (auto& ch : n)
