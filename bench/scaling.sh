@@ -9,10 +9,12 @@
 # efficiency of each repeat (its 2-rank run against the 1-rank run just before it) and their
 # median, which a burst of load from other jobs on the machine moves less than the ratio of the
 # medians.
-# usage: bench/scaling.sh [REPEATS]      (build first: cmake --build --preset release)
+# usage: bench/scaling.sh [REPEATS] [SCENE]   (build first: cmake --build --preset release)
+#        SCENE: run only the scenes whose file name contains it (chute, basin-small)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
+only=${2:-}
 # shellcheck source=bench/stats.sh
 source bench/stats.sh
 yuxi=build/release/apps/yuxi/yuxi
@@ -28,6 +30,7 @@ printf "%-44s %-14s %16s %11s %10s %10s %10s\n" "scene" "ranks" "particle-steps/
   "particles" "pairs" "compute"
 for c in "${cases[@]}"; do
   IFS='|' read -r scene t_end label <<< "$c"
+  [[ $scene == *"$only"* ]] || continue
   declare -A rates=()
   declare -A imbalance=()
   declare -A busy=()
