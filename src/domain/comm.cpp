@@ -136,6 +136,15 @@ void Comm::wait_send(Exchange& e) const {
   wait_for(e.requests[0], e.sending);
 }
 
+void Comm::cancel_receive(Exchange& e) const {
+  if (!e.receiving || !mpi_running()) return;
+  MPI_Request request;
+  std::memcpy(&request, &e.requests[1], sizeof(MPI_Request));
+  MPI_Cancel(&request);
+  MPI_Wait(&request, MPI_STATUS_IGNORE);
+  e.receiving = false;
+}
+
 std::vector<std::string> Comm::gather(std::string mine) const {
   if (size_ == 1) {
     std::vector<std::string> out;
@@ -242,6 +251,7 @@ Comm::Exchange Comm::start_send_receive(int, const std::string& out, int source,
 }
 void Comm::wait_receive(Exchange&) const {}
 void Comm::wait_send(Exchange&) const {}
+void Comm::cancel_receive(Exchange&) const {}
 std::vector<std::string> Comm::gather(std::string mine) const {
   std::vector<std::string> out;
   out.push_back(std::move(mine));

@@ -50,6 +50,8 @@ public:
                               std::size_t in_bytes, int tag) const;
   void wait_receive(Exchange& exchange) const;
   void wait_send(Exchange& exchange) const;
+  // Withdraws a receive not waited for (a step cut short by an error): `in` is free again.
+  void cancel_receive(Exchange& exchange) const;
   // Rank 0 gets every rank's bytes, in rank order; the others get nothing.
   // (Taken by value: on one rank the bytes move through without a copy.)
   std::vector<std::string> gather(std::string mine) const;

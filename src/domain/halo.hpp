@@ -65,6 +65,12 @@ public:
   // Waits until the other rank has taken the forces reverse_start() sent (reverse_finish()
   // waits only for those coming here; the next reverse_start() settles the last one).
   void settle(const Comm& comm) const { comm.wait_send(back_); }
+  // At the end: withdraws forces still expected (an error between start and finish), then
+  // settles.
+  void close(const Comm& comm) const {
+    comm.cancel_receive(back_);
+    settle(comm);
+  }
   // Whether forces on ghosts go back to another rank: reverse_start() then leaves a message
   // travelling that the caller can compute beside.
   bool sends_to_other_ranks() const { return last_message_ < swaps_.size(); }

@@ -87,8 +87,8 @@ public:
              std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world());
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
-  // Waits for the last forces sent back to another rank to be taken (halo.hpp: settle()).
-  ~Simulation() { halo_.settle(comm_); }
+  // Waits for the last forces sent back to another rank to be taken (halo.hpp: close()).
+  ~Simulation() { halo_.close(comm_); }
 
   void step();
   void run(std::int64_t n_steps) {
