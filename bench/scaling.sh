@@ -3,7 +3,8 @@
 # (1 rank, 2 ranks, 2 ranks balanced by time, ...) so that machine drift affects all alike.
 # Prints, per scene and variant, the median particle-steps/s, the parallel efficiency
 # ps(2) / (2 ps(1)), and the load imbalance after balancing (max/mean over ranks, of the last
-# run): in owned particles, in listed pairs and in compute time (pair + neighbour + integrate).
+# run): in owned particles, in listed pairs and in compute time (pairs, the rank's own part of the
+# list builds, integration: no exchanges or waits).
 # The 2-rank runs balance the cut planes by listed pairs (domain.balance_by = "pairs", the
 # default) and by each rank's measured compute time (--balance-by time). Under each scene, the
 # efficiency of each repeat (its 2-rank run against the 1-rank run just before it) and their

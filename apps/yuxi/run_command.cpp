@@ -177,9 +177,10 @@ int run_command(const RunCommandOptions& o) {
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
   const double imbalance = sim->imbalance(); // collective
-  // The load that balancing evens out: each rank's time in pair, neighbour and integrate (the
-  // rest is waiting for the others, or output), max over the mean.
-  const double busy_imbalance = sim->comm().max_over_mean(t.pair + t.neighbor + t.integrate);
+  // The load that balancing evens out: each rank's time computing pairs, its own part of the
+  // list builds and the integration (the rest is exchanges, waiting for the others, or
+  // output), max over the mean.
+  const double busy_imbalance = sim->comm().max_over_mean(t.busy());
   // The pairs each rank lists: the work balancing evens out, free of the machine's noise that
   // the compute time carries.
   const double pair_imbalance =

@@ -345,7 +345,9 @@ void Simulation::rebuild_after_load() {
 }
 
 void Simulation::rebuild(bool stash_history) {
+  auto t0 = Clock::now(); // (the spans without exchanges go into timers_.neighbor_local)
   if (stash_history) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
+  timers_.neighbor_local += seconds_since(t0);
   // Rebalance by measured cost at the first rebuild after the start (the start could only
   // count particles), then every rebalance_every rebuilds.
   if (comm_.size() > 1 && config_.rebalance_every > 0 &&
@@ -362,6 +364,7 @@ void Simulation::rebuild(bool stash_history) {
     store_.x[i] = wrapped;
   }
   if (comm_.size() > 1) migrate();
+  t0 = Clock::now();
   // Sort owned particles by cell so that neighbours sit close in memory: the grains first,
   // then the wall particles (so the integration runs over the grains alone, with no test of
   // the kind, which alternates unpredictably along cells that hold both).
@@ -378,6 +381,7 @@ void Simulation::rebuild(bool stash_history) {
     for (std::size_t i = 0; i < n; ++i) order[count[key[i]]++] = static_cast<std::uint32_t>(i);
     store_.permute_owned(order);
   }
+  timers_.neighbor_local += seconds_since(t0);
   // Ghosts, each with copies of the contact states it may be needed for on its receiver.
   std::visit(
       [&](auto& f) {
@@ -390,6 +394,7 @@ void Simulation::rebuild(bool stash_history) {
         halo_.build(store_, decomp_, comm_, cell_edge_, &copies);
       },
       forces_);
+  t0 = Clock::now();
   store_.trim_capacity();
   grid_.bin(store_.x);
   build_neighbor_list(store_, grid_, range_, list_);
@@ -407,6 +412,7 @@ void Simulation::rebuild(bool stash_history) {
   }
   std::visit([&](auto& f) { f.history.restore(store_, list_); }, forces_);
   for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];
+  timers_.neighbor_local += seconds_since(t0);
   ++rebuilds_;
   if (step_ > 0) check_energy_books();
 }
@@ -440,11 +446,11 @@ void Simulation::rebalance() {
   std::vector<double> cost(store_.n_owned(), 1.0);
   for (std::size_t i = 0; i + 1 < list_.offsets.size() && i < cost.size(); ++i)
     cost[i] += list_.offsets[i + 1] - list_.offsets[i];
-  // By time: this rank's costs scaled to sum to the seconds it computed (pairs and
-  // integration; the neighbour timer holds waits for other ranks) since the last balancing.
-  // The cuts then give each rank the share it computes in equal time, as measured on its own
-  // particles: the next balancing corrects what that leaves wrong for the particles that move.
-  const double busy = timers_.pair + timers_.integrate;
+  // By time: this rank's costs scaled to sum to the seconds it computed (pairs, its own part
+  // of the list builds, integration: PhaseTimes::busy) since the last balancing. The cuts then
+  // give each rank the share it computes in equal time, as measured on its own particles: the
+  // next balancing corrects what that leaves wrong for the particles that move.
+  const double busy = timers_.busy();
   if (config_.balance_by == BalanceBy::time) {
     double counted = 0.0;
     for (double c : cost) counted += c;

@@ -69,7 +69,12 @@ public:
 // Wall-clock seconds spent in each phase.
 struct PhaseTimes {
   double integrate = 0, neighbor = 0, pair = 0, comm = 0;
+  // The part of `neighbor` this rank spends on its own work (sorting, binning, the lists, the
+  // contact states), without the rebuild's exchanges and waits for other ranks.
+  double neighbor_local = 0;
   double total() const { return integrate + neighbor + pair + comm; }
+  // What balancing by time evens out: the time a rank computes, waiting for no other.
+  double busy() const { return pair + neighbor_local + integrate; }
 };
 
 // The contact that limits the time step.
@@ -247,7 +252,7 @@ private:
   double removed_energy_ = 0.0;
   double gravity_work_ = 0.0;    // work of gravity along periodic axes
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
-  double busy_at_balance_ = 0.0; // pair and integrate seconds at the last balancing
+  double busy_at_balance_ = 0.0; // timers_.busy() at the last balancing
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)
