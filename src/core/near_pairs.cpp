@@ -20,7 +20,7 @@ void pick_near_pairs(const Vec3* x, const double* radius, const NeighborList& li
   for (const std::uint32_t p : list.ghost_pairs)
     if (near_enough(p)) near.pairs.push_back(p);
   near.n_ghost = static_cast<std::uint32_t>(near.pairs.size());
-  const std::uint32_t partner_limit = list.ghost_pairs.empty() ? 0xFFFFFFFFu : list.n_owned();
+  const std::uint32_t partner_limit = list.owned_partner_limit();
   // Chunk by chunk, each pair written at the cursor and kept by advancing it, like the overlap
   // scan: the outcome follows no pattern a branch predictor could learn.
   constexpr std::uint32_t chunk = 256;

@@ -22,6 +22,7 @@
 #pragma once
 
 #include "core/cell_grid.hpp"
+#include "core/overlap_scan.hpp"
 #include "core/particle_store.hpp"
 
 #include <cstdint>
@@ -51,6 +52,12 @@ struct NeighborList {
   // The owned particles' count (partners at or above it are ghosts).
   std::uint32_t n_owned() const {
     return offsets.empty() ? 0 : static_cast<std::uint32_t>(offsets.size() - 1);
+  }
+
+  // The partner limit (core/overlap_scan.hpp) that passes the ghost pairs over where they are
+  // computed apart, and none where the loop runs in list order.
+  std::uint32_t owned_partner_limit() const {
+    return ghost_pairs.empty() ? every_partner : n_owned();
   }
 
   // Fills `ghost_pairs`; their_own = false leaves it empty (the loop then runs in list order).

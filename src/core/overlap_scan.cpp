@@ -33,7 +33,7 @@ OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::
                                 std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
                                 std::uint32_t* touching, std::uint32_t* parted) {
   const auto at = [](std::uint32_t q) { return q; };
-  return partner_limit == 0xFFFFFFFFu
+  return partner_limit == every_partner
              ? scan<false>(x, radius, row, partner, slot, at, begin, end, 0, touching, parted)
              : scan<true>(x, radius, row, partner, slot, at, begin, end, partner_limit, touching,
                           parted);

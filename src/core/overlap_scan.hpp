@@ -18,6 +18,9 @@ namespace yuxi {
 // Slot of a listed pair that holds no contact state (ContactHistory::pair_slot).
 inline constexpr std::uint32_t no_slot = 0xFFFFFFFFu;
 
+// A partner limit that passes no pair over (scan_overlaps()).
+inline constexpr std::uint32_t every_partner = 0xFFFFFFFFu;
+
 struct OverlapScanCounts {
   std::uint32_t touching = 0; // pairs written to `touching`
   std::uint32_t parted = 0;   // pairs written to `parted`

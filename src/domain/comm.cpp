@@ -119,10 +119,16 @@ Comm::Exchange Comm::start_send_receive(int dest, const std::string& out, int so
 }
 
 namespace {
-void wait_for(std::intptr_t& stored, bool& pending) {
-  if (!pending || !mpi_running()) return;
+// An Exchange keeps its MPI_Request values as integers (no MPI header leaks out of this file).
+MPI_Request request_of(std::intptr_t stored) {
   MPI_Request request;
   std::memcpy(&request, &stored, sizeof(MPI_Request));
+  return request;
+}
+
+void wait_for(std::intptr_t stored, bool& pending) {
+  if (!pending || !mpi_running()) return;
+  MPI_Request request = request_of(stored);
   MPI_Wait(&request, MPI_STATUS_IGNORE);
   pending = false;
 }
@@ -138,11 +144,9 @@ void Comm::wait_send(Exchange& e) const {
 
 void Comm::cancel_receive(Exchange& e) const {
   if (!e.receiving || !mpi_running()) return;
-  MPI_Request request;
-  std::memcpy(&request, &e.requests[1], sizeof(MPI_Request));
+  MPI_Request request = request_of(e.requests[1]);
   MPI_Cancel(&request);
-  MPI_Wait(&request, MPI_STATUS_IGNORE);
-  e.receiving = false;
+  wait_for(e.requests[1], e.receiving);
 }
 
 std::vector<std::string> Comm::gather(std::string mine) const {

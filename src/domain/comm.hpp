@@ -36,8 +36,8 @@ public:
   // storage), in one message instead of two.
   void send_receive(int dest, const std::string& out, int source, std::string& in,
                     std::size_t in_bytes, int tag) const;
-  // A send-receive under way (start_send_receive() until finish()): neither its outgoing
-  // string nor its incoming one may be touched meanwhile.
+  // A send-receive under way (from start_send_receive() until wait_send() and wait_receive()):
+  // its outgoing string may not be touched before the one, its incoming one before the other.
   struct Exchange {
     std::intptr_t requests[2] = {0, 0}; // MPI_Request values (send, receive)
     bool sending = false, receiving = false;

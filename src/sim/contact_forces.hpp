@@ -108,7 +108,7 @@ private:
     const std::uint32_t* index = near_ ? near_->pairs.data() : nullptr;
     std::uint32_t first = 0,
                   last = static_cast<std::uint32_t>(near_ ? near_->pairs.size() : list.n_pairs());
-    std::uint32_t partner_limit = 0xFFFFFFFFu;
+    std::uint32_t partner_limit = every_partner;
     if (set_ == PairSet::ghost) {
       if (near_)
         last = near_->n_ghost;
@@ -117,8 +117,8 @@ private:
     } else if (set_ == PairSet::owned) {
       if (near_)
         first = near_->n_ghost;
-      else if (!list.ghost_pairs.empty())
-        partner_limit = list.n_owned();
+      else
+        partner_limit = list.owned_partner_limit();
     }
     for (std::uint32_t begin = first; begin < last; begin += chunk) {
       const std::uint32_t end = std::min(begin + chunk, last);

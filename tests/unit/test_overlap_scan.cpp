@@ -42,7 +42,7 @@ TEST(OverlapScan, SelectsTheOverlappingPairsAndTheParted) {
   std::size_t overlapping = 0, parted = 0;
   // Chunks of several sizes, starting anywhere; every partner, or only those below 40 (the
   // others standing for ghosts, whose pairs are scanned apart).
-  for (const std::uint32_t limit : {0xFFFFFFFFu, 40u})
+  for (const std::uint32_t limit : {every_partner, 40u})
     for (const std::uint32_t chunk : {1u, 3u, 64u, 256u, n})
       for (std::uint32_t begin = 0; begin < n; begin += chunk) {
         const std::uint32_t end = std::min(begin + chunk, n);
@@ -64,7 +64,7 @@ TEST(OverlapScan, SelectsTheOverlappingPairsAndTheParted) {
         gone.resize(c.parted);
         EXPECT_EQ(touching, want_touching);
         EXPECT_EQ(gone, want_gone);
-        if (chunk == n && limit == 0xFFFFFFFFu) overlapping = c.touching, parted = c.parted;
+        if (chunk == n && limit == every_partner) overlapping = c.touching, parted = c.parted;
       }
   // The sample has both kinds, and near misses.
   EXPECT_GT(overlapping, 50u);
@@ -78,7 +78,7 @@ TEST(OverlapScan, ExactContactIsNotOverlap) {
   const std::vector<double> radius{0.5, 0.25, 0.25};
   const std::vector<std::uint32_t> row{0, 0}, partner{1, 2}, slot{3, no_slot};
   std::uint32_t touching[2], gone[2];
-  const std::uint32_t begin = 0, end = 2, every_partner = 0xFFFFFFFFu;
+  const std::uint32_t begin = 0, end = 2;
   const OverlapScanCounts c = scan_overlaps(x.data(), radius.data(), row.data(), partner.data(),
                                             slot.data(), begin, end, every_partner, touching, gone);
   ASSERT_EQ(c.touching, 1u);
