@@ -200,9 +200,10 @@ int run_command(const RunCommandOptions& o) {
   const double wall = std::max({s.wall_seconds, t.total(), 1e-9});
   spdlog::info(
       "time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  output "
-      "and analysis {:.1f}%  ({} list builds){}",
+      "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%)  ({} list builds){}",
       100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
-      100 * (wall - t.total()) / wall, sim->rebuilds() - builds_before,
+      100 * (wall - t.total()) / wall, 100 * s.snapshot_seconds / wall,
+      100 * s.checkpoint_seconds / wall, sim->rebuilds() - builds_before,
       sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
                                            "{:.3f} in listed pairs, {:.3f} in compute time",
                                            imbalance, pair_imbalance, busy_imbalance)

@@ -1,6 +1,7 @@
 #include "core/particle_store.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 
 namespace yuxi {
@@ -78,6 +79,14 @@ double ParticleStore::max_radius() const {
   double r = 0.0;
   for (std::size_t i = 0; i < n_owned_; ++i) r = std::max(r, radius[i]);
   return r;
+}
+
+std::vector<std::uint32_t> ParticleStore::owned_in_id_order() const {
+  std::vector<std::uint32_t> order(n_owned_);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return gid[a] < gid[b]; });
+  return order;
 }
 
 } // namespace yuxi

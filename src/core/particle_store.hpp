@@ -130,6 +130,8 @@ public:
     for_each_field([&](auto& field) { ar.elements(field.data(), n); });
   }
   double max_radius() const;
+  // Indices of the owned particles in ascending global id (the order of the output files).
+  std::vector<std::uint32_t> owned_in_id_order() const;
 
 private:
   void resize_all(std::size_t n);

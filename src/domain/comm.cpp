@@ -67,6 +67,16 @@ bool Comm::any(bool v) const {
   return x != 0;
 }
 
+void Comm::barrier() const {
+  if (size_ > 1) MPI_Barrier(to_mpi(handle_));
+}
+
+std::uint64_t Comm::sum_below(std::uint64_t v) const {
+  std::uint64_t below = 0;
+  if (size_ > 1) MPI_Exscan(&v, &below, 1, MPI_UINT64_T, MPI_SUM, to_mpi(handle_));
+  return rank_ == 0 ? 0 : below; // (MPI leaves rank 0's result undefined)
+}
+
 std::string Comm::send_receive(int dest, const std::string& out, int source, int tag) const {
   if (size_ == 1) return source < 0 ? std::string() : out;
   if (dest == rank_ && source == rank_) return out; // a periodic image of this rank's own
@@ -240,6 +250,10 @@ double Comm::max(double v) const {
 void Comm::max(double*, int) const {}
 bool Comm::any(bool v) const {
   return v;
+}
+void Comm::barrier() const {}
+std::uint64_t Comm::sum_below(std::uint64_t) const {
+  return 0;
 }
 std::string Comm::send_receive(int, const std::string& out, int source, int) const {
   return source < 0 ? std::string() : out;

@@ -1,4 +1,5 @@
-// The process group a simulation runs on: the one place where MPI calls are made. Built
+// The process group a simulation runs on: with SharedFile (its files), the one place where MPI
+// calls are made. Built
 // without MPI (or run on one rank) it is a group of one, and every operation is local.
 //
 // Everything that crosses ranks is bytes: particles, ghost fields and contact histories are
@@ -28,6 +29,11 @@ public:
   double max(double v) const;
   void max(double* values, int n) const; // element-wise, in place
   bool any(bool v) const;
+  // Returns once every rank has called it.
+  void barrier() const;
+  // The sum of v over the ranks below this one (0 on rank 0): where this rank's part starts
+  // when the ranks' parts follow each other in rank order.
+  std::uint64_t sum_below(std::uint64_t v) const;
   // Largest v over the ranks divided by the mean (1 if the mean is 0): a load imbalance.
   double max_over_mean(double v) const;
   // Sends `out` to `dest` and receives from `source` (either may be this rank).
@@ -64,6 +70,7 @@ public:
   std::string first_error(const std::string& mine) const;
 
 private:
+  friend class SharedFile;                       // opens its files on this group
   static Comm from_handle(std::intptr_t handle); // reads rank and size from MPI
   Comm(std::intptr_t handle, int rank, int size) : handle_(handle), rank_(rank), size_(size) {}
   std::intptr_t handle_; // MPI_Comm stored as an integer (0: no MPI)

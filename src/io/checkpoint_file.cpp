@@ -1,6 +1,7 @@
 #include "io/checkpoint_file.hpp"
 
 #include "core/archive.hpp"
+#include "domain/shared_file.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -45,93 +46,84 @@ template <class T> T get(const std::string& in, std::size_t at) {
   return v;
 }
 
-// A file written through a temporary file, fsync and rename, so that a crash mid-write leaves
-// the previous checkpoint intact; keeps the CRC-32 of what has been written since the header.
-class AtomicFile {
-public:
-  explicit AtomicFile(std::filesystem::path file)
-      : file_(std::move(file)), tmp_(file_.string() + ".tmp") {
-    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd_ < 0)
-      throw CheckpointError(fmt::format("{}: cannot create: {}", tmp_, std::strerror(errno)));
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() {
-    if (fd_ >= 0) { // not committed: an error left it half written
-      ::close(fd_);
-      ::unlink(tmp_.c_str());
-    }
-  }
-
-  void write(std::string_view bytes, bool checksummed = true) {
-    if (checksummed) crc_ = crc_of(bytes, crc_);
-    while (!bytes.empty()) {
-      const ssize_t w = ::write(fd_, bytes.data(), bytes.size());
-      if (w < 0)
-        throw CheckpointError(fmt::format("{}: write failed: {}", tmp_, std::strerror(errno)));
-      bytes.remove_prefix(static_cast<std::size_t>(w));
-    }
-  }
-  std::uint32_t crc() const { return crc_; }
-
-  void commit() {
-    const int fd = std::exchange(fd_, -1);
-    if (::fsync(fd) != 0 || ::close(fd) != 0)
-      throw CheckpointError(fmt::format("{}: cannot flush to disk", tmp_));
-    std::filesystem::rename(tmp_, file_);
-    const int dir = ::open(file_.parent_path().c_str(), O_RDONLY);
-    if (dir >= 0) {
-      ::fsync(dir); // makes the rename itself durable
-      ::close(dir);
-    }
-  }
-
-private:
-  std::filesystem::path file_;
-  std::string tmp_;
-  int fd_ = -1;
-  std::uint32_t crc_ = 0; // of nothing yet
-};
-
 } // namespace
 
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim) {
   sim.stop_if_unhealthy(); // only good states are kept
-  // Streamed to the file piece by piece: a checkpoint of a large run is not copied in memory.
-  ArchiveWriter mine;
-  sim.checkpoint(mine);
-  std::vector<std::string> sections = sim.comm().gather(mine.release());
-  if (!sim.comm().root()) return;
-  ArchiveWriter head;
-  std::string scene = scene_text;
-  head.string(scene);
-  std::int64_t step = sim.step_count();
-  double time = sim.time();
-  head.value(step);
-  head.value(time);
-  std::uint64_t n = sections.size();
-  head.value(n);
-  std::uint64_t payload = head.data().size();
-  for (const auto& sec : sections) payload += sizeof(std::uint64_t) + sec.size();
-  std::string header(magic, sizeof magic);
-  put(header, checkpoint_format_version);
-  put(header, byte_order_mark);
-  put(header, payload);
-  AtomicFile out(file);
-  out.write(header, false);
-  out.write(head.data());
-  for (const auto& sec : sections) { // as ArchiveWriter::string writes them: length, bytes
-    std::string length;
-    put(length, static_cast<std::uint64_t>(sec.size()));
-    out.write(length);
-    out.write(sec);
+  const Comm& comm = sim.comm();
+  // Every rank writes its own section into the one file (SharedFile), in rank order:
+  //   header (magic, version, byte order, payload size) | head (scene, step, time, number of
+  //   sections) | per rank: section length, section | CRC-32 of the payload
+  // Rank 0's part starts with the head. The CRC is combined from the ranks' CRCs of their parts.
+  ArchiveWriter section;
+  sim.checkpoint(section);
+  std::string part; // what precedes the section in this rank's part
+  if (comm.root()) {
+    ArchiveWriter head;
+    std::string scene = scene_text;
+    head.string(scene);
+    std::int64_t step = sim.step_count();
+    double time = sim.time();
+    head.value(step);
+    head.value(time);
+    auto n = static_cast<std::uint64_t>(comm.size());
+    head.value(n);
+    part = head.release();
   }
-  std::string crc;
-  put(crc, out.crc());
-  out.write(crc, false);
-  out.commit();
+  put(part, static_cast<std::uint64_t>(section.data().size())); // as ArchiveWriter::string
+  const std::uint64_t part_bytes = part.size() + section.data().size();
+  const std::uint32_t part_crc = crc_of(section.data(), crc_of(part));
+  const std::uint64_t payload =
+      static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(part_bytes)));
+  std::string crc_and_length;
+  put(crc_and_length, part_crc);
+  put(crc_and_length, part_bytes);
+  const std::vector<std::string> crcs = comm.gather(crc_and_length);
+
+  // Written under a temporary name, flushed to the disk and renamed, so that a crash mid-write
+  // leaves the previous checkpoint intact.
+  const std::string tmp = file.string() + ".tmp";
+  std::string error;
+  try {
+    SharedFile out(comm, tmp, SharedFile::Mode::truncate);
+    const std::uint64_t at = header_size + comm.sum_below(part_bytes);
+    out.write_at(at, part);
+    out.write_at(at + part.size(), section.data());
+    if (comm.root()) {
+      std::string header(magic, sizeof magic);
+      put(header, checkpoint_format_version);
+      put(header, byte_order_mark);
+      put(header, payload);
+      out.write_at(0, header);
+      uLong crc = 0; // of nothing
+      for (const auto& c : crcs)
+        crc = crc32_combine64(crc, get<std::uint32_t>(c, 0),
+                              static_cast<z_off64_t>(get<std::uint64_t>(c, 4)));
+      std::string tail;
+      put(tail, static_cast<std::uint32_t>(crc));
+      out.write_at(header_size + payload, tail);
+    }
+    out.close(true);
+  } catch (const std::runtime_error& e) { // the same on every rank (SharedFile::close)
+    error = e.what();
+  }
+  if (error.empty() && comm.root()) {
+    std::error_code ec;
+    std::filesystem::rename(tmp, file, ec);
+    if (ec) error = fmt::format("{}: cannot rename to {}: {}", tmp, file.string(), ec.message());
+    const int dir = ::open(file.parent_path().c_str(), O_RDONLY);
+    if (dir >= 0) {
+      ::fsync(dir); // makes the rename itself durable
+      ::close(dir);
+    }
+  }
+  error = comm.first_error(error);
+  if (!error.empty()) {
+    std::error_code ignored; // (the error to report is the one above)
+    if (comm.root()) std::filesystem::remove(tmp, ignored);
+    throw CheckpointError(error);
+  }
 }
 
 CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
@@ -215,6 +207,7 @@ void CheckpointSet::write(const std::string& scene_text, Simulation& sim) {
     for (const auto& e : std::filesystem::directory_iterator(folder_)) // left by a crash
       if (e.path().extension() == ".tmp") std::filesystem::remove(e.path());
   }
+  sim.comm().barrier(); // every rank opens the file in the folder rank 0 has made
   write_checkpoint(path_for(sim.step_count()), scene_text, sim);
   if (!sim.comm().root()) return;
   const auto files = list();

@@ -33,16 +33,18 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
 
   const std::optional<std::int64_t> resume =
       options.resumed ? std::optional<std::int64_t>(first) : std::nullopt;
-  // Files are written by rank 0, from energies reduced over ranks and gathered particles.
+  // energies.csv is written by rank 0, from energies reduced over ranks; every rank writes its
+  // own particles into the snapshots and checkpoints (no rank gathers the others').
   const bool root = sim.comm().root();
   std::unique_ptr<EnergyCsv> energies;
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
   if (root) energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume);
-  if (root && scene.output.vtk && snapshot_every)
-    vtk = std::make_unique<VtkSeries>(dir, "particles", resume);
-  if (root && scene.output.lammps_dump && snapshot_every)
-    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume);
+  if (scene.output.vtk && snapshot_every)
+    vtk = std::make_unique<VtkSeries>(dir, "particles", resume, sim.comm());
+  if (scene.output.lammps_dump && snapshot_every)
+    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume,
+                                              sim.comm());
   const auto write_energies = [&] {
     const EnergyReport e = sim.energies(); // collective
     if (energies) energies->write(e);
@@ -67,17 +69,21 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
         60.0;
     return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
   };
+  RunSummary summary;
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   auto snapshot = [&] {
     if (!scene.output.vtk && !scene.output.lammps_dump) return;
-    const ParticleStore all = sim.gather_particles(); // collective
-    if (vtk) vtk->write(all, sim.step_count(), sim.time());
-    if (dump) dump->write(all, sim.step_count());
+    const auto t0 = std::chrono::steady_clock::now();
+    if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time()); // collective
+    if (dump) dump->write(sim.particles(), sim.step_count());
+    summary.snapshot_seconds += seconds_since(t0);
   };
 
   std::unique_ptr<RunAnalysis> analysis;
   if (scene.analysis) analysis = std::make_unique<RunAnalysis>(scene, dir, dt);
 
-  RunSummary summary;
   Progress progress(first, last, options.show_progress && sim.comm().root());
   const double n_particles =
       static_cast<double>(sim.comm().sum(static_cast<std::int64_t>(sim.particles().n_owned())));
@@ -99,8 +105,10 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
       if (k % energy_every == 0 || k == last) write_energies();
       if (snapshot_every && (k % snapshot_every == 0 || k == last)) snapshot();
       if (checkpoint_now) {
+        const auto t0 = std::chrono::steady_clock::now();
         checkpoints.write(options.scene_text, sim);
         last_checkpoint = std::chrono::steady_clock::now();
+        summary.checkpoint_seconds += seconds_since(t0);
         if (stop_requested()) {
           summary.interrupted = true;
           break;
@@ -112,16 +120,12 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     progress.finish();
     summary.failed = true;
     summary.failure = e.what();
-    const ParticleStore all = sim.gather_particles(); // every rank stopped together
-    if (root) {
-      std::ofstream(dir / "failure.txt") << e.what() << "\n";
-      write_vtu(dir / "failure.vtu", all);
-    }
+    if (root) std::ofstream(dir / "failure.txt") << e.what() << "\n";
+    write_vtu(dir / "failure.vtu", sim.particles(), sim.comm()); // every rank stopped together
   }
   progress.finish();
   if (analysis && !summary.failed) analysis->finish(sim);
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.wall_seconds = seconds_since(start);
   summary.steps = sim.step_count() - first;
   summary.particle_steps_per_second =
       summary.wall_seconds > 0 ? particle_steps / summary.wall_seconds : 0.0;

@@ -31,6 +31,8 @@ struct RunSummary {
   std::int64_t steps = 0;
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
+  double snapshot_seconds = 0.0;          // wall time writing VTK and LAMMPS dump frames
+  double checkpoint_seconds = 0.0;        // wall time writing checkpoints
   EnergyReport final_energies;
   bool failed = false;
   bool interrupted = false; // stopped by a signal after writing a checkpoint

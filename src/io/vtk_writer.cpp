@@ -1,5 +1,7 @@
 #include "io/vtk_writer.hpp"
 
+#include "domain/shared_file.hpp"
+
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -13,69 +15,99 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the VTK writer declares LittleEndian data");
 
-// One appended array: its XML declaration and its bytes.
-struct Array {
-  std::string type;
-  std::string name;
+// The appended arrays, in file order: their XML declarations and the bytes of one value.
+struct ArraySpec {
+  const char* type;
+  const char* name;
   int components;
-  std::vector<char> bytes;
+  std::size_t value_bytes;
 };
+constexpr ArraySpec point_data[] = {
+    {"Float64", "radius", 1, 8},   {"Float64", "mass", 1, 8},
+    {"Float64", "velocity", 3, 8}, {"Float64", "angular_velocity", 3, 8},
+    {"Float64", "force", 3, 8},    {"Int64", "id", 1, 8},
+    {"Int32", "kind", 1, 4},       {"Int32", "material", 1, 4}};
+constexpr ArraySpec points{"Float64", "Points", 3, 8};
+constexpr ArraySpec cells[] = {
+    {"Int64", "connectivity", 1, 8}, {"Int64", "offsets", 1, 8}, {"UInt8", "types", 1, 1}};
 
-template <class T>
-Array make_array(std::string type, std::string name, int components, const std::vector<T>& values) {
-  Array a{std::move(type), std::move(name), components, {}};
-  a.bytes.resize(values.size() * sizeof(T));
-  if (!values.empty()) std::memcpy(a.bytes.data(), values.data(), a.bytes.size());
-  return a;
+// The values of one array for this rank's particles, `order[k]` for k = 0, 1, ...: get(i, c)
+// gives component c of particle i, as a T.
+template <class T, class Get>
+std::string pack(const std::vector<std::uint32_t>& order, int components, Get get) {
+  std::string out(order.size() * static_cast<std::size_t>(components) * sizeof(T), '\0');
+  char* at = out.data();
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (int c = 0; c < components; ++c) {
+      const T v = get(k, order[k], c);
+      std::memcpy(at, &v, sizeof v);
+      at += sizeof v;
+    }
+  return out;
 }
 
-std::vector<double> flatten(const std::vector<Vec3>& v, std::size_t n) {
-  std::vector<double> out(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-    out[3 * i] = v[i].x, out[3 * i + 1] = v[i].y, out[3 * i + 2] = v[i].z;
-  return out;
+// The bytes of array `name` for this rank's particles; `first` is the global index of the
+// rank's first particle (the cells of the ranks before it).
+std::string array_bytes(std::string_view name, const ParticleStore& s,
+                        const std::vector<std::uint32_t>& order, std::uint64_t first) {
+  const auto vec = [&](const std::vector<Vec3>& v) {
+    return pack<double>(order, 3, [&](std::size_t, std::uint32_t i, int c) { return v[i][c]; });
+  };
+  const auto scalar = [&](auto get) {
+    return pack<decltype(get(std::size_t{0}, 0u))>(
+        order, 1, [&](std::size_t k, std::uint32_t i, int) { return get(k, i); });
+  };
+  if (name == "radius") return scalar([&](std::size_t, std::uint32_t i) { return s.radius[i]; });
+  if (name == "mass") return scalar([&](std::size_t, std::uint32_t i) { return s.mass[i]; });
+  if (name == "velocity") return vec(s.v);
+  if (name == "angular_velocity") return vec(s.w);
+  if (name == "force") return vec(s.f);
+  if (name == "id")
+    return scalar([&](std::size_t, std::uint32_t i) { return std::int64_t{s.gid[i]}; });
+  if (name == "kind")
+    return scalar(
+        [&](std::size_t, std::uint32_t i) { return static_cast<std::int32_t>(s.kind[i]); });
+  if (name == "material")
+    return scalar(
+        [&](std::size_t, std::uint32_t i) { return static_cast<std::int32_t>(s.material[i]); });
+  if (name == "Points") return vec(s.x);
+  if (name == "connectivity") // vertex cell k is point k
+    return scalar(
+        [&](std::size_t k, std::uint32_t) { return static_cast<std::int64_t>(first + k); });
+  if (name == "offsets") // where each cell's points end in the connectivity
+    return scalar(
+        [&](std::size_t k, std::uint32_t) { return static_cast<std::int64_t>(first + k + 1); });
+  return scalar([](std::size_t, std::uint32_t) { return std::uint8_t{1}; }); // types: VTK_VERTEX
 }
 
 } // namespace
 
-void write_vtu(const std::filesystem::path& path, const ParticleStore& s) {
-  const std::size_t n = s.n_owned();
-  std::vector<std::int64_t> id(s.gid.begin(), s.gid.begin() + static_cast<std::ptrdiff_t>(n));
-  std::vector<std::int32_t> kind(n), material(n);
-  std::vector<std::int64_t> connectivity(n), offsets(n);
-  std::vector<std::uint8_t> types(n, 1); // VTK_VERTEX
-  for (std::size_t i = 0; i < n; ++i) {
-    kind[i] = static_cast<std::int32_t>(s.kind[i]);
-    material[i] = s.material[i];
-    connectivity[i] = static_cast<std::int64_t>(i);
-    offsets[i] = static_cast<std::int64_t>(i + 1);
-  }
-  std::vector<double> radius(s.radius.begin(), s.radius.begin() + static_cast<std::ptrdiff_t>(n));
-  std::vector<double> mass(s.mass.begin(), s.mass.begin() + static_cast<std::ptrdiff_t>(n));
-  const std::vector<Array> point_data{make_array("Float64", "radius", 1, radius),
-                                      make_array("Float64", "mass", 1, mass),
-                                      make_array("Float64", "velocity", 3, flatten(s.v, n)),
-                                      make_array("Float64", "angular_velocity", 3, flatten(s.w, n)),
-                                      make_array("Float64", "force", 3, flatten(s.f, n)),
-                                      make_array("Int64", "id", 1, id),
-                                      make_array("Int32", "kind", 1, kind),
-                                      make_array("Int32", "material", 1, material)};
-  const Array points = make_array("Float64", "Points", 3, flatten(s.x, n));
-  const std::vector<Array> cells{make_array("Int64", "connectivity", 1, connectivity),
-                                 make_array("Int64", "offsets", 1, offsets),
-                                 make_array("UInt8", "types", 1, types)};
+void write_vtu(const std::filesystem::path& path, const ParticleStore& s, const Comm& comm) {
+  // One file for all ranks: every appended array holds rank 0's particles, then rank 1's, ...
+  // (each rank's in ascending id). Rank 0 writes the XML and each array's size; every rank
+  // writes its values into each array at its own offset (SharedFile).
+  const std::vector<std::uint32_t> order = s.owned_in_id_order();
+  const std::uint64_t n = order.size();
+  const std::uint64_t total = static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(n)));
+  const std::uint64_t first = comm.sum_below(n);
 
+  std::vector<ArraySpec> arrays(std::begin(point_data), std::end(point_data));
+  arrays.push_back(points);
+  arrays.insert(arrays.end(), std::begin(cells), std::end(cells));
+  std::vector<std::uint64_t> start; // of each array in the appended data: its size, its values
   std::string xml;
   std::uint64_t offset = 0;
-  auto declare = [&](const Array& a) {
+  auto declare = [&](const ArraySpec& a) {
     xml += fmt::format("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
                        "format=\"appended\" offset=\"{}\"/>\n",
                        a.type, a.name, a.components, offset);
-    offset += sizeof(std::uint64_t) + a.bytes.size();
+    start.push_back(offset);
+    offset +=
+        sizeof(std::uint64_t) + total * static_cast<std::uint64_t>(a.components) * a.value_bytes;
   };
   xml += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
-  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
+  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", total, total);
   xml += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
   for (const auto& a : point_data) declare(a);
   xml += "      </PointData>\n      <Points>\n";
@@ -85,25 +117,31 @@ void write_vtu(const std::filesystem::path& path, const ParticleStore& s) {
   xml +=
       "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
 
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  out << xml;
-  auto emit = [&](const Array& a) {
-    const std::uint64_t size = a.bytes.size();
-    out.write(reinterpret_cast<const char*>(&size), sizeof size);
-    out.write(a.bytes.data(), static_cast<std::streamsize>(a.bytes.size()));
-  };
-  for (const auto& a : point_data) emit(a);
-  emit(points);
-  for (const auto& a : cells) emit(a);
-  out << "\n  </AppendedData>\n</VTKFile>\n";
-  if (!out) throw std::runtime_error(fmt::format("error while writing {}", path.string()));
+  SharedFile out(comm, path, SharedFile::Mode::truncate);
+  const std::uint64_t data = xml.size(); // where the appended data starts
+  if (comm.root()) {
+    out.write_at(0, xml);
+    for (std::size_t a = 0; a < arrays.size(); ++a) {
+      const std::uint64_t size =
+          total * static_cast<std::uint64_t>(arrays[a].components) * arrays[a].value_bytes;
+      out.write_at(data + start[a],
+                   std::string_view(reinterpret_cast<const char*>(&size), sizeof size));
+    }
+    out.write_at(data + offset, "\n  </AppendedData>\n</VTKFile>\n");
+  }
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    const std::uint64_t value =
+        static_cast<std::uint64_t>(arrays[a].components) * arrays[a].value_bytes;
+    out.write_at(data + start[a] + sizeof(std::uint64_t) + first * value,
+                 array_bytes(arrays[a].name, s, order, first));
+  }
+  out.close(false);
 }
 
 VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem,
-                     std::optional<std::int64_t> resume_after)
-    : folder_(std::move(folder)), stem_(std::move(stem)) {
-  if (!resume_after) return;
+                     std::optional<std::int64_t> resume_after, const Comm& comm)
+    : comm_(comm), folder_(std::move(folder)), stem_(std::move(stem)) {
+  if (!resume_after || !comm_.root()) return; // (rank 0 keeps the collection)
   // Frames are <stem>_<step>.vtu; the .pvd lists them with their times.
   std::ifstream in(folder_ / (stem_ + ".pvd"));
   std::string line;
@@ -124,12 +162,13 @@ VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem,
 
 void VtkSeries::write(const ParticleStore& s, std::int64_t step, double time) {
   const std::string name = fmt::format("{}_{:09d}.vtu", stem_, step);
-  write_vtu(folder_ / name, s);
+  write_vtu(folder_ / name, s, comm_);
   frames_.emplace_back(time, name);
   write_collection();
 }
 
 void VtkSeries::write_collection() {
+  if (!comm_.root()) return;
   const auto pvd = folder_ / (stem_ + ".pvd");
   const auto tmp = folder_ / (stem_ + ".pvd.tmp");
   {

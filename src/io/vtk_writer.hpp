@@ -1,9 +1,11 @@
 // VTK XML output that ParaView opens: one .vtu (unstructured grid of vertex cells, appended raw
 // binary data) per snapshot, and a .pvd collection naming them with their times. The .pvd is
-// rewritten after each frame, so it is valid whenever the run stops.
+// rewritten after each frame, so it is valid whenever the run stops. On several MPI ranks every
+// rank writes its own particles into the one .vtu (no rank gathers the others').
 #pragma once
 
 #include "core/particle_store.hpp"
+#include "domain/comm.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -13,19 +15,24 @@
 
 namespace yuxi {
 
-// Writes the owned particles of `s` to `path` (.vtu).
-void write_vtu(const std::filesystem::path& path, const ParticleStore& s);
+// Writes the owned particles of `s` on every rank of `comm` to `path` (.vtu; collective): rank 0's
+// particles first, then rank 1's, ..., each rank's in ascending id.
+void write_vtu(const std::filesystem::path& path, const ParticleStore& s,
+               const Comm& comm = Comm::self());
 
 class VtkSeries {
 public:
   // A new series; or, with `resume_after`, the existing one without the frames after that step
-  // (their files are deleted), continued.
+  // (their files are deleted), continued. Every rank of `comm` makes one (collective).
   explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles",
-                     std::optional<std::int64_t> resume_after = std::nullopt);
-  // Writes frame `<stem>_<step>.vtu` and updates `<stem>.pvd`.
+                     std::optional<std::int64_t> resume_after = std::nullopt,
+                     const Comm& comm = Comm::self());
+  // Writes frame `<stem>_<step>.vtu` from every rank's owned particles and updates `<stem>.pvd`
+  // (collective).
   void write(const ParticleStore& s, std::int64_t step, double time);
 
 private:
+  Comm comm_;
   std::filesystem::path folder_;
   std::string stem_;
   void write_collection();
