@@ -1,5 +1,6 @@
 #include "domain/comm.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -107,6 +108,37 @@ void Comm::send_receive(int dest, const std::string& out, int source, std::strin
                MPI_STATUS_IGNORE);
 }
 
+namespace {
+// An Exchange keeps its MPI_Request values as integers (no MPI header leaks out of this file).
+static_assert(sizeof(MPI_Request) <= sizeof(std::intptr_t));
+std::intptr_t stored_request(MPI_Request request) {
+  std::intptr_t stored = 0;
+  std::memcpy(&stored, &request, sizeof(MPI_Request));
+  return stored;
+}
+
+std::vector<MPI_Request> requests_of(const std::vector<std::intptr_t>& stored) {
+  std::vector<MPI_Request> requests(stored.size());
+  for (std::size_t k = 0; k < stored.size(); ++k)
+    std::memcpy(&requests[k], &stored[k], sizeof(MPI_Request));
+  return requests;
+}
+
+void wait_for(std::vector<std::intptr_t>& stored) {
+  if (stored.empty() || !mpi_running()) return;
+  std::vector<MPI_Request> requests = requests_of(stored);
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  stored.clear();
+}
+
+// The bytes of each piece of a message of `bytes`: exchange_piece_bytes, or larger where that
+// would make more than max_exchange_pieces pieces.
+std::size_t piece_bytes(std::size_t bytes) {
+  return std::max(Comm::exchange_piece_bytes,
+                  (bytes + Comm::max_exchange_pieces - 1) / Comm::max_exchange_pieces);
+}
+} // namespace
+
 Comm::Exchange Comm::start_send_receive(int dest, const std::string& out, int source,
                                         std::string& in, std::size_t in_bytes, int tag) const {
   Exchange e;
@@ -114,49 +146,48 @@ Comm::Exchange Comm::start_send_receive(int dest, const std::string& out, int so
     in = source < 0 ? std::string() : out;
     return e;
   }
-  static_assert(sizeof(MPI_Request) <= sizeof(std::intptr_t));
   const MPI_Comm c = to_mpi(handle_);
-  dest = dest < 0 ? MPI_PROC_NULL : dest;
-  source = source < 0 ? MPI_PROC_NULL : source;
-  in.resize(source == MPI_PROC_NULL ? 0 : in_bytes);
-  MPI_Request requests[2];
-  MPI_Irecv(in.data(), static_cast<int>(in.size()), MPI_BYTE, source, tag, c, &requests[1]);
-  MPI_Isend(out.data(), dest == MPI_PROC_NULL ? 0 : static_cast<int>(out.size()), MPI_BYTE, dest,
-            tag, c, &requests[0]);
-  for (int k = 0; k < 2; ++k) std::memcpy(&e.requests[k], &requests[k], sizeof(MPI_Request));
-  e.sending = e.receiving = true;
+  in.resize(source < 0 ? 0 : in_bytes);
+  // Each piece of a message of `bytes`, at least one (an empty message still arrives); no
+  // neighbour (peer < 0): nothing travels.
+  const auto each_piece = [](std::size_t bytes, int peer, auto post) {
+    if (peer < 0) return;
+    const std::size_t piece = piece_bytes(bytes);
+    std::size_t at = 0;
+    do {
+      post(at, static_cast<int>(std::min(piece, bytes - at)));
+      at += piece;
+    } while (at < bytes);
+  };
+  // (The pieces of one message match their receives in order: MPI keeps the order of the
+  // messages between two ranks with the same tag.)
+  each_piece(in.size(), source, [&](std::size_t at, int count) {
+    MPI_Request request;
+    MPI_Irecv(in.data() + at, count, MPI_BYTE, source, tag, c, &request);
+    e.receives.push_back(stored_request(request));
+  });
+  each_piece(out.size(), dest, [&](std::size_t at, int count) {
+    MPI_Request request;
+    MPI_Isend(out.data() + at, count, MPI_BYTE, dest, tag, c, &request);
+    e.sends.push_back(stored_request(request));
+  });
   return e;
 }
 
-namespace {
-// An Exchange keeps its MPI_Request values as integers (no MPI header leaks out of this file).
-MPI_Request request_of(std::intptr_t stored) {
-  MPI_Request request;
-  std::memcpy(&request, &stored, sizeof(MPI_Request));
-  return request;
-}
-
-void wait_for(std::intptr_t stored, bool& pending) {
-  if (!pending || !mpi_running()) return;
-  MPI_Request request = request_of(stored);
-  MPI_Wait(&request, MPI_STATUS_IGNORE);
-  pending = false;
-}
-} // namespace
-
 void Comm::wait_receive(Exchange& e) const {
-  wait_for(e.requests[1], e.receiving);
+  wait_for(e.receives);
 }
 
 void Comm::wait_send(Exchange& e) const {
-  wait_for(e.requests[0], e.sending);
+  wait_for(e.sends);
 }
 
 void Comm::cancel_receive(Exchange& e) const {
-  if (!e.receiving || !mpi_running()) return;
-  MPI_Request request = request_of(e.requests[1]);
-  MPI_Cancel(&request);
-  wait_for(e.requests[1], e.receiving);
+  if (e.receives.empty() || !mpi_running()) return;
+  std::vector<MPI_Request> requests = requests_of(e.receives);
+  for (auto& r : requests) MPI_Cancel(&r);
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  e.receives.clear();
 }
 
 std::vector<std::string> Comm::gather(std::string mine) const {

@@ -184,11 +184,14 @@ void Halo::reverse_add(const Comm& comm, std::size_t from, std::size_t down_to,
 }
 
 void Halo::reverse(ParticleStore& s, const Comm& comm) const {
-  reverse_add(comm, swaps_.size(), 0, s.f, s.torque);
+  // (The last message goes as in reverse_start() on every rank: a rank with no pair to
+  // compute before it may be sending to or receiving from one that has.)
+  reverse_start(s, comm);
+  reverse_finish(s, comm);
 }
 
 void Halo::reverse_start(ParticleStore& s, const Comm& comm) const {
-  if (!sends_to_other_ranks()) return reverse(s, comm);
+  if (!sends_to_other_ranks()) return reverse_add(comm, swaps_.size(), 0, s.f, s.torque);
   const std::size_t k = last_message_;
   reverse_add(comm, swaps_.size(), k + 1, s.f, s.torque);
   const Swap& w = swaps_[k];

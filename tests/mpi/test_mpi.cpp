@@ -406,6 +406,37 @@ std::string message_of(int from, std::size_t bytes) {
   return m;
 }
 
+// A started exchange travels in pieces (comm.hpp), blocking ones in one message: messages of
+// no byte, of one piece, of many, and of more than max_exchange_pieces arrive whole either way.
+TEST(Mpi, ExchangesInPiecesArriveWhole) {
+  const Comm comm = Comm::world();
+  const int to = (comm.rank() + 1) % comm.size();
+  const int from = (comm.rank() + comm.size() - 1) % comm.size();
+  const std::size_t sizes[] = {0,
+                               1,
+                               Comm::exchange_piece_bytes - 1,
+                               Comm::exchange_piece_bytes,
+                               Comm::exchange_piece_bytes + 1,
+                               100000,
+                               Comm::exchange_piece_bytes * Comm::max_exchange_pieces * 3 + 5};
+  int tag = 900;
+  for (const std::size_t bytes : sizes) {
+    for (const bool started : {false, true}) {
+      const std::string out = message_of(comm.rank(), bytes);
+      std::string in = "stale";
+      if (started) {
+        Comm::Exchange e = comm.start_send_receive(to, out, from, in, bytes, tag);
+        comm.wait_receive(e);
+        comm.wait_send(e);
+      } else {
+        comm.send_receive(to, out, from, in, bytes, tag);
+      }
+      EXPECT_EQ(in, message_of(from, bytes)) << bytes << " bytes";
+      tag += 2;
+    }
+  }
+}
+
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
