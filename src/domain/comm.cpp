@@ -183,11 +183,9 @@ void Comm::wait_send(Exchange& e) const {
 }
 
 void Comm::cancel_receive(Exchange& e) const {
-  if (e.receives.empty() || !mpi_running()) return;
-  std::vector<MPI_Request> requests = requests_of(e.receives);
-  for (auto& r : requests) MPI_Cancel(&r);
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  e.receives.clear();
+  if (!mpi_running()) return;
+  for (MPI_Request r : requests_of(e.receives)) MPI_Cancel(&r); // (a request is a handle)
+  wait_for(e.receives);
 }
 
 std::vector<std::string> Comm::gather(std::string mine) const {

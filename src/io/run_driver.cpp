@@ -58,23 +58,20 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   // Simulation::checkpoint), so whether one is due is decided before the step. The signal and
   // the clock are polled every poll_steps steps only: each poll is a collective, and one per
   // step costs more than the step itself on small systems split over ranks.
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   constexpr std::int64_t poll_steps = 50;
   const auto checkpoint_due = [&](std::int64_t next) {
     if (next == last) return true;
     if (policy.every_steps > 0 && next % policy.every_steps == 0) return true;
     if (next % poll_steps != 0) return false;
     if (stop_requested()) return true;
-    const double minutes =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() /
-        60.0;
+    const double minutes = seconds_since(last_checkpoint) / 60.0;
     return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
   };
   RunSummary summary;
-  const auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
   auto snapshot = [&] {
-    if (!scene.output.vtk && !scene.output.lammps_dump) return;
     const auto t0 = std::chrono::steady_clock::now();
     if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time()); // collective
     if (dump) dump->write(sim.particles(), sim.step_count());

@@ -15,24 +15,8 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the VTK writer declares LittleEndian data");
 
-// The appended arrays, in file order: their XML declarations and the bytes of one value.
-struct ArraySpec {
-  const char* type;
-  const char* name;
-  int components;
-  std::size_t value_bytes;
-};
-constexpr ArraySpec point_data[] = {
-    {"Float64", "radius", 1, 8},   {"Float64", "mass", 1, 8},
-    {"Float64", "velocity", 3, 8}, {"Float64", "angular_velocity", 3, 8},
-    {"Float64", "force", 3, 8},    {"Int64", "id", 1, 8},
-    {"Int32", "kind", 1, 4},       {"Int32", "material", 1, 4}};
-constexpr ArraySpec points{"Float64", "Points", 3, 8};
-constexpr ArraySpec cells[] = {
-    {"Int64", "connectivity", 1, 8}, {"Int64", "offsets", 1, 8}, {"UInt8", "types", 1, 1}};
-
-// The values of one array for this rank's particles, `order[k]` for k = 0, 1, ...: get(i, c)
-// gives component c of particle i, as a T.
+// The values of one array for this rank's particles, `order[k]` for k = 0, 1, ...: get(k, i, c)
+// gives component c of particle i = order[k], as a T.
 template <class T, class Get>
 std::string pack(const std::vector<std::uint32_t>& order, int components, Get get) {
   std::string out(order.size() * static_cast<std::size_t>(components) * sizeof(T), '\0');
@@ -46,39 +30,70 @@ std::string pack(const std::vector<std::uint32_t>& order, int components, Get ge
   return out;
 }
 
-// The bytes of array `name` for this rank's particles; `first` is the global index of the
-// rank's first particle (the cells of the ranks before it).
-std::string array_bytes(std::string_view name, const ParticleStore& s,
-                        const std::vector<std::uint32_t>& order, std::uint64_t first) {
-  const auto vec = [&](const std::vector<Vec3>& v) {
-    return pack<double>(order, 3, [&](std::size_t, std::uint32_t i, int c) { return v[i][c]; });
+// A per-particle array: its bytes for this rank's particles in `order`; `first` is the global
+// index of the rank's first particle (the cells of the ranks before it).
+using Packer = std::string (*)(const ParticleStore& s, const std::vector<std::uint32_t>& order,
+                               std::uint64_t first);
+
+template <class T, class Get> constexpr Packer scalar(Get) {
+  return [](const ParticleStore& s, const std::vector<std::uint32_t>& order, std::uint64_t first) {
+    return pack<T>(order, 1, [&](std::size_t k, std::uint32_t i, int) {
+      return static_cast<T>(Get{}(s, first + k, i));
+    });
   };
-  const auto scalar = [&](auto get) {
-    return pack<decltype(get(std::size_t{0}, 0u))>(
-        order, 1, [&](std::size_t k, std::uint32_t i, int) { return get(k, i); });
-  };
-  if (name == "radius") return scalar([&](std::size_t, std::uint32_t i) { return s.radius[i]; });
-  if (name == "mass") return scalar([&](std::size_t, std::uint32_t i) { return s.mass[i]; });
-  if (name == "velocity") return vec(s.v);
-  if (name == "angular_velocity") return vec(s.w);
-  if (name == "force") return vec(s.f);
-  if (name == "id")
-    return scalar([&](std::size_t, std::uint32_t i) { return std::int64_t{s.gid[i]}; });
-  if (name == "kind")
-    return scalar(
-        [&](std::size_t, std::uint32_t i) { return static_cast<std::int32_t>(s.kind[i]); });
-  if (name == "material")
-    return scalar(
-        [&](std::size_t, std::uint32_t i) { return static_cast<std::int32_t>(s.material[i]); });
-  if (name == "Points") return vec(s.x);
-  if (name == "connectivity") // vertex cell k is point k
-    return scalar(
-        [&](std::size_t k, std::uint32_t) { return static_cast<std::int64_t>(first + k); });
-  if (name == "offsets") // where each cell's points end in the connectivity
-    return scalar(
-        [&](std::size_t k, std::uint32_t) { return static_cast<std::int64_t>(first + k + 1); });
-  return scalar([](std::size_t, std::uint32_t) { return std::uint8_t{1}; }); // types: VTK_VERTEX
 }
+
+template <std::vector<Vec3> ParticleStore::*field> constexpr Packer vector() {
+  return [](const ParticleStore& s, const std::vector<std::uint32_t>& order, std::uint64_t) {
+    return pack<double>(order, 3,
+                        [&](std::size_t, std::uint32_t i, int c) { return (s.*field)[i][c]; });
+  };
+}
+
+// The appended arrays, in file order: their XML declarations, the bytes of one value and their
+// values.
+struct ArraySpec {
+  const char* type;
+  const char* name;
+  int components;
+  std::size_t value_bytes;
+  Packer values;
+  std::uint64_t bytes_per_particle() const {
+    return static_cast<std::uint64_t>(components) * value_bytes;
+  }
+};
+// (g is the particle's global index in the file, i its index in the store.)
+constexpr ArraySpec point_data[] = {
+    {"Float64", "radius", 1, 8,
+     scalar<double>(
+         [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.radius[i]; })},
+    {"Float64", "mass", 1, 8,
+     scalar<double>(
+         [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.mass[i]; })},
+    {"Float64", "velocity", 3, 8, vector<&ParticleStore::v>()},
+    {"Float64", "angular_velocity", 3, 8, vector<&ParticleStore::w>()},
+    {"Float64", "force", 3, 8, vector<&ParticleStore::f>()},
+    {"Int64", "id", 1, 8,
+     scalar<std::int64_t>(
+         [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.gid[i]; })},
+    {"Int32", "kind", 1, 4,
+     scalar<std::int32_t>([](const ParticleStore& s, std::uint64_t, std::uint32_t i) {
+       return static_cast<std::int32_t>(s.kind[i]);
+     })},
+    {"Int32", "material", 1, 4,
+     scalar<std::int32_t>(
+         [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.material[i]; })}};
+constexpr ArraySpec points{"Float64", "Points", 3, 8, vector<&ParticleStore::x>()};
+constexpr ArraySpec cells[] = {
+    {"Int64", "connectivity", 1, 8, // vertex cell g is point g
+     scalar<std::int64_t>([](const ParticleStore&, std::uint64_t g, std::uint32_t) { return g; })},
+    {"Int64", "offsets", 1, 8, // where each cell's points end in the connectivity
+     scalar<std::int64_t>(
+         [](const ParticleStore&, std::uint64_t g, std::uint32_t) { return g + 1; })},
+    {"UInt8", "types", 1, 1,
+     scalar<std::uint8_t>([](const ParticleStore&, std::uint64_t, std::uint32_t) {
+       return 1; // VTK_VERTEX
+     })}};
 
 } // namespace
 
@@ -102,8 +117,7 @@ void write_vtu(const std::filesystem::path& path, const ParticleStore& s, const 
                        "format=\"appended\" offset=\"{}\"/>\n",
                        a.type, a.name, a.components, offset);
     start.push_back(offset);
-    offset +=
-        sizeof(std::uint64_t) + total * static_cast<std::uint64_t>(a.components) * a.value_bytes;
+    offset += sizeof(std::uint64_t) + total * a.bytes_per_particle();
   };
   xml += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
@@ -122,19 +136,15 @@ void write_vtu(const std::filesystem::path& path, const ParticleStore& s, const 
   if (comm.root()) {
     out.write_at(0, xml);
     for (std::size_t a = 0; a < arrays.size(); ++a) {
-      const std::uint64_t size =
-          total * static_cast<std::uint64_t>(arrays[a].components) * arrays[a].value_bytes;
+      const std::uint64_t size = total * arrays[a].bytes_per_particle();
       out.write_at(data + start[a],
                    std::string_view(reinterpret_cast<const char*>(&size), sizeof size));
     }
     out.write_at(data + offset, "\n  </AppendedData>\n</VTKFile>\n");
   }
-  for (std::size_t a = 0; a < arrays.size(); ++a) {
-    const std::uint64_t value =
-        static_cast<std::uint64_t>(arrays[a].components) * arrays[a].value_bytes;
-    out.write_at(data + start[a] + sizeof(std::uint64_t) + first * value,
-                 array_bytes(arrays[a].name, s, order, first));
-  }
+  for (std::size_t a = 0; a < arrays.size(); ++a)
+    out.write_at(data + start[a] + sizeof(std::uint64_t) + first * arrays[a].bytes_per_particle(),
+                 arrays[a].values(s, order, first));
   out.close(false);
 }
 
