@@ -103,12 +103,15 @@ extern "C" void on_stop_signal(int sig) {
 bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim,
             std::string& scene_text) {
   std::vector<std::string> refused;
-  const auto data = CheckpointSet(o.resume).newest_valid(&refused);
-  for (const auto& r : refused)
-    fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
+  const Comm comm = Comm::world(); // (every rank reads its share of the checkpoint)
+  const auto data = CheckpointSet(o.resume).newest_valid(comm, &refused);
+  if (comm.root())
+    for (const auto& r : refused)
+      fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
   if (!data) {
-    fmt::print(stderr, "error: {}: no valid checkpoint to resume from\n",
-               (fs::path(o.resume) / "checkpoints").string());
+    if (comm.root())
+      fmt::print(stderr, "error: {}: no valid checkpoint to resume from\n",
+                 (fs::path(o.resume) / "checkpoints").string());
     return false;
   }
   try {

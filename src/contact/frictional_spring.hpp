@@ -40,7 +40,10 @@ enum class Carry : std::uint8_t { rotate, project };
 struct SliderState {
   Vec3 spring;               // s [length]
   std::uint32_t sliding = 0; // 1 while sliding
-  double k = 0.0;            // the stiffness at the last step [force/length]
+  // The four bytes before k, named so that they are always zero: states are saved as their
+  // bytes (checkpoints, migration), and a saved state must not carry undefined bytes.
+  std::uint32_t unused = 0;
+  double k = 0.0; // the stiffness at the last step [force/length]
   bool operator==(const SliderState&) const = default;
   // k |s|^2 / 2 after the last step [energy] (computed: the state stays small, 40 bytes, and
   // the pair loop reads less memory)

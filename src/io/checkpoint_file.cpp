@@ -8,7 +8,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <fstream>
-#include <sstream>
+#include <optional>
 #include <string_view>
 #include <unistd.h>
 #include <utility>
@@ -126,70 +126,232 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
   }
 }
 
-CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
+namespace {
+
+// The bytes of a checkpoint, read by range: from a file, where each rank reads only the part it
+// loads, or from memory (the fuzzer and the tests).
+class CheckpointBytes {
+public:
+  static CheckpointBytes in_memory(std::string bytes) {
+    CheckpointBytes b;
+    b.size_ = bytes.size();
+    b.memory_ = std::move(bytes);
+    return b;
+  }
+  static CheckpointBytes from_file(const std::filesystem::path& file) {
+    CheckpointBytes b;
+    b.file_.open(file, std::ios::binary | std::ios::ate);
+    if (!b.file_) throw CheckpointError(fmt::format("{}: cannot open", file.string()));
+    b.size_ = static_cast<std::uint64_t>(b.file_.tellg());
+    b.name_ = file.string();
+    b.on_disk_ = true;
+    return b;
+  }
+  std::uint64_t size() const { return size_; }
+  // Bytes [at, at + n), which the caller has checked lie inside the file.
+  std::string read(std::uint64_t at, std::uint64_t n) {
+    if (!on_disk_) return memory_.substr(at, n);
+    std::string out(n, '\0');
+    file_.seekg(static_cast<std::streamoff>(at));
+    file_.read(out.data(), static_cast<std::streamsize>(n));
+    if (!file_ || static_cast<std::uint64_t>(file_.gcount()) != n)
+      throw CheckpointError(fmt::format("{}: read failed at byte {}", name_, at));
+    return out;
+  }
+
+private:
+  CheckpointBytes() = default;
+  std::string memory_;
+  std::ifstream file_;
+  std::string name_;
+  std::uint64_t size_ = 0;
+  bool on_disk_ = false;
+};
+
+// What rank 0 reads for all: the head, where each section starts, and the stored CRC-32.
+struct CheckpointIndex {
+  std::string scene_text;
+  std::int64_t step = 0;
+  double time = 0;
+  // The file offset of each section's length field, then the end of the payload.
+  std::vector<std::uint64_t> starts;
+  std::uint32_t crc = 0;
+
+  template <class Archive> void serialize(Archive& ar) {
+    ar.string(scene_text);
+    ar.value(step);
+    ar.value(time);
+    ar.vector(starts);
+    ar.value(crc);
+  }
+};
+
+// Checks the header, reads the head and walks the sections' length fields: a few small reads,
+// not the sections themselves. A file whose structure is broken is read whole once, to report
+// a damaged checksum first (a flipped bit in a length field is damage, not a format error).
+CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
   auto fail = [&](const std::string& what) {
     throw CheckpointError(fmt::format("{}: {}", name, what));
   };
-  if (bytes.size() < header_size || std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+  const std::uint64_t file_size = bytes.size();
+  const std::string header = bytes.read(0, std::min<std::uint64_t>(file_size, header_size));
+  if (header.size() < header_size || std::memcmp(header.data(), magic, sizeof magic) != 0)
     fail("not a yuxi checkpoint (no YUXICKPT header)");
-  const auto version = get<std::uint32_t>(bytes, 8);
+  const auto version = get<std::uint32_t>(header, 8);
   if (version != checkpoint_format_version)
     fail(fmt::format("checkpoint format version {}; this yuxi reads version {}", version,
                      checkpoint_format_version));
-  if (get<std::uint32_t>(bytes, 12) != byte_order_mark)
+  if (get<std::uint32_t>(header, 12) != byte_order_mark)
     fail("written on a machine of another byte order");
-  const auto size = get<std::uint64_t>(bytes, 16);
-  if (size > bytes.size() - header_size || bytes.size() - header_size - size < 4)
+  const auto size = get<std::uint64_t>(header, 16);
+  const std::uint64_t after_header = file_size - header_size;
+  if (size > after_header || after_header - size < 4)
     fail(fmt::format("truncated: the header announces {} bytes of data, the file holds {}", size,
-                     bytes.size() - header_size));
-  if (bytes.size() - header_size - size != 4) fail("trailing bytes after the checksum (corrupt)");
-  const auto stored = get<std::uint32_t>(bytes, header_size + size);
-  if (crc_of(std::string_view(bytes).substr(header_size, size)) != stored)
-    fail("checksum mismatch: the file is corrupt");
-  CheckpointData d;
-  d.file = name;
+                     after_header));
+  if (after_header - size != 4) fail("trailing bytes after the checksum (corrupt)");
+  const std::uint64_t end = header_size + size;
+  CheckpointIndex index;
+  index.crc = get<std::uint32_t>(bytes.read(end, 4), 0);
+  std::uint64_t at = header_size;
   try {
-    ArchiveReader ar(std::string_view(bytes).substr(header_size, size));
-    ar.string(d.scene_text);
-    ar.value(d.step);
-    ar.value(d.time);
+    // The head: scene (as ArchiveWriter::string), step, time, number of sections.
+    const std::uint64_t fixed = 8 + 8 + 8 + 8;
+    if (size < fixed) throw ArchiveError("the data ends early (truncated)");
+    const auto scene_bytes = get<std::uint64_t>(bytes.read(at, 8), 0);
+    if (scene_bytes > size - fixed)
+      throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+    const std::string head = bytes.read(at, fixed + scene_bytes);
+    ArchiveReader ar(head);
+    ar.string(index.scene_text);
+    ar.value(index.step);
+    ar.value(index.time);
     std::uint64_t n = 0;
     ar.value(n);
-    ar.check_room(n, sizeof(std::uint64_t));
-    d.sections.resize(n);
-    for (auto& sec : d.sections) ar.string(sec);
-    if (!ar.at_end()) fail("unread data after the last section (corrupt)");
+    at += head.size();
+    if (n > (end - at) / sizeof(std::uint64_t))
+      throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+    index.starts.reserve(n + 1);
+    for (std::uint64_t k = 0; k < n; ++k) {
+      index.starts.push_back(at);
+      if (end - at < 8) throw ArchiveError("the data ends early (truncated)");
+      const auto length = get<std::uint64_t>(bytes.read(at, 8), 0);
+      at += 8;
+      if (length > end - at)
+        throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+      at += length;
+    }
+    index.starts.push_back(at);
+    if (at != end) throw ArchiveError("unread data after the last section (corrupt)");
   } catch (const ArchiveError& e) {
+    if (crc_of(bytes.read(header_size, size)) != index.crc)
+      fail("checksum mismatch: the file is corrupt");
     fail(e.what());
+  }
+  return index;
+}
+
+// Throws on every rank if any failed (the lowest failing rank's message).
+void agree(const Comm& comm, const std::string& error) {
+  const std::string first = comm.first_error(error);
+  if (!first.empty()) throw CheckpointError(first);
+}
+
+// Collective: rank 0 reads the index, and every rank reads its share of the sections (block
+// by block in rank order) and the CRC of the bytes it read; rank 0 combines the ranks' CRCs
+// into the file's and checks it. No rank reads or holds more than its share.
+CheckpointData read_share(CheckpointBytes& bytes, const std::string& name, const Comm& comm) {
+  std::string error, encoded;
+  if (comm.root()) {
+    try {
+      CheckpointIndex index = read_index(bytes, name);
+      ArchiveWriter ar;
+      index.serialize(ar);
+      encoded = ar.release();
+    } catch (const CheckpointError& e) {
+      error = e.what();
+    }
+  }
+  agree(comm, error);
+  CheckpointIndex index;
+  {
+    const std::string shared = comm.broadcast(encoded);
+    ArchiveReader ar(shared);
+    index.serialize(ar);
+  }
+  // Sections first .. last - 1 are this rank's; its bytes run from the start of the first to
+  // the start of the next rank's, so the ranks' ranges tile the payload (rank 0's starts with
+  // the head, and the last rank's ends at the payload's end).
+  const auto n = static_cast<std::uint64_t>(index.starts.size() - 1);
+  const auto ranks = static_cast<std::uint64_t>(comm.size());
+  const auto rank = static_cast<std::uint64_t>(comm.rank());
+  const auto first_of = [&](std::uint64_t r) { return n / ranks * r + std::min(r, n % ranks); };
+  const std::uint64_t first = first_of(rank), last = first_of(rank + 1);
+  const std::uint64_t begin = rank == 0 ? header_size : index.starts[first];
+  const std::uint64_t end = rank + 1 == ranks ? index.starts[n] : index.starts[last];
+  std::string share;
+  try {
+    share = bytes.read(begin, end - begin);
+  } catch (const CheckpointError& e) {
+    error = e.what();
+  }
+  agree(comm, error);
+  std::string crc_and_length;
+  put(crc_and_length, crc_of(share));
+  put(crc_and_length, end - begin);
+  const std::vector<std::string> crcs = comm.gather(crc_and_length);
+  if (comm.root()) {
+    uLong crc = 0; // of nothing
+    for (const auto& c : crcs)
+      crc = crc32_combine64(crc, get<std::uint32_t>(c, 0),
+                            static_cast<z_off64_t>(get<std::uint64_t>(c, 4)));
+    if (static_cast<std::uint32_t>(crc) != index.crc)
+      error = fmt::format("{}: checksum mismatch: the file is corrupt", name);
+  }
+  agree(comm, error);
+  CheckpointData d;
+  d.file = name;
+  d.scene_text = std::move(index.scene_text);
+  d.step = index.step;
+  d.time = index.time;
+  d.first_section = first;
+  d.n_sections = n;
+  for (std::uint64_t k = first; k < last; ++k) {
+    const std::uint64_t at = index.starts[k] - begin + 8; // past the length field
+    const std::uint64_t length = index.starts[k + 1] - index.starts[k] - 8;
+    if (last - first > 1) {
+      d.sections.push_back(share.substr(at, length));
+      continue;
+    }
+    share.erase(0, at); // one section (resuming on as many ranks): kept in place, not copied
+    share.resize(length);
+    d.sections.push_back(std::move(share));
   }
   return d;
 }
 
-CheckpointData read_checkpoint(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw CheckpointError(fmt::format("{}: cannot open", file.string()));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_checkpoint(s.str(), file.string());
+} // namespace
+
+CheckpointData parse_checkpoint(std::string bytes, const std::string& name) {
+  CheckpointBytes source = CheckpointBytes::in_memory(std::move(bytes));
+  return read_share(source, name, Comm::self());
+}
+
+CheckpointData read_checkpoint(const std::filesystem::path& file, const Comm& comm) {
+  std::optional<CheckpointBytes> source;
+  std::string error;
+  try {
+    source.emplace(CheckpointBytes::from_file(file));
+  } catch (const CheckpointError& e) {
+    error = e.what();
+  }
+  agree(comm, error);
+  return read_share(*source, file.string(), comm);
 }
 
 void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
-  const auto ranks = static_cast<std::size_t>(sim.comm().size());
   try {
-    if (data.sections.empty()) throw ArchiveError("no rank's state in the file");
-    if (data.sections.size() != ranks) { // written on another number of ranks: redistribute
-      sim.load_redistributed(data.sections);
-      return;
-    }
-    ArchiveReader ar(data.sections[static_cast<std::size_t>(sim.comm().rank())]);
-    sim.checkpoint(ar);
-    if (!ar.at_end()) throw ArchiveError("unread data after the state");
-  } catch (const ArchiveError& e) {
-    throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
-  } catch (const std::length_error&) {
-    throw CheckpointError(
-        fmt::format("{}: a size field is impossible (corrupt)", data.file.string()));
-  } catch (const std::invalid_argument& e) { // the loaded particles do not fit the scene
+    sim.load(data.sections, data.n_sections);
+  } catch (const std::invalid_argument& e) { // the same on every rank (Simulation::load)
     throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
   }
 }
@@ -225,10 +387,17 @@ std::vector<std::filesystem::path> CheckpointSet::list() const {
 }
 
 std::optional<CheckpointData>
-CheckpointSet::newest_valid(std::vector<std::string>* warnings) const {
-  for (const auto& f : list()) {
+CheckpointSet::newest_valid(const Comm& comm, std::vector<std::string>* warnings) const {
+  // Rank 0's listing, on every rank: all ranks must try the same files in the same order.
+  std::string names;
+  if (comm.root())
+    for (const auto& f : list()) names += f.string() + '\n';
+  names = comm.broadcast(names);
+  for (std::size_t at = 0, next; (next = names.find('\n', at)) != std::string::npos;
+       at = next + 1) {
+    const std::filesystem::path f = names.substr(at, next - at);
     try {
-      return read_checkpoint(f);
+      return read_checkpoint(f, comm);
     } catch (const CheckpointError& e) {
       if (warnings) warnings->push_back(e.what());
     }

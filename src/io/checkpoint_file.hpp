@@ -2,12 +2,14 @@
 //
 // Layout: "YUXICKPT" | u32 format version | u32 byte-order mark 0x01020304 | u64 payload size |
 // payload | u32 CRC-32 of the payload (zlib). The payload holds the resolved scene (TOML), the
-// step and time, and one section per MPI rank with that rank's Simulation::checkpoint(); rank 0
-// gathers the sections and writes the file. A run resumed on the same number of ranks takes
-// each rank's own section and continues bit for bit; on another number the particles and
-// contact states are redistributed (Simulation::load_redistributed): correct, not bitwise. Files
-// are written to a temporary name, flushed to disk (fsync) and renamed, so a crash at any moment
-// leaves either the previous checkpoint or the new one, never half of one.
+// step and time, and one section per MPI rank with that rank's Simulation::checkpoint(). Every
+// rank writes its own section, and reads only its share back: rank 0 reads the head and where
+// the sections start, each rank reads its sections, and the CRC of the whole is combined from
+// the ranks' CRCs of what they read. A run resumed on the same number of ranks takes each
+// rank's own section and continues bit for bit; on another number the ranks share out the
+// sections and the particles and contact states are redistributed (Simulation::load): correct,
+// not bitwise. Files are written to a temporary name, flushed to disk (fsync) and renamed, so a
+// crash at any moment leaves either the previous checkpoint or the new one, never half of one.
 #pragma once
 
 #include "sim/simulation.hpp"
@@ -32,20 +34,28 @@ public:
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
                       Simulation& sim);
 
-// A verified checkpoint, not yet applied to a simulation.
+// A verified checkpoint's head and this rank's share of its sections, not yet applied to a
+// simulation.
 struct CheckpointData {
   std::filesystem::path file;
   std::string scene_text;
   std::int64_t step = 0;
   double time = 0;
-  std::vector<std::string> sections; // Simulation::checkpoint of each rank
+  // Simulation::checkpoint of ranks first_section, first_section + 1, ... of the run that wrote
+  // the file, which had n_sections ranks. On as many ranks, each rank's share is its own
+  // section; on others, a block of consecutive sections (possibly none).
+  std::vector<std::string> sections;
+  std::uint64_t first_section = 0;
+  std::uint64_t n_sections = 0;
 };
 
-// Reads and verifies a checkpoint; throws CheckpointError naming the file and the problem.
-CheckpointData read_checkpoint(const std::filesystem::path& file);
-// Verifies checkpoint bytes (for the fuzzer and tests); `name` labels the messages.
+// Collective: reads and verifies a checkpoint, each rank its share of the sections; throws
+// CheckpointError on every rank, naming the file and the problem.
+CheckpointData read_checkpoint(const std::filesystem::path& file, const Comm& comm);
+// Verifies checkpoint bytes (for the fuzzer and tests), with every section as the share;
+// `name` labels the messages.
 CheckpointData parse_checkpoint(std::string bytes, const std::string& name);
-// Loads this rank's section into a simulation built from the checkpoint's scene.
+// Collective: loads the shares into a simulation built from the checkpoint's scene.
 void apply_checkpoint(const CheckpointData& data, Simulation& sim);
 
 // The checkpoints of a run folder: `<run>/checkpoints/checkpoint_<step>.yxc`.
@@ -57,8 +67,10 @@ public:
   void write(const std::string& scene_text, Simulation& sim);
   // Files present, newest first.
   std::vector<std::filesystem::path> list() const;
-  // The newest checkpoint that verifies; each refused one is reported through `warn`.
-  std::optional<CheckpointData> newest_valid(std::vector<std::string>* warnings) const;
+  // Collective: the newest checkpoint that verifies (rank 0's listing of the folder); each
+  // refused one is reported through `warnings`.
+  std::optional<CheckpointData> newest_valid(const Comm& comm,
+                                             std::vector<std::string>* warnings) const;
 
 private:
   std::filesystem::path folder_;

@@ -298,59 +298,126 @@ void Simulation::validate_loaded_particles() const {
     throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
 }
 
-void Simulation::load_redistributed(const std::vector<std::string>& sections) {
-  ParticleStore pool;
-  std::string states;
-  double books[5] = {0, 0, 0, 0, 0}; // dissipated, wall work, removed, escaped
-  ContactTally tally;
-  merging_ = true;
-  for (const auto& section : sections) {
-    ArchiveReader ar(section);
-    checkpoint(ar);
-    if (!ar.at_end()) throw ArchiveError("unread data after a section");
-    for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
-    std::visit([&](auto& f) { states += f.history.stashed_bytes(); }, forces_);
-    books[0] += dissipated_, books[1] += wall_work_, books[2] += removed_energy_;
-    books[4] += gravity_work_;
-    books[3] += static_cast<double>(escaped_);
-    tally.elastic += tally_.elastic;
-    tally.relaxation += tally_.relaxation;
-    tally.touching += tally_.touching;
+void Simulation::load(const std::vector<std::string>& share, std::uint64_t written_on) {
+  const bool own = written_on == static_cast<std::uint64_t>(comm_.size());
+  // Every rank learns whether every other loaded its share before any takes a collective step.
+  std::string error;
+  try {
+    if (own && share.size() != 1) throw ArchiveError("no state for this rank in the file");
+    if (own)
+      load_own_section(share.front());
+    else
+      merge_sections(share);
+    validate_loaded_particles();
+  } catch (const ArchiveError& e) {
+    error = e.what();
+  } catch (const std::length_error&) {
+    error = "a size field is impossible (corrupt)";
+  } catch (const std::invalid_argument& e) { // the loaded particles do not fit the scene
+    error = e.what();
   }
-  merging_ = false;
-  // This run's own decomposition: cut by particle count, keep this sub-domain's particles.
-  if (comm_.size() > 1) decomp_.balance(pool.x, std::vector<double>(pool.n_owned(), 1.0), comm_);
-  store_ = ParticleStore{};
-  for (std::size_t i = 0; i < pool.n_owned(); ++i)
-    if (comm_.size() == 1 || decomp_.owns(config_.box.wrap(pool.x[i]))) store_.append_copy(pool, i);
-  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
-  std::visit([&](auto& f) { f.history.give(states); }, forces_);
+  loading_ = Loading::whole;
+  error = comm_.first_error(error);
+  if (!error.empty()) throw std::invalid_argument(error);
+  if (own) {
+    rebuild_after_load();
+    return;
+  }
+  // The run's scalars, the same in every section, from the ranks that loaded one (a rank's
+  // share may be empty), and the books summed over the sections, onto rank 0.
+  const bool loaded = !share.empty();
+  double scalars[] = {loaded ? time_ : -HUGE_VAL, loaded ? static_cast<double>(step_) : -HUGE_VAL,
+                      loaded ? static_cast<double>(rebuilds_) : -HUGE_VAL,
+                      loaded ? initial_balance_ : -HUGE_VAL};
+  comm_.max(scalars, 4);
+  time_ = scalars[0];
+  step_ = static_cast<std::int64_t>(scalars[1]);
+  rebuilds_ = static_cast<std::int64_t>(scalars[2]);
+  initial_balance_ = scalars[3];
+  double books[] = {dissipated_,
+                    wall_work_,
+                    removed_energy_,
+                    gravity_work_,
+                    static_cast<double>(escaped_),
+                    tally_.elastic,
+                    tally_.relaxation,
+                    static_cast<double>(tally_.touching)};
+  comm_.sum(books, 8);
   const bool root = comm_.root();
   dissipated_ = root ? books[0] : 0;
   wall_work_ = root ? books[1] : 0;
   removed_energy_ = root ? books[2] : 0;
-  gravity_work_ = root ? books[4] : 0;
-  escaped_ = root ? static_cast<std::size_t>(books[3]) : 0;
-  tally_ = root ? tally : ContactTally{};
+  gravity_work_ = root ? books[3] : 0;
+  escaped_ = root ? static_cast<std::size_t>(books[4]) : 0;
+  tally_ = ContactTally{};
+  if (root) {
+    tally_.elastic = books[5];
+    tally_.relaxation = books[6];
+    tally_.touching = static_cast<std::size_t>(books[7]);
+  }
+  // This run's own decomposition, cut by particle count; the rebuild's migration then takes
+  // every particle to its owner.
+  if (comm_.size() > 1)
+    decomp_.balance(
+        std::vector<Vec3>(store_.x.begin(),
+                          store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),
+        std::vector<double>(store_.n_owned(), 1.0), comm_);
+  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
   rebuild_after_load();
 }
 
+void Simulation::load_own_section(const std::string& section) {
+  loading_ = Loading::deferred;
+  ArchiveReader ar(section);
+  checkpoint(ar);
+  if (!ar.at_end()) throw ArchiveError("unread data after the state");
+}
+
+void Simulation::merge_sections(const std::vector<std::string>& share) {
+  ParticleStore pool;
+  std::string states;
+  double books[5] = {0, 0, 0, 0, 0}; // dissipated, wall work, removed, gravity work, escaped
+  ContactTally tally;
+  double time = 0, initial_balance = 0;
+  std::int64_t step = 0, rebuilds = 0;
+  loading_ = Loading::merged;
+  for (std::size_t k = 0; k < share.size(); ++k) {
+    ArchiveReader ar(share[k]);
+    checkpoint(ar);
+    if (!ar.at_end()) throw ArchiveError("unread data after a section");
+    if (k == 0)
+      time = time_, step = step_, rebuilds = rebuilds_, initial_balance = initial_balance_;
+    for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
+    std::visit([&](auto& f) { states += f.history.stashed_bytes(); }, forces_);
+    books[0] += dissipated_, books[1] += wall_work_, books[2] += removed_energy_;
+    books[3] += gravity_work_, books[4] += static_cast<double>(escaped_);
+    tally.elastic += tally_.elastic;
+    tally.relaxation += tally_.relaxation;
+    tally.touching += tally_.touching;
+  }
+  store_ = std::move(pool);
+  std::visit([&](auto& f) { f.history.give(states); }, forces_);
+  time_ = time, step_ = step, rebuilds_ = rebuilds, initial_balance_ = initial_balance;
+  dissipated_ = books[0], wall_work_ = books[1], removed_energy_ = books[2];
+  gravity_work_ = books[3], escaped_ = static_cast<std::size_t>(books[4]);
+  tally_ = tally;
+}
+
 void Simulation::rebuild_after_load() {
-  validate_loaded_particles();
   // The stored particles are sorted and wrapped as at the rebuild before the checkpoint, so
   // this rebuild reproduces that list; the history comes from the checkpoint's stash.
   const auto counted = rebuilds_;
-  rebuild(false);
+  rebuild(true);
   rebuilds_ = counted;
 }
 
-void Simulation::rebuild(bool stash_history) {
+void Simulation::rebuild(bool after_load) {
   auto t0 = Clock::now(); // (the spans without exchanges go into timers_.neighbor_local)
-  if (stash_history) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
+  if (!after_load) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
   timers_.neighbor_local += seconds_since(t0);
   // Rebalance by measured cost at the first rebuild after the start (the start could only
   // count particles), then every rebalance_every rebuilds.
-  if (comm_.size() > 1 && config_.rebalance_every > 0 &&
+  if (!after_load && comm_.size() > 1 && config_.rebalance_every > 0 &&
       (rebuilds_ == 1 || (rebuilds_ > 0 && rebuilds_ % config_.rebalance_every == 0)))
     rebalance();
   handle_escapes();

@@ -159,20 +159,28 @@ public:
       std::vector<double> cuts = decomp_.cuts(a);
       ar.vector(cuts);
       if constexpr (Archive::loading)
-        if (!merging_) decomp_.set_cuts(a, cuts);
+        if (loading_ != Loading::merged) decomp_.set_cuts(a, cuts);
     }
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
     std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
     if constexpr (Archive::loading)
-      if (!merging_) rebuild_after_load();
+      if (loading_ == Loading::whole) {
+        validate_loaded_particles();
+        rebuild_after_load();
+      }
   }
 
-  // Loads the sections of a checkpoint written by another number of ranks: every rank reads
-  // them all and keeps its sub-domain's particles (cut afresh by particle count) and the
-  // contact states; rank 0 carries the energy books. A correct continuation, not a bitwise one
-  // (the summation order changes with the decomposition).
-  void load_redistributed(const std::vector<std::string>& sections);
+  // Collective: loads this rank's share of a checkpoint's sections (Simulation::checkpoint of
+  // each rank of the run that wrote it, which had `written_on` ranks; `share` holds a block of
+  // consecutive ones). On as many ranks, the share is this rank's own section, and the run
+  // continues bit for bit. On another number, each rank loads its block, the cut planes are set
+  // afresh by particle count, and the particles go to their new owners with copies of their
+  // contacts' states (the migration of a rebuild, repeated until none is left astray); the
+  // energy books are summed onto rank 0. A correct continuation, not a bitwise one (the
+  // summation order changes with the decomposition). A section that does not load or does not
+  // fit the scene throws std::invalid_argument on every rank.
+  void load(const std::vector<std::string>& share, std::uint64_t written_on);
 
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
@@ -193,11 +201,16 @@ private:
   // `every_one` false skips those of a motion at rest: placed before, they stay there.
   // `moved2`, if given, gets the largest squared displacement of a wall particle.
   bool place_walls(double t, bool every_one = false, double* moved2 = nullptr);
-  void rebuild(bool stash_history = true);
+  // `after_load`: the rebuild of a loaded state, whose contact states are in the stash already
+  // and whose cut planes are the saved ones (the run's next rebuild balances as it would have).
+  void rebuild(bool after_load = false);
   void migrate();
   void rebalance();
   void stop_together(const std::string& local_error) const;
   void rebuild_after_load();
+  // load()'s parts on this rank: its own section, or the merge of its share.
+  void load_own_section(const std::string& section);
+  void merge_sections(const std::vector<std::string>& share);
   void validate_loaded_particles() const;
   void handle_escapes();
   void handle_escapes_here();
@@ -256,7 +269,11 @@ private:
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)
-  bool merging_ = false;     // load_redistributed() is reading sections
+  // How checkpoint() loads: a whole state (rebuilt at once), one section whose rebuild load()
+  // does once every rank has loaded, or one of several sections that load() merges (the cut
+  // planes are set afresh).
+  enum class Loading { whole, deferred, merged };
+  Loading loading_ = Loading::whole;
   std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };

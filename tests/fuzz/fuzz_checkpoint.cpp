@@ -53,6 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   yuxi::CheckpointData d;
   d.file = "fuzz.yxc";
   d.sections = {bytes};
+  d.n_sections = 1;
   try {
     yuxi::apply_checkpoint(d, *sim);
     sim->run(2);

@@ -5,6 +5,7 @@
 #include "core/archive.hpp"
 #include "core/random.hpp"
 #include "domain/shared_file.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
@@ -496,6 +497,82 @@ TEST(Mpi, SharedFileReportsAFailureOnEveryRank) {
     EXPECT_NE(std::string(e.what()).find("no_such_folder"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(thrown);
+  if (comm.root()) std::filesystem::remove_all(dir);
+}
+
+// A checkpoint that every rank wrote is read back in shares: each rank reads and holds its own
+// section alone, loads it into a new simulation to the same state, and a damaged byte in any
+// rank's section is refused on every rank (the file's CRC, combined from the ranks' parts).
+TEST(Mpi, CheckpointIsReadBackInSharesAndVerifiedWhole) {
+  const Comm comm = Comm::world();
+  Simulation sim = dense(comm);
+  sim.run(30);
+  sim.request_rebuild(); // (a checkpoint follows a list build, as in a run)
+  sim.step();
+  const auto dir = shared_temp_dir("checkpoint_shares");
+  const auto path = dir / "c.yxc";
+  write_checkpoint(path, "scene text", sim);
+  ArchiveWriter mine;
+  sim.checkpoint(mine);
+
+  const CheckpointData d = read_checkpoint(path, comm);
+  EXPECT_EQ(d.scene_text, "scene text");
+  EXPECT_EQ(d.step, 31);
+  EXPECT_EQ(d.n_sections, static_cast<std::uint64_t>(comm.size()));
+  EXPECT_EQ(d.first_section, static_cast<std::uint64_t>(comm.rank()));
+  ASSERT_EQ(d.sections.size(), 1u);
+  EXPECT_TRUE(d.sections[0] == mine.data()) << "this rank's own section";
+  Simulation loaded = dense(comm); // continues as the original
+  apply_checkpoint(d, loaded);
+  sim.run(20);
+  loaded.run(20);
+  expect_same(snapshot(sim), snapshot(loaded), 1e-13, 1e-12);
+
+  if (comm.root()) { // a group of one reads every section
+    const CheckpointData all = read_checkpoint(path, Comm::self());
+    EXPECT_EQ(all.sections.size(), static_cast<std::size_t>(comm.size()));
+    EXPECT_TRUE(all.sections[0] == mine.data());
+  }
+  comm.barrier();
+  if (comm.rank() == comm.size() - 1) { // a byte of the last rank's section
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(std::filesystem::file_size(path) - 4 - 100));
+    f.put('\x5a');
+  }
+  comm.barrier();
+  bool refused = false;
+  try {
+    read_checkpoint(path, comm);
+  } catch (const CheckpointError& e) {
+    refused = true;
+    EXPECT_NE(std::string(e.what()).find("c.yxc: checksum mismatch"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(refused);
+  comm.barrier();
+  if (comm.root()) std::filesystem::remove_all(dir);
+}
+
+// A run resumed on as many ranks keeps the saved cut planes, even where the saved run was due
+// to move them at its next list build (here the first, rebuilds() == 1): the loaded run
+// balances at that build too, not while loading, with no list to weigh the particles by.
+TEST(Mpi, ALoadedRunKeepsItsCutPlanesUntilItsNextBalancing) {
+  const Comm comm = Comm::world();
+  Simulation sim = dense(comm);
+  ASSERT_EQ(sim.rebuilds(), 1);
+  const auto dir = shared_temp_dir("checkpoint_cuts");
+  write_checkpoint(dir / "c.yxc", "", sim);
+  Simulation loaded = dense(comm);
+  apply_checkpoint(read_checkpoint(dir / "c.yxc", comm), loaded);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_EQ(loaded.decomposition().cuts(a), sim.decomposition().cuts(a)) << "axis " << a;
+  sim.request_rebuild();
+  loaded.request_rebuild();
+  sim.step();
+  loaded.step();
+  for (int a = 0; a < 3; ++a)
+    EXPECT_EQ(loaded.decomposition().cuts(a), sim.decomposition().cuts(a)) << "axis " << a;
+  comm.barrier();
   if (comm.root()) std::filesystem::remove_all(dir);
 }
 

@@ -135,7 +135,7 @@ TEST(Checkpoint, ACorruptNewestCheckpointFallsBackToThePreviousOne) {
     f.put('\x5a');
   }
   std::vector<std::string> refused;
-  const auto data = set.newest_valid(&refused);
+  const auto data = set.newest_valid(Comm::self(), &refused);
   ASSERT_TRUE(data.has_value());
   EXPECT_EQ(data->step, 3000);
   ASSERT_EQ(refused.size(), 1u);

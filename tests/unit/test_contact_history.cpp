@@ -51,8 +51,8 @@ TEST(ContactHistory, RebuildingAtAnyStepChangesNothingButRoundOff) {
 
 TEST(ContactHistory, MirroredStateFollowsTheListedOrientation) {
   LinearSpringDashpot::State s;
-  s.tangential = {{1, 2, 3}, 1, 7.0};
-  s.rolling = {{4, 5, 6}, 0, 77.0};
+  s.tangential = {.spring = {1, 2, 3}, .sliding = 1, .k = 7.0};
+  s.rolling = {.spring = {4, 5, 6}, .sliding = 0, .k = 77.0};
   EXPECT_EQ(s.mirrored().tangential.spring, (Vec3{-1, -2, -3}));
   EXPECT_EQ(s.mirrored().tangential.sliding, 1u);
   EXPECT_EQ(s.mirrored().rolling.spring, (Vec3{4, 5, 6})); // -a (w_i - w_j) x n is symmetric

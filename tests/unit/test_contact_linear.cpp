@@ -148,7 +148,7 @@ TEST(LinearContact, SticksBelowMuStaticThenSlidesAtMuDynamic) {
 
 TEST(LinearContact, OpeningContactForgetsItsSpringAndLosesItsEnergy) {
   Law::State s;
-  s.tangential = {{1e-3, 0, 0}, 1, paper_grain_grain().k_t};
+  s.tangential = {.spring = {1e-3, 0, 0}, .sliding = 1, .k = paper_grain_grain().k_t};
   const double lost = Law::release(paper_grain_grain(), s);
   EXPECT_EQ(s, Law::State{});
   EXPECT_DOUBLE_EQ(lost, 0.5 * paper_grain_grain().k_t * 1e-6);
