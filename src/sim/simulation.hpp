@@ -161,6 +161,9 @@ public:
       if constexpr (Archive::loading)
         if (loading_ != Loading::merged) decomp_.set_cuts(a, cuts);
     }
+    // The cells of the saved sub-domain: the list build then sorts and bins as the saved run.
+    if constexpr (Archive::loading)
+      if (loading_ != Loading::merged) grid_ = CellGrid(decomp_.local_box(), cell_edge_);
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
     std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
