@@ -26,6 +26,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -191,7 +192,11 @@ public:
   // Collective: throws SimulationError on every rank if the last force evaluation on any rank
   // found an overlap beyond the limit (a step finds out at its next collective; a checkpoint
   // must not keep such a state).
-  void stop_if_unhealthy() const { stop_together(health_error_); }
+  // It also checks the energy books of the last list build, if still due.
+  void stop_if_unhealthy() {
+    stop_together(health_error_);
+    settle_energy_books();
+  }
 
   // Setup access: changes to particles must be followed by refresh(), before the first step.
   ParticleStore& particles_mutable() { return store_; }
@@ -227,7 +232,15 @@ private:
   // Notes (in health_error_) an overlap beyond max_overlap_ratio; the next collective stops
   // every rank with it.
   void check_health();
-  void check_energy_books() const;
+  // The energy books (EnergyReport) as sums of the ranks' parts: this rank's parts, and the
+  // report of their sums over the ranks.
+  static constexpr int energy_sums = 12;
+  std::array<double, energy_sums> energy_parts() const;
+  EnergyReport report_of(const std::array<double, energy_sums>& sums) const;
+  // Throws SimulationError if the books have gained energy (an unstable integration).
+  void check_energy_books(const EnergyReport& e) const;
+  // Collective: sums and checks the books that a list build left due.
+  void settle_energy_books();
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
@@ -272,6 +285,10 @@ private:
   std::int64_t rebuilds_ = 0;
   bool rebuild_requested_ = false;
   std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)
+  // This rank's parts of the energy books at the last list build, until the next collective
+  // sums and checks them (settle_energy_books).
+  std::optional<std::array<double, energy_sums>> books_due_;
+  bool cuts_moved_ = false; // since the last list build (migrate() then checks for strays)
   // How checkpoint() loads: a whole state (rebuilt at once), one section whose rebuild load()
   // does once every rank has loaded, or one of several sections that load() merges (the cut
   // planes are set afresh).
