@@ -304,6 +304,7 @@ void Simulation::load(const std::vector<std::string>& share, std::uint64_t writt
   // Every rank learns whether every other loaded its share before any takes a collective step.
   std::string error;
   try {
+    if (written_on == 0) throw ArchiveError("no rank's state in the file");
     if (own && share.size() != 1) throw ArchiveError("no state for this rank in the file");
     if (own)
       load_own_section(share.front());

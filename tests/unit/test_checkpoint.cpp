@@ -12,6 +12,7 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zlib.h>
 
 namespace yuxi {
 namespace {
@@ -118,6 +119,41 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return n;
     });
+
+// An intact file that holds no rank's state (crafted: a run always writes at least one) is
+// refused, not loaded as an empty system.
+TEST(Checkpoint, AFileWithNoRanksStateIsRefused) {
+  ArchiveWriter head;
+  std::string scene;
+  std::int64_t step = 10;
+  double time = 1.0;
+  std::uint64_t sections = 0;
+  head.string(scene);
+  head.value(step);
+  head.value(time);
+  head.value(sections);
+  const std::string payload = head.release();
+  std::string bytes = "YUXICKPT";
+  const auto put = [&bytes](const auto& v) {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  };
+  put(checkpoint_format_version);
+  put(std::uint32_t{0x01020304});
+  put(static_cast<std::uint64_t>(payload.size()));
+  bytes += payload;
+  put(static_cast<std::uint32_t>(
+      crc32(0, reinterpret_cast<const Bytef*>(payload.data()), static_cast<uInt>(payload.size()))));
+  const CheckpointData data = parse_checkpoint(bytes, "c.yxc");
+  EXPECT_EQ(data.n_sections, 0u);
+  auto sim = build_simulation(reliability_scene(), false);
+  try {
+    apply_checkpoint(data, *sim);
+    FAIL() << "accepted";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.yxc: no rank's state in the file"), std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(Checkpoint, ACorruptNewestCheckpointFallsBackToThePreviousOne) {
   const Scene scene = reliability_scene();
