@@ -46,6 +46,19 @@ template <class T> T get(const std::string& in, std::size_t at) {
   return v;
 }
 
+// Collective: the CRC-32 of the ranks' parts one after the other, on rank 0 (0 elsewhere), from
+// each rank's CRC of its part and the part's length (zlib's crc32_combine64).
+std::uint32_t combined_crc(const Comm& comm, std::uint32_t part_crc, std::uint64_t part_bytes) {
+  std::string crc_and_length;
+  put(crc_and_length, part_crc);
+  put(crc_and_length, part_bytes);
+  uLong crc = 0; // of nothing
+  for (const auto& c : comm.gather(crc_and_length))
+    crc = crc32_combine64(crc, get<std::uint32_t>(c, 0),
+                          static_cast<z_off64_t>(get<std::uint64_t>(c, 4)));
+  return static_cast<std::uint32_t>(crc);
+}
+
 } // namespace
 
 void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
@@ -76,10 +89,7 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
   const std::uint32_t part_crc = crc_of(section.data(), crc_of(part));
   const std::uint64_t payload =
       static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(part_bytes)));
-  std::string crc_and_length;
-  put(crc_and_length, part_crc);
-  put(crc_and_length, part_bytes);
-  const std::vector<std::string> crcs = comm.gather(crc_and_length);
+  const std::uint32_t crc = combined_crc(comm, part_crc, part_bytes);
 
   // Written under a temporary name, flushed to the disk and renamed, so that a crash mid-write
   // leaves the previous checkpoint intact.
@@ -96,12 +106,8 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
       put(header, byte_order_mark);
       put(header, payload);
       out.write_at(0, header);
-      uLong crc = 0; // of nothing
-      for (const auto& c : crcs)
-        crc = crc32_combine64(crc, get<std::uint32_t>(c, 0),
-                              static_cast<z_off64_t>(get<std::uint64_t>(c, 4)));
       std::string tail;
-      put(tail, static_cast<std::uint32_t>(crc));
+      put(tail, crc);
       out.write_at(header_size + payload, tail);
     }
     out.close(true);
@@ -213,13 +219,16 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
   CheckpointIndex index;
   index.crc = get<std::uint32_t>(bytes.read(end, 4), 0);
   std::uint64_t at = header_size;
+  // The archive's own complaint about a length beyond the data (ArchiveReader::check_room).
+  const auto exceeds = [] {
+    throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+  };
   try {
     // The head: scene (as ArchiveWriter::string), step, time, number of sections.
     const std::uint64_t fixed = 8 + 8 + 8 + 8;
     if (size < fixed) throw ArchiveError("the data ends early (truncated)");
     const auto scene_bytes = get<std::uint64_t>(bytes.read(at, 8), 0);
-    if (scene_bytes > size - fixed)
-      throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+    if (scene_bytes > size - fixed) exceeds();
     const std::string head = bytes.read(at, fixed + scene_bytes);
     ArchiveReader ar(head);
     ar.string(index.scene_text);
@@ -228,16 +237,14 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
     std::uint64_t n = 0;
     ar.value(n);
     at += head.size();
-    if (n > (end - at) / sizeof(std::uint64_t))
-      throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+    if (n > (end - at) / sizeof(std::uint64_t)) exceeds();
     index.starts.reserve(n + 1);
     for (std::uint64_t k = 0; k < n; ++k) {
       index.starts.push_back(at);
       if (end - at < 8) throw ArchiveError("the data ends early (truncated)");
       const auto length = get<std::uint64_t>(bytes.read(at, 8), 0);
       at += 8;
-      if (length > end - at)
-        throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
+      if (length > end - at) exceeds();
       at += length;
     }
     index.starts.push_back(at);
@@ -295,18 +302,9 @@ CheckpointData read_share(CheckpointBytes& bytes, const std::string& name, const
     error = e.what();
   }
   agree(comm, error);
-  std::string crc_and_length;
-  put(crc_and_length, crc_of(share));
-  put(crc_and_length, end - begin);
-  const std::vector<std::string> crcs = comm.gather(crc_and_length);
-  if (comm.root()) {
-    uLong crc = 0; // of nothing
-    for (const auto& c : crcs)
-      crc = crc32_combine64(crc, get<std::uint32_t>(c, 0),
-                            static_cast<z_off64_t>(get<std::uint64_t>(c, 4)));
-    if (static_cast<std::uint32_t>(crc) != index.crc)
-      error = fmt::format("{}: checksum mismatch: the file is corrupt", name);
-  }
+  const std::uint32_t crc = combined_crc(comm, crc_of(share), end - begin);
+  if (comm.root() && crc != index.crc)
+    error = fmt::format("{}: checksum mismatch: the file is corrupt", name);
   agree(comm, error);
   CheckpointData d;
   d.file = name;
