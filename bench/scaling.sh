@@ -16,6 +16,9 @@
 # taken out (a core slowed by other virtual machines, memory shared by the two): what the
 # exchanges, the waits and the imbalance cost. On a shared virtual machine the two cores' speeds
 # can differ by a third for seconds at a time, which the rate of 1 rank alone does not see.
+# Last, a 2-rank step's time, its share in exchanges and waits ("comm" in the log), and what MPI
+# alone takes to move the same bytes between the two ranks (bench/exchange_cost.cpp, with the
+# ghost count of the run's "halo:" line): the part of the exchanges no engine can save.
 # usage: bench/scaling.sh [REPEATS] [SCENE]   (build first: cmake --build --preset release)
 #        SCENE: run only the scenes whose file name contains it (chute, basin-small,
 #        basin-paper: 1,000 steps of the vibrating wall resumed from the state that
@@ -27,6 +30,7 @@ only=${2:-}
 # shellcheck source=bench/stats.sh
 source bench/stats.sh
 yuxi=build/release/apps/yuxi/yuxi
+exchange_cost=build/release/bench/exchange_cost # (bench/exchange_cost.cpp)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # scene | simulated time | label. The basin runs whole: settling, then the vibrating wall (its
@@ -64,6 +68,8 @@ for c in "${cases[@]}"; do
   declare -A imbalance=()
   declare -A busy=()
   declare -A pairs=()
+  declare -A comm=()
+  declare -A steps_per_s=()
   for _ in $(seq 1 "$repeats"); do
     for v in "${variants[@]}"; do
       read -r np by <<< "$v"
@@ -82,6 +88,11 @@ for c in "${cases[@]}"; do
       imbalance[$v]=$(grep -oP 'load max/mean \K[0-9.]+(?= in particles)' "$log" || echo 1.000)
       busy[$v]=$(grep -oP '\K[0-9.]+(?= in compute time)' "$log" || echo 1.000)
       pairs[$v]=$(grep -oP '\K[0-9.]+(?= in listed pairs)' "$log" || echo 1.000)
+      if [[ $np == 2 ]]; then
+        comm[$v]+="$(grep -oP 'comm \K[0-9.]+(?=%)' "$log") "
+        copies=$(grep -oP 'halo: .* particles \K[0-9]+(?= of them)' "$log" || echo 0)
+        steps_per_s[$v]+="$(grep -oP '[0-9.]+(?= steps/s)' "$log") "
+      fi
     done
   done
   p1=$(echo "${rates[1 pairs]}" | median)
@@ -110,5 +121,15 @@ for c in "${cases[@]}"; do
   printf "%-44s two 1-rank runs at once, summed (particle-steps/s):" ""
   for r in ${rates[1+1 pairs]}; do printf " %.3g" "$r"; done
   echo
-  unset rates imbalance busy pairs
+  # The exchanges of a 2-rank step against what MPI alone takes to move the same bytes.
+  floor=$(mpirun --allow-run-as-root --oversubscribe -np 2 "$exchange_cost" "$copies" |
+    grep -oP "a step's exchanges \K[0-9.]+")
+  for by in pairs time; do
+    step_us=$(awk -v s="$(echo "${steps_per_s[2 $by]}" | median)" 'BEGIN {printf "%.1f", 1e6 / s}')
+    printf "%-44s 2 by %s: a step %s us, its exchanges and waits %s %% of it (median)\n" "" \
+      "$by" "$step_us" "$(echo "${comm[2 $by]}" | median)"
+  done
+  printf "%-44s   MPI alone, the same bytes (%s ghosts' fields and forces, one collective): %s us\n" \
+    "" "$copies" "$floor"
+  unset rates imbalance busy pairs comm steps_per_s
 done

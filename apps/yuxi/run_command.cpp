@@ -193,6 +193,9 @@ int run_command(const RunCommandOptions& o) {
   const double listed_pairs =
       sim->comm().sum(static_cast<double>(sim->neighbor_list().n_pairs())); // each pair once
   const double ghosts = sim->comm().sum(static_cast<double>(sim->particles().n_ghost()));
+  // Copies of other ranks' particles: each step brings their fields and sends their forces back.
+  const double copies = static_cast<double>(sim->halo().n_ghosts_from_other_ranks());
+  const double all_copies = sim->comm().sum(copies), most_copies = sim->comm().max(copies);
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -213,10 +216,17 @@ int run_command(const RunCommandOptions& o) {
                              : std::string());
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "
-               "ghosts (periodic images and other ranks' particles, {:.1f} per 100 particles)",
+               "ghosts ({:.1f} per 100 particles: {:.0f} periodic images, {:.0f} copies of other "
+               "ranks' particles)",
                data_bytes / std::max(n_particles, 1.0), listed_pairs,
                listed_pairs / std::max(n_particles, 1.0), ghosts,
-               100 * ghosts / std::max(n_particles, 1.0));
+               100 * ghosts / std::max(n_particles, 1.0), ghosts - all_copies, all_copies);
+  if (all_copies > 0)
+    spdlog::info("halo: a step brings the rank with most copies of other ranks' particles {:.0f} "
+                 "of them ({:.1f} kB of positions and velocities) and sends {:.1f} kB of their "
+                 "forces back",
+                 most_copies, most_copies * Halo::forward_bytes_per_ghost / 1e3,
+                 most_copies * Halo::reverse_bytes_per_ghost / 1e3);
   spdlog::info("t = {:.4f}: kinetic {:.6g}, elastic {:.6g}, gravitational {:.6g}, dissipated "
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,

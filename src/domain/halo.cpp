@@ -107,9 +107,13 @@ void Halo::build(ParticleStore& s, const Decomposition& d, const Comm& comm, dou
     earlier_ghosts = earlier_ghosts || crossed;
   }
   n_ghosts_ = s.n_ghost();
+  n_from_other_ranks_ = 0;
   last_message_ = swaps_.size();
-  for (std::size_t k = swaps_.size(); k-- > 0;)
-    if (!swaps_[k].local(comm)) last_message_ = k;
+  for (std::size_t k = swaps_.size(); k-- > 0;) {
+    if (swaps_[k].local(comm)) continue;
+    last_message_ = k;
+    n_from_other_ranks_ += swaps_[k].count;
+  }
 }
 
 void Halo::forward(ParticleStore& s, const Comm& comm) const {
@@ -128,7 +132,7 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
     // One block per field ([x][v][w], each in send order), so that the receiver copies each
     // block into its ghosts whole.
     const std::size_t n_out = w.sends.size();
-    out_.resize(n_out * 3 * sizeof(Vec3));
+    out_.resize(n_out * forward_bytes_per_ghost);
     char* out = out_.data();
     for (std::size_t m = 0; m < n_out; ++m) {
       const std::uint32_t i = w.sends[m];
@@ -137,7 +141,7 @@ void Halo::forward(ParticleStore& s, const Comm& comm) const {
       std::memcpy(out + (n_out + m) * sizeof(Vec3), &s.v[i], sizeof(Vec3));
       std::memcpy(out + (2 * n_out + m) * sizeof(Vec3), &s.w[i], sizeof(Vec3));
     }
-    comm.send_receive(w.send_to, out_, w.receive_from, in_, w.count * 3 * sizeof(Vec3),
+    comm.send_receive(w.send_to, out_, w.receive_from, in_, w.count * forward_bytes_per_ghost,
                       200 + 2 * static_cast<int>(k));
     const std::size_t block = w.count * sizeof(Vec3);
     if (block == 0) continue;

@@ -78,6 +78,13 @@ public:
   // the particles they copy (a per-particle sum of pair contributions, like the forces).
   void reverse_sum(std::vector<double>& per_particle, const Comm& comm) const;
   std::size_t n_ghosts() const { return n_ghosts_; }
+  // Of those, the copies of other ranks' particles (the rest are periodic images made here):
+  // what forward() receives and reverse() sends back in messages.
+  std::size_t n_ghosts_from_other_ranks() const { return n_from_other_ranks_; }
+  // The bytes of one ghost in forward() (position, velocity, angular velocity) and in
+  // reverse() (force, torque).
+  static constexpr std::size_t forward_bytes_per_ghost = 3 * sizeof(Vec3);
+  static constexpr std::size_t reverse_bytes_per_ghost = 2 * sizeof(Vec3);
 
   // Sends owned particles outside the sub-domain to their new owners. `payloads(leaving)`
   // packs what travels with each of the particles `leaving` (called before they leave);
@@ -110,6 +117,7 @@ private:
   std::vector<Swap> swaps_;
   std::size_t last_message_ = 0; // the last swap back that is a message (the size: none)
   std::size_t n_ghosts_ = 0;
+  std::size_t n_from_other_ranks_ = 0;
   mutable std::string out_, in_; // message buffers of forward() and reverse(), kept between steps
   mutable Comm::Exchange back_;  // the last swap back, from reverse_start() until settled
   mutable std::string back_out_; // what it sends

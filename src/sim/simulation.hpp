@@ -114,6 +114,7 @@ public:
   double imbalance() const;
   const std::vector<PlaneWall>& planes() const { return planes_; }
   const NeighborList& neighbor_list() const { return list_; }
+  const Halo& halo() const { return halo_; }
   // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
   const NearPairs& near_pairs() const { return near_; }
   const CellGrid& grid() const { return grid_; }

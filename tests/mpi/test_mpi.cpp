@@ -157,7 +157,15 @@ TEST(Mpi, EveryPairIsListedOnceOverAllRanks) {
                        Comm::world());
   const auto& s = sim.particles();
   const auto& list = sim.neighbor_list();
-  std::vector<double> gids; // (lower, higher) global id of each listed pair
+  // The halo's count of copies of other ranks' particles (what the log's halo line reports):
+  // the ghosts whose particle this rank does not own; the rest are its own periodic images.
+  std::set<GlobalId> own(s.gid.begin(), s.gid.begin() + static_cast<std::ptrdiff_t>(s.n_owned()));
+  std::size_t copies = 0;
+  for (std::size_t g = s.n_owned(); g < s.size(); ++g) copies += own.count(s.gid[g]) == 0;
+  EXPECT_EQ(sim.halo().n_ghosts_from_other_ranks(), copies);
+  EXPECT_EQ(sim.comm().size() > 1, sim.comm().sum(static_cast<std::int64_t>(copies)) > 0);
+  EXPECT_GT(s.n_ghost(), copies); // (periodic images along the axes one rank spans)
+  std::vector<double> gids;       // (lower, higher) global id of each listed pair
   for (std::size_t i = 0; i < s.n_owned(); ++i)
     for (auto p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
       const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
