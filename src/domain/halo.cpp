@@ -202,7 +202,7 @@ void Halo::reverse_start(ParticleStore& s, const Comm& comm) const {
   settle(comm);
   pack_back(w, back_out_, s.f, s.torque);
   back_ = comm.start_send_receive(w.receive_from, back_out_, w.send_to, in_,
-                                  w.sends.size() * (sizeof(s.f[0]) + sizeof(s.torque[0])),
+                                  w.sends.size() * reverse_bytes_per_ghost,
                                   400 + 2 * static_cast<int>(k));
 }
 

@@ -85,6 +85,8 @@ public:
   // reverse() (force, torque).
   static constexpr std::size_t forward_bytes_per_ghost = 3 * sizeof(Vec3);
   static constexpr std::size_t reverse_bytes_per_ghost = 2 * sizeof(Vec3);
+  static_assert(sizeof(ParticleStore{}.f[0]) + sizeof(ParticleStore{}.torque[0]) ==
+                reverse_bytes_per_ghost);
 
   // Sends owned particles outside the sub-domain to their new owners. `payloads(leaving)`
   // packs what travels with each of the particles `leaving` (called before they leave);
