@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # yuxi against LAMMPS on LAMMPS's own granular chute benchmark (bench/in.chute, the
-# 32,000-sphere ../shared/data/data.chute, gran/hooke/history), the same number of steps, on 1
+# 32,000-sphere data/lammps/data.chute, gran/hooke/history), the same number of steps, on 1
 # and 2 ranks, side by side in one invocation: runs alternate (LAMMPS, yuxi, LAMMPS, yuxi, ...)
 # so that machine drift affects both alike. Prints per code and rank count the median
 # particle-steps/s, the yuxi/LAMMPS ratio, each code's time breakdown, and peak memory per
@@ -19,7 +19,7 @@ steps=${1:-10000}
 repeats=${2:-3}
 basin_steps=${3:-5000}
 yuxi=$PWD/build/release/apps/yuxi/yuxi
-data=$(realpath ../shared/data/data.chute)
+data=$(realpath data/lammps/data.chute)
 particles=32000
 source bench/side_by_side.sh
 

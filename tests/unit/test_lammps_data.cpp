@@ -88,7 +88,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(LammpsData, ReadsTheChuteBenchmark) {
-  const LammpsData d = read_lammps_data(YUXI_SHARED_DATA "/data.chute");
+  const LammpsData d = read_lammps_data(YUXI_DATA_DIR "/lammps/data.chute");
   ASSERT_EQ(d.atoms.size(), 32000u);
   EXPECT_EQ(d.n_types, 2);
   EXPECT_EQ(d.hi, (Vec3{40, 20, 37.2886}));

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# Stored references of whole runs: a refactor proves that behaviour is unchanged to the bit.
+# Each case runs yuxi and compares its outputs with the copies kept in reference/<case>/:
+#   basin-np1, basin-np2  scenes/basin-small.toml to t = 10.3 tau (0.3 tau of shaking) on 1 and
+#                         2 MPI ranks: energies.csv, and a SHA-256 of every particle's x, v and w
+#                         in id order at the end (state_digest.py on the last VTK frame)
+#   c1                    validation case C1: the LAMMPS chute (scenes/chute-lammps.toml), 100
+#                         steps: energies.csv and the digest at step 100
+#   collide               `yuxi collide` (every model's built-in set): its CSV tables
+# usage: references.sh [--update] YUXI MPIEXEC CASE|all WORK_DIR
+# With --update the references are rewritten from this build instead (regenerate them only in a
+# commit that changes the trajectory on purpose, and say so in it):
+#   tests/regression/references.sh --update build/release/apps/yuxi/yuxi mpiexec all /tmp/refs
+set -euo pipefail
+update=0
+if [[ ${1:-} == --update ]]; then update=1; shift; fi
+yuxi=$(realpath "$1")
+mpiexec=$2
+case_name=$3
+work=$4
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(cd "$here/../.." && pwd)
+refs=$here/reference
+mpirun() { "$mpiexec" --allow-run-as-root --oversubscribe -np "$@"; }
+digest() { /usr/bin/python3 "$here/state_digest.py" "$1"; }
+
+status=0
+# compare CASE FILE...: each file of the run against its stored copy (or store it).
+compare() {
+  local name=$1 out=$work/$1
+  shift
+  mkdir -p "$refs/$name"
+  for f in "$@"; do
+    if ((update)); then
+      cp "$out/$f" "$refs/$name/$f"
+      echo "$name: stored $f"
+    elif cmp -s "$out/$f" "$refs/$name/$f"; then
+      echo "$name: identical $f"
+    else
+      echo "$name: DIFFERENT $f"
+      diff <(head -c 2000 "$refs/$name/$f") <(head -c 2000 "$out/$f") | head -8 || true
+      status=1
+    fi
+  done
+}
+
+run_basin() { # NP
+  local name=basin-np$1 out=$work/basin-np$1
+  rm -rf "$out"
+  mpirun "$1" "$yuxi" run "$repo/scenes/basin-small.toml" --t-end 10.3 -o "$out" --no-progress \
+    --no-plots > "$work/$name.log" 2>&1 || { cat "$work/$name.log"; exit 1; }
+  digest "$out/particles_000103000.vtu" > "$out/state.sha256"
+  compare "$name" energies.csv state.sha256
+}
+
+run_c1() {
+  local out=$work/c1
+  rm -rf "$out"
+  mkdir -p "$work"
+  # The shipped scene with a frame at step 100 and the data file found from anywhere.
+  sed -e 's|^snapshot_interval = .*|snapshot_interval = 0.01|' \
+    -e "s|^file = .*|file = \"$repo/data/lammps/data.chute\"|" \
+    "$repo/scenes/chute-lammps.toml" > "$work/c1.toml"
+  "$yuxi" run "$work/c1.toml" --t-end 0.01 -o "$out" --no-progress --no-plots \
+    > "$work/c1.log" 2>&1 || { cat "$work/c1.log"; exit 1; }
+  digest "$out/particles_000000100.vtu" > "$out/state.sha256"
+  compare c1 energies.csv state.sha256
+}
+
+run_collide() {
+  local out=$work/collide
+  rm -rf "$out"
+  "$yuxi" collide -o "$out" --no-plots > "$work/collide.log" 2>&1 ||
+    { cat "$work/collide.log"; exit 1; }
+  compare collide restitution.csv oblique.csv collision_series.csv
+}
+
+mkdir -p "$work"
+case $case_name in
+  basin-np1) run_basin 1 ;;
+  basin-np2) run_basin 2 ;;
+  c1) run_c1 ;;
+  collide) run_collide ;;
+  all) run_basin 1; run_basin 2; run_c1; run_collide ;;
+  *) echo "unknown case $case_name" >&2; exit 2 ;;
+esac
+exit $status
