@@ -8,12 +8,12 @@
 // build/release/bench/exchange_cost GHOSTS [ROUNDS]
 #include "domain/comm.hpp"
 #include "domain/halo.hpp"
+#include "domain/mpi_session.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <mpi.h>
 #include <string>
 
 namespace {
@@ -36,7 +36,7 @@ template <class Round> double seconds_per_round(const yuxi::Comm& comm, int roun
 } // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  const yuxi::MpiSession mpi(&argc, &argv);
   int status = 0;
   {
     // The engine's own calls (Comm): the sized send-receive of Halo::forward() and the
@@ -74,6 +74,5 @@ int main(int argc, char** argv) {
                     step * 1e6);
     }
   }
-  MPI_Finalize();
   return status;
 }

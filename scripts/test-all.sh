@@ -11,6 +11,7 @@ scripts/install-deps.sh
 cmake --preset release > /dev/null
 cmake --build --preset release
 scripts/check-format.sh
+scripts/check-layers.sh
 
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null

@@ -1,9 +1,6 @@
 // yuxi: 3-D soft-sphere DEM for granular matter.
-#ifdef YUXI_HAVE_MPI
-#include <mpi.h>
-#endif
-
 #include "collide_command.hpp"
+#include "domain/mpi_session.hpp"
 #include "run_command.hpp"
 #include "validate_command.hpp"
 
@@ -12,41 +9,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-namespace {
-
-// Initialises MPI for the run's lifetime when yuxi is built with it (a single process is a
-// group of one); non-root ranks stay quiet.
-struct MpiSession {
-  MpiSession(int& argc, char**& argv) {
-#ifdef YUXI_HAVE_MPI
-    // Open MPI moves a large message between ranks of one machine with a single copy by the
-    // kernel (CMA, process_vm_readv) by default. yuxi's messages are halos of a few hundred
-    // kB at most, every step, and for them the system call costs more than it saves: on the
-    // 2-core test machines the copy through shared-memory buffers halves the communication
-    // time of the chute on 2 ranks (16% -> 8-10% of the step) and of basin-small (66% -> 45%).
-    // A value the user set (environment or mpirun --mca) wins.
-    setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);
-    MPI_Init(&argc, &argv);
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    if (rank != 0) spdlog::set_level(spdlog::level::off);
-#else
-    (void)argc, (void)argv;
-#endif
-  }
-  ~MpiSession() {
-#ifdef YUXI_HAVE_MPI
-    MPI_Finalize();
-#endif
-  }
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
-};
-
-} // namespace
-
 int main(int argc, char** argv) {
-  MpiSession mpi(argc, argv);
+  const yuxi::MpiSession mpi(&argc, &argv);
+  if (!mpi.world().root()) spdlog::set_level(spdlog::level::off); // one log for the job
   CLI::App app{"yuxi: 3-D soft-sphere DEM simulation of granular matter"};
   app.set_version_flag("--version", std::string("yuxi ") + YUXI_VERSION);
   app.require_subcommand(1);

@@ -2,12 +2,12 @@
 
 #include "default_scene.hpp"
 #include "io/checkpoint_file.hpp"
-#include "io/progress.hpp"
-#include "io/run_driver.hpp"
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "plot_script.hpp"
+#include "run/progress.hpp"
+#include "run/run_driver.hpp"
+#include "run/scene_builder.hpp"
 
 #include <algorithm>
 #include <csignal>
@@ -20,6 +20,11 @@ namespace fs = std::filesystem;
 
 namespace yuxi {
 namespace {
+
+// Every rank of a job reads the same scene and meets the same bad input: rank 0 says so, once.
+void print_error(const std::string& message) {
+  if (Comm::world().root()) fmt::print(stderr, "error: {}\n", message);
+}
 
 void apply_balance_by(const RunCommandOptions& o, Scene& scene) {
   if (!o.balance_by.empty())
@@ -79,7 +84,7 @@ bool prepare(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulatio
     describe(scene, *sim, report);
     return true;
   } catch (const std::exception& e) { // SceneError, or invalid_argument from the engine
-    fmt::print(stderr, "error: {}\n", e.what());
+    print_error(e.what());
     return false;
   }
 }
@@ -130,7 +135,7 @@ bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
                  data->time);
     return true;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    print_error(e.what());
     return false;
   }
 }
@@ -160,7 +165,7 @@ int run_command(const RunCommandOptions& o) {
     }
     error = sim->comm().first_error(error);
     if (!error.empty()) {
-      if (sim->comm().root()) fmt::print(stderr, "error: {}\n", error);
+      print_error(error);
       return 2;
     }
   }

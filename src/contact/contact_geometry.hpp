@@ -1,6 +1,6 @@
 // What a contact model is told about one contact, and what it answers.
 //
-// Conventions (validation.md section 0.1): n is the unit vector from j to i, overlap
+// Conventions (docs/models/validation.md section 0.1): n is the unit vector from j to i, overlap
 // delta = a_i + a_j - |x_i - x_j| (> 0 when touching), the force returned acts on i and its
 // opposite on j. For a flat wall j is the wall: a_j = 0 and its velocity is the wall's.
 #pragma once
@@ -20,7 +20,7 @@ struct ContactGeometry {
   double r_eff;    // a_i a_j / (a_i + a_j); a_i against a flat wall [length]
   double dt;       // time step [time]
 
-  // Velocity of i's surface point relative to j's at the contact (validation.md 0.3):
+  // Velocity of i's surface point relative to j's at the contact (docs/models/validation.md 0.3):
   // v_c = v_i - v_j - (a_i w_i + a_j w_j) x n.
   Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
 };

@@ -25,6 +25,7 @@
 // listed pair and no allocation per contact; violent runs rebuild every few steps.
 #pragma once
 
+#include "core/archive.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/particle_store.hpp"
 
@@ -85,7 +86,31 @@ struct ContactKeyHash {
   }
 };
 
-template <class State> class ContactHistory {
+// The operations on contact states that a list build, a migration and a checkpoint make,
+// whatever the model's State: one virtual call per rebuild (never per pair), so the simulation
+// handles the history of any model through this one interface. ContactHistory below is the
+// implementation; the comments there say what each does.
+class ContactStates {
+public:
+  virtual ~ContactStates() = default;
+  virtual void stash(const ParticleStore& s, const NeighborList& list) = 0;
+  virtual void restore(const ParticleStore& s, const NeighborList& list) = 0;
+  virtual void prepare_ghost_copies(const ParticleStore& s) = 0;
+  virtual std::string ghost_copies(std::span<const std::uint32_t> sent) const = 0;
+  virtual void ghost_copies_arrived(const ParticleStore& s, std::uint32_t first,
+                                    const std::string& bytes) = 0;
+  virtual std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const = 0;
+  virtual void give(const std::string& bytes) = 0;
+  virtual std::string stashed_bytes() const = 0;
+  // Checkpoints: the states of the current list saved, or loaded into the stash.
+  virtual void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) = 0;
+  virtual void load(ArchiveReader& ar) = 0;
+  virtual std::size_t memory_bytes() const = 0;
+  // The slot of each listed pair (aligned with NeighborList::partners; none: no state).
+  virtual const std::uint32_t* pair_slots() const = 0;
+};
+
+template <class State> class ContactHistory final : public ContactStates {
 public:
   static constexpr std::uint32_t none = 0xFFFFFFFFu; // slot of a pair that does not touch
 
@@ -138,21 +163,23 @@ public:
   }
 
   // Moves every non-default state into the stash, keyed by global ids.
-  void stash(const ParticleStore& s, const NeighborList& list) { stash_ = entries(s, list); }
+  void stash(const ParticleStore& s, const NeighborList& list) override {
+    stash_ = entries(s, list);
+  }
 
   // Saves the states of the current list, or loads them into the stash for the next restore().
-  template <class Archive>
-  void checkpoint(Archive& ar, const ParticleStore& s, const NeighborList& list) {
-    std::vector<Entry> all;
-    if constexpr (!Archive::loading) all = entries(s, list);
+  void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) override {
+    std::vector<Entry> all = entries(s, list);
     ar.vector(all);
-    if constexpr (Archive::loading) {
-      stash_ = std::move(all);
-    }
+  }
+  void load(ArchiveReader& ar) override {
+    std::vector<Entry> all;
+    ar.vector(all);
+    stash_ = std::move(all);
   }
 
   // Gives each entry of the new list its stashed state (or a fresh one).
-  void restore(const ParticleStore& s, const NeighborList& list) {
+  void restore(const ParticleStore& s, const NeighborList& list) override {
     pair_slot.assign(list.n_pairs(), none);
     // The pool restarts at the size of the stash with a quarter to spare for the contacts that
     // open before the next rebuild (its memory would otherwise stay at its largest ever).
@@ -190,20 +217,21 @@ public:
   }
 
   // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash).
-  std::size_t memory_bytes() const {
+  std::size_t memory_bytes() const override {
     return (pair_slot.capacity() + free_.capacity()) * sizeof(std::uint32_t) +
            (states.capacity() + plane.capacity()) * sizeof(State) + plane_live.capacity() +
            stash_.capacity() * sizeof(Entry);
   }
 
   std::size_t stashed() const { return stash_.size(); }
+  const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
 
   // Migration between ranks: copies of the stashed states of the contacts that the particles
   // `gids` take part in (with either partner, or as the grain of a plane contact), packed as
   // bytes, one string per particle. The stash keeps them: the pair may still be computed here,
   // with the particle that left as a ghost. One pass over the stash for all the particles that
   // leave (a few hundred at a rebuild, against thousands of stashed contacts).
-  std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const {
+  std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const override {
     std::vector<std::string> out(gids.size());
     if (gids.empty()) return out;
     std::unordered_map<GlobalId, std::size_t> leaving;
@@ -225,7 +253,7 @@ public:
       }
     return out;
   }
-  void give(const std::string& bytes) {
+  void give(const std::string& bytes) override {
     for (std::size_t at = 0; at + sizeof(Entry) <= bytes.size(); at += sizeof(Entry)) {
       Entry e;
       std::memcpy(&e, bytes.data() + at, sizeof e);
@@ -233,7 +261,7 @@ public:
     }
   }
   // Every stashed state as bytes (for give()).
-  std::string stashed_bytes() const {
+  std::string stashed_bytes() const override {
     return {reinterpret_cast<const char*>(stash_.data()), stash_.size() * sizeof(Entry)};
   }
 
@@ -241,7 +269,7 @@ public:
   // Before the build: the stashed pair contacts with one particle owned here and the other
   // not, attached to the owned one. A pair whose particles are both owned here is computed
   // here; one with neither is not (a copy left by a particle that migrated).
-  void prepare_ghost_copies(const ParticleStore& s) {
+  void prepare_ghost_copies(const ParticleStore& s) override {
     owned_.emplace(s);
     attached_.clear();
     has_attached_.assign(s.n_owned(), 0);
@@ -258,7 +286,7 @@ public:
   }
   // The attached states of the particles `sent` (local indices, owned or ghosts passed on), as
   // (position in `sent`, entry) records.
-  std::string ghost_copies(std::span<const std::uint32_t> sent) const {
+  std::string ghost_copies(std::span<const std::uint32_t> sent) const override {
     std::string out;
     for (std::uint32_t m = 0; m < sent.size(); ++m) {
       const std::uint32_t i = sent[m];
@@ -274,7 +302,8 @@ public:
   // States that came with the ghosts first, first + 1, ...: stashed for restore(), and attached
   // to their ghost for passing on unless the other particle is owned here (then this rank
   // computes the pair, if any rank does).
-  void ghost_copies_arrived(const ParticleStore& s, std::uint32_t first, const std::string& bytes) {
+  void ghost_copies_arrived(const ParticleStore& s, std::uint32_t first,
+                            const std::string& bytes) override {
     constexpr std::size_t record = sizeof(std::uint32_t) + sizeof(Entry);
     if (!owned_) owned_.emplace(s);
     for (std::size_t at = 0; at + record <= bytes.size(); at += record) {

@@ -7,7 +7,7 @@
 //                                   while the limit with mu_d is exceeded, at mu_d |N|.
 // Where the Coulomb limit applies (CapOn):
 //  spring:       to the spring force alone; the dashpot is added after (Li & Cai 2008,
-//                fish_basin.md section 5); sliding cuts the spring to the limit;
+//                docs/models/fish-basin.md section 5); sliding cuts the spring to the limit;
 //  total:        to spring + dashpot; a sliding contact exerts exactly mu |N|, carried by the
 //                spring alone, s = -F/k (LIGGGHTS, Luding 2008);
 //  total_lammps: to spring + dashpot; the spring is rescaled as in LAMMPS gran/*/history,

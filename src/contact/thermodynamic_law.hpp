@@ -1,8 +1,9 @@
 // The thermodynamic (GSH-type) contact law of Jiang & Liu, Acta Phys. Sin. 67, 044502 (2018):
 // the pieces shared by the exact two-grain solver and the DEM contact model. Equation numbers
 // (19)-(42) and the status labels [RECON-H], [RECON-M], [RECON-L], [EXT] are those of
-// thermo_contact_model.md: the paper's displayed equations are lost, so every formula here is a
-// reconstruction, and the reference parameter set REF (section 6.3) is not the paper's own.
+// docs/models/thermodynamic-contact.md: the paper's displayed equations are lost, so every
+// formula here is a reconstruction, and the reference parameter set REF (section 6.3) is not the
+// paper's own.
 //
 // Variables: u_n <= 0 and u_t are the normal and tangential spring deformations, independent
 // state variables evolved by (30)-(31), not functions of the overlap [TEXT]; w_R >= 0 is the

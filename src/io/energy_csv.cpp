@@ -32,24 +32,15 @@ EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64
     file_ = std::fopen(path.c_str(), "w");
   }
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  if (!resume_after)
-    fmt::print(
-        file_,
-        "step,time,translational,rotational,elastic,gravitational,mechanical,"
-        "relaxation,dissipated,wall_work,gravity_work,removed,balance,grains,contacts,escaped\n");
+  if (!resume_after) fmt::print(file_, "{}\n", EnergyBooks::csv_header());
 }
 
 EnergyCsv::~EnergyCsv() {
   std::fclose(file_);
 }
 
-void EnergyCsv::write(const EnergyReport& e) {
-  fmt::print(file_,
-             "{},{:.10g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},"
-             "{:.12g},{:.12g},{},{},{}\n",
-             e.step, e.time, e.translational, e.rotational, e.elastic, e.gravitational,
-             e.mechanical(), e.relaxation, e.dissipated, e.wall_work, e.gravity_work, e.removed,
-             e.balance(), e.grains, e.contacts, e.escaped);
+void EnergyCsv::write(const EnergyBooks& e) {
+  fmt::print(file_, "{}\n", e.csv_row());
   if (std::fflush(file_) != 0) throw std::runtime_error("error while writing energies.csv");
 }
 

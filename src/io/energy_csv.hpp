@@ -1,8 +1,8 @@
-// energies.csv: one row per energy interval with the full energy books (EnergyReport).
+// energies.csv: one row per energy interval with the full energy books (EnergyBooks).
 // Each row is flushed, so the file holds everything up to a crash.
 #pragma once
 
-#include "analysis/energy_report.hpp"
+#include "sim/energy_books.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -21,7 +21,7 @@ public:
   EnergyCsv(const EnergyCsv&) = delete;
   EnergyCsv& operator=(const EnergyCsv&) = delete;
 
-  void write(const EnergyReport& e);
+  void write(const EnergyBooks& e);
 
 private:
   std::FILE* file_;

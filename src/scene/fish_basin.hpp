@@ -1,6 +1,6 @@
-// The "fish basin" of Li & Cai (2008) (fish_basin.md section 6): a flat-bottomed vertical
-// cylinder built of wall particles on a cubic lattice, filled with polydisperse grains, one
-// particle per lattice cell. The side wall vibrates radially in a cos(m alpha) mode from t0 on;
+// The "fish basin" of Li & Cai (2008) (docs/models/fish-basin.md section 6): a flat-bottomed
+// vertical cylinder built of wall particles on a cubic lattice, filled with polydisperse grains,
+// one particle per lattice cell. The side wall vibrates radially in a cos(m alpha) mode from t0 on;
 // the bottom stays at rest.
 //
 // Geometry, in lattice cells of edge `spacing` (the lattice fills [0, cells] of the box):
@@ -47,7 +47,7 @@ struct BuiltParticles {
 };
 
 // Builds the basin with the lattice origin at `origin`. Grain masses are r^3 / <r^3>, so the
-// mean grain mass is 1 (fish_basin.md section 6).
+// mean grain mass is 1 (docs/models/fish-basin.md section 6).
 BuiltParticles build_fish_basin(const FishBasinSpec& spec, const Vec3& origin = {});
 
 // Empty cells left between the walls and the grains at t = 0 (0 or 1).

@@ -24,8 +24,8 @@ struct StaticMotion {
   AtTime at_time(double) const { return {}; }
 };
 
-// The fish-basin excitation (fish_basin.md section 6): each wall point at azimuth alpha about
-// the vertical axis through `center` moves radially,
+// The fish-basin excitation (docs/models/fish-basin.md section 6): each wall point at azimuth alpha
+// about the vertical axis through `center` moves radially,
 //   r(alpha, t)    = R + dr cos(m alpha) sin(omega (t - t0))
 //   rdot(alpha, t) = omega dr cos(m alpha) cos(omega (t - t0))
 // for t >= t0, with R its own rest radius; at rest before t0. Height is unchanged.

@@ -1,7 +1,6 @@
 #include "sim/simulation.hpp"
 
-#include "analysis/grain_energy.hpp"
-#include "core/archive.hpp"
+#include "sim/contact_reach.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,23 +10,6 @@
 
 namespace yuxi {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Largest centre distance at which two listed particles can touch: grain-grain or grain-wall
-// (wall-wall pairs are never listed).
-double contact_reach(const ParticleStore& s) {
-  double grain = 0.0, wall = 0.0;
-  for (std::size_t i = 0; i < s.n_owned(); ++i) {
-    double& largest = s.is_grain(i) ? grain : wall;
-    largest = std::max(largest, s.radius[i]);
-  }
-  return std::max(2.0 * grain, grain + wall);
-}
 
 // Flat walls standing on the faces of Boundary::wall axes, normals pointing inwards.
 void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
@@ -87,6 +69,8 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
       law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
+      history_(std::visit([](auto& f) -> ContactStates* { return &f.history; }, forces_)),
+      n_materials_(std::visit([](const auto& l) { return l.coeffs.n_materials(); }, law_)),
       cell_edge_(cell_edge_for(config_, store_)), grid_(config_.box, cell_edge_) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   if (motions_.empty()) motions_.push_back(StaticMotion{});
@@ -126,12 +110,6 @@ void Simulation::refresh() {
   stop_if_unhealthy();
 }
 
-std::size_t Simulation::n_grains() const {
-  std::int64_t n = 0;
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) n += store_.is_grain(i) ? 1 : 0;
-  return static_cast<std::size_t>(comm_.sum(n));
-}
-
 bool Simulation::place_walls(double t, bool every_one, double* moved2) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool moved_far = false;
@@ -159,9 +137,17 @@ bool Simulation::place_walls(double t, bool every_one, double* moved2) {
 }
 
 void Simulation::step() {
+  const bool rebuild_here = kick_drift();
+  exchange_or_rebuild(agree_on_rebuild(rebuild_here));
+  compute_forces();
+  final_kick();
+  books_.dissipated += tally_.dissipated;
+  books_.wall_work += tally_.wall_work;
+}
+
+bool Simulation::kick_drift() {
+  PhaseTimer timer(timers_.integrate);
   const double dt = config_.dt;
-  auto t0 = Clock::now();
-  // 1. Half kick and drift of the grains; walls to their prescribed place at t + dt.
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool must_rebuild = rebuild_requested_;
   rebuild_requested_ = false;
@@ -171,7 +157,6 @@ void Simulation::step() {
   // The forces of the last step are spent here, so the same pass starts the new ones from
   // gravity (one sweep over the particles instead of two).
   const Vec3 gravity = config_.gravity;
-  double moved2 = 0.0; // largest squared displacement of a particle in this step
   {
     // Raw pointers: the compiler need not reload each array's address after every store.
     const double* inv_mass = store_.inv_mass.data();
@@ -210,338 +195,58 @@ void Simulation::step() {
       torque[i].x = 0.0, torque[i].y = 0.0, torque[i].z = 0.0;
     }
     must_rebuild = must_rebuild || moved_far;
-    moved2 = fastest2 * dt * dt;
+    moved2_ = fastest2 * dt * dt;
   }
-  gravity_work_ += gravity_work;
+  books_.gravity_work += gravity_work;
   time_ += dt;
   ++step_;
-  if (place_walls(time_, false, &moved2)) must_rebuild = true;
-  timers_.integrate += seconds_since(t0);
-  t0 = Clock::now();
+  if (place_walls(time_, false, &moved2_)) must_rebuild = true;
+  return must_rebuild;
+}
+
+bool Simulation::agree_on_rebuild(bool rebuild_here) {
+  PhaseTimer timer(timers_.comm);
   // One collective answers three questions: must any rank rebuild, did the last force
   // evaluation on any rank find an overlap beyond the limit (check_health), and how far did a
   // particle move (for the near pairs)? The second stops the run here, one drift after the
   // step that found it, with that step's diagnosis.
-  double flags[3] = {must_rebuild ? 1.0 : 0.0, health_error_.empty() ? 0.0 : 1.0, moved2};
+  double flags[3] = {rebuild_here ? 1.0 : 0.0, health_error_.empty() ? 0.0 : 1.0, moved2_};
   comm_.max(flags, 3);
   if (flags[1] > 0) stop_together(health_error_);
   settle_energy_books(); // (right after the collective above: no rank waits again)
-  timers_.comm += seconds_since(t0);
-  must_rebuild = flags[0] > 0;
   // The bound on every particle's displacement since the near pairs were picked, with room for
   // the round-off of positions.
   last_displacement_ = std::sqrt(flags[2]);
   near_.moved += last_displacement_ + position_round_off_;
+  return flags[0] > 0;
+}
 
-  // 2. Neighbour list or ghost refresh.
-  t0 = Clock::now();
-  if (must_rebuild) {
+void Simulation::exchange_or_rebuild(bool rebuild_now) {
+  if (rebuild_now) {
+    PhaseTimer timer(timers_.neighbor);
     rebuild();
-    timers_.neighbor += seconds_since(t0);
   } else {
+    PhaseTimer timer(timers_.comm);
     halo_.forward(store_, comm_);
-    timers_.comm += seconds_since(t0);
   }
-
-  // 3. Forces.
-  compute_forces();
-
-  // 4. Second half kick (of the particles owned now: a rebuild may have moved some away).
-  t0 = Clock::now();
-  {
-    // The pointers are taken again: a rebuild may have moved the arrays.
-    const double* inv_mass = store_.inv_mass.data();
-    const double* inv_inertia = store_.inv_inertia.data();
-    const Vec3* f = store_.f.data();
-    const Vec3* torque = store_.torque.data();
-    Vec3* v = store_.v.data();
-    Vec3* w = store_.w.data();
-    const double half_dt = 0.5 * dt;
-    for (std::size_t i = 0; i < owned_grains_; ++i) { // (component by component, as above)
-      const double kick = half_dt * inv_mass[i], spin = half_dt * inv_inertia[i];
-      v[i].x += f[i].x * kick, v[i].y += f[i].y * kick, v[i].z += f[i].z * kick;
-      w[i].x += torque[i].x * spin, w[i].y += torque[i].y * spin, w[i].z += torque[i].z * spin;
-    }
-  }
-  timers_.integrate += seconds_since(t0);
-  dissipated_ += tally_.dissipated;
-  wall_work_ += tally_.wall_work;
 }
 
-void Simulation::validate_loaded_particles() const {
-  // The checksum guards against damage; this guards the engine against a checkpoint that is
-  // intact but does not belong to this scene (or was crafted): nothing loaded may index out of
-  // range or start the run with impossible values.
-  const std::size_t n_materials =
-      std::visit([](const auto& f) { return f.law().coeffs.n_materials(); }, forces_);
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    const bool ok = (store_.kind[i] == Kind::grain || store_.kind[i] == Kind::wall) &&
-                    store_.material[i] < n_materials && store_.motion[i] < motions_.size() &&
-                    store_.radius[i] > 0 && store_.mass[i] > 0 && std::isfinite(store_.radius[i]) &&
-                    std::isfinite(store_.mass[i]) && is_finite(store_.x[i]) &&
-                    is_finite(store_.v[i]) && is_finite(store_.w[i]) &&
-                    std::isfinite(store_.inv_mass[i]) && std::isfinite(store_.inv_inertia[i]);
-    if (!ok)
-      throw std::invalid_argument(fmt::format(
-          "particle {} of the checkpoint is invalid for this scene (kind, material, motion, "
-          "radius, mass or a non-finite value)",
-          i));
+void Simulation::final_kick() {
+  // Second half kick of the particles owned now (a rebuild may have moved some away).
+  PhaseTimer timer(timers_.integrate);
+  // The pointers are taken again: a rebuild may have moved the arrays.
+  const double* inv_mass = store_.inv_mass.data();
+  const double* inv_inertia = store_.inv_inertia.data();
+  const Vec3* f = store_.f.data();
+  const Vec3* torque = store_.torque.data();
+  Vec3* v = store_.v.data();
+  Vec3* w = store_.w.data();
+  const double half_dt = 0.5 * config_.dt;
+  for (std::size_t i = 0; i < owned_grains_; ++i) { // (component by component, as above)
+    const double kick = half_dt * inv_mass[i], spin = half_dt * inv_inertia[i];
+    v[i].x += f[i].x * kick, v[i].y += f[i].y * kick, v[i].z += f[i].z * kick;
+    w[i].x += torque[i].x * spin, w[i].y += torque[i].y * spin, w[i].z += torque[i].z * spin;
   }
-  // The scalar state: finite energies and times, counts a run can have.
-  const double scalars[] = {time_,         dissipated_,      wall_work_,     removed_energy_,
-                            gravity_work_, initial_balance_, tally_.elastic, tally_.relaxation};
-  for (double x : scalars)
-    if (!std::isfinite(x)) throw std::invalid_argument("the checkpoint holds a non-finite energy");
-  constexpr std::size_t limit = std::size_t{1} << 48;
-  if (step_ < 0 || rebuilds_ < 0 || escaped_ > limit || tally_.touching > limit)
-    throw std::invalid_argument("the checkpoint holds an impossible step or count");
-  if (store_.radius.empty() ? false : contact_reach(store_) > grid_.edge().x + 1e-12)
-    throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
-}
-
-void Simulation::load(const std::vector<std::string>& share, std::uint64_t written_on) {
-  const bool own = written_on == static_cast<std::uint64_t>(comm_.size());
-  // Every rank learns whether every other loaded its share before any takes a collective step.
-  std::string error;
-  try {
-    if (written_on == 0) throw ArchiveError("no rank's state in the file");
-    if (own && share.size() != 1) throw ArchiveError("no state for this rank in the file");
-    if (own)
-      load_own_section(share.front());
-    else
-      merge_sections(share);
-    validate_loaded_particles();
-  } catch (const ArchiveError& e) {
-    error = e.what();
-  } catch (const std::length_error&) {
-    error = "a size field is impossible (corrupt)";
-  } catch (const std::invalid_argument& e) { // the loaded particles do not fit the scene
-    error = e.what();
-  }
-  loading_ = Loading::whole;
-  error = comm_.first_error(error);
-  if (!error.empty()) throw std::invalid_argument(error);
-  if (own) {
-    rebuild_after_load();
-    return;
-  }
-  // The run's scalars, the same in every section, from the ranks that loaded one (a rank's
-  // share may be empty), and the books summed over the sections, onto rank 0.
-  const bool loaded = !share.empty();
-  double scalars[] = {loaded ? time_ : -HUGE_VAL, loaded ? static_cast<double>(step_) : -HUGE_VAL,
-                      loaded ? static_cast<double>(rebuilds_) : -HUGE_VAL,
-                      loaded ? initial_balance_ : -HUGE_VAL};
-  comm_.max(scalars, 4);
-  time_ = scalars[0];
-  step_ = static_cast<std::int64_t>(scalars[1]);
-  rebuilds_ = static_cast<std::int64_t>(scalars[2]);
-  initial_balance_ = scalars[3];
-  double books[] = {dissipated_,
-                    wall_work_,
-                    removed_energy_,
-                    gravity_work_,
-                    static_cast<double>(escaped_),
-                    tally_.elastic,
-                    tally_.relaxation,
-                    static_cast<double>(tally_.touching)};
-  comm_.sum(books, 8);
-  const bool root = comm_.root();
-  dissipated_ = root ? books[0] : 0;
-  wall_work_ = root ? books[1] : 0;
-  removed_energy_ = root ? books[2] : 0;
-  gravity_work_ = root ? books[3] : 0;
-  escaped_ = root ? static_cast<std::size_t>(books[4]) : 0;
-  tally_ = ContactTally{};
-  if (root) {
-    tally_.elastic = books[5];
-    tally_.relaxation = books[6];
-    tally_.touching = static_cast<std::size_t>(books[7]);
-  }
-  // This run's own decomposition, cut by particle count; the rebuild's migration then takes
-  // every particle to its owner.
-  cuts_moved_ = true;
-  if (comm_.size() > 1)
-    decomp_.balance(
-        std::vector<Vec3>(store_.x.begin(),
-                          store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),
-        std::vector<double>(store_.n_owned(), 1.0), comm_);
-  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
-  rebuild_after_load();
-}
-
-void Simulation::load_own_section(const std::string& section) {
-  loading_ = Loading::deferred;
-  ArchiveReader ar(section);
-  checkpoint(ar);
-  if (!ar.at_end()) throw ArchiveError("unread data after the state");
-}
-
-void Simulation::merge_sections(const std::vector<std::string>& share) {
-  ParticleStore pool;
-  std::string states;
-  double books[5] = {0, 0, 0, 0, 0}; // dissipated, wall work, removed, gravity work, escaped
-  ContactTally tally;
-  double time = 0, initial_balance = 0;
-  std::int64_t step = 0, rebuilds = 0;
-  loading_ = Loading::merged;
-  for (std::size_t k = 0; k < share.size(); ++k) {
-    ArchiveReader ar(share[k]);
-    checkpoint(ar);
-    if (!ar.at_end()) throw ArchiveError("unread data after a section");
-    if (k == 0)
-      time = time_, step = step_, rebuilds = rebuilds_, initial_balance = initial_balance_;
-    for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
-    std::visit([&](auto& f) { states += f.history.stashed_bytes(); }, forces_);
-    books[0] += dissipated_, books[1] += wall_work_, books[2] += removed_energy_;
-    books[3] += gravity_work_, books[4] += static_cast<double>(escaped_);
-    tally.elastic += tally_.elastic;
-    tally.relaxation += tally_.relaxation;
-    tally.touching += tally_.touching;
-  }
-  store_ = std::move(pool);
-  std::visit([&](auto& f) { f.history.give(states); }, forces_);
-  time_ = time, step_ = step, rebuilds_ = rebuilds, initial_balance_ = initial_balance;
-  dissipated_ = books[0], wall_work_ = books[1], removed_energy_ = books[2];
-  gravity_work_ = books[3], escaped_ = static_cast<std::size_t>(books[4]);
-  tally_ = tally;
-}
-
-void Simulation::rebuild_after_load() {
-  // The stored particles are sorted and wrapped as at the rebuild before the checkpoint, so
-  // this rebuild reproduces that list; the history comes from the checkpoint's stash.
-  const auto counted = rebuilds_;
-  rebuild(true);
-  rebuilds_ = counted;
-}
-
-void Simulation::rebuild(bool after_load) {
-  auto t0 = Clock::now(); // (the spans without exchanges go into timers_.neighbor_local)
-  if (!after_load) std::visit([&](auto& f) { f.history.stash(store_, list_); }, forces_);
-  timers_.neighbor_local += seconds_since(t0);
-  // Rebalance by measured cost at the first rebuild after the start (the start could only
-  // count particles), then every rebalance_every rebuilds.
-  if (!after_load && comm_.size() > 1 && config_.rebalance_every > 0 &&
-      (rebuilds_ == 1 || (rebuilds_ > 0 && rebuilds_ % config_.rebalance_every == 0)))
-    rebalance();
-  handle_escapes();
-  // Wrap grains into the periodic box along axes that one rank spans; across ranks the
-  // migration shifts them.
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
-    Vec3 wrapped = config_.box.wrap(store_.x[i]);
-    for (int a = 0; a < 3; ++a)
-      if (decomp_.dims()[a] > 1) wrapped[a] = store_.x[i][a];
-    store_.x[i] = wrapped;
-  }
-  if (comm_.size() > 1) migrate();
-  t0 = Clock::now();
-  // Sort owned particles by cell so that neighbours sit close in memory: the grains first,
-  // then the wall particles (so the integration runs over the grains alone, with no test of
-  // the kind, which alternates unpredictably along cells that hold both).
-  {
-    const std::size_t n = store_.n_owned(), cells = grid_.n_cells();
-    std::vector<std::uint32_t> key(n), count(2 * cells + 1, 0), order(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      key[i] = static_cast<std::uint32_t>(grid_.cell_index(store_.x[i]) +
-                                          (store_.is_grain(i) ? 0 : cells));
-      ++count[key[i] + 1];
-    }
-    for (std::size_t c = 0; c < 2 * cells; ++c) count[c + 1] += count[c];
-    owned_grains_ = count[cells];
-    for (std::size_t i = 0; i < n; ++i) order[count[key[i]]++] = static_cast<std::uint32_t>(i);
-    store_.permute_owned(order);
-  }
-  timers_.neighbor_local += seconds_since(t0);
-  // Ghosts, each with copies of the contact states it may be needed for on its receiver.
-  std::visit(
-      [&](auto& f) {
-        f.history.prepare_ghost_copies(store_);
-        const GhostPayload copies{
-            [&](std::span<const std::uint32_t> sent) { return f.history.ghost_copies(sent); },
-            [&](std::uint32_t first, const std::string& bytes) {
-              f.history.ghost_copies_arrived(store_, first, bytes);
-            }};
-        halo_.build(store_, decomp_, comm_, cell_edge_, &copies);
-      },
-      forces_);
-  t0 = Clock::now();
-  store_.trim_capacity();
-  grid_.bin(store_.x);
-  build_neighbor_list(store_, grid_, range_, list_);
-  // Where forces on ghosts go back to another rank, the pairs with a ghost come first
-  // (compute_forces()).
-  list_.index_ghost_pairs(halo_.sends_to_other_ranks());
-  near_.picked = false; // (they index the old list)
-  list_.planes.clear();
-  for (std::uint32_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
-    for (std::uint32_t p = 0; p < planes_.size(); ++p)
-      if (planes_[p].distance_at_rest(store_.x[i]) <
-          store_.radius[i] + range_ + planes_[p].max_excursion())
-        list_.planes.push_back({i, p});
-  }
-  std::visit([&](auto& f) { f.history.restore(store_, list_); }, forces_);
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];
-  timers_.neighbor_local += seconds_since(t0);
-  ++rebuilds_;
-  // The energy books of this state are summed over the ranks and checked at the next step's
-  // collective: a collective here would make every rank wait for the slowest list build, and
-  // again at that step for the slowest pairs, where one wait covers both.
-  if (step_ > 0) books_due_ = energy_parts();
-}
-
-void Simulation::migrate() {
-  // Particles go to the rank that owns their place now, each with copies of the states of its
-  // contacts (contact_history.hpp: the rank that computes a pair after the rebuild may be
-  // either partner's); repeated until every rank holds only its own (one round unless the cut
-  // planes have just moved).
-  for (int round = 0; round < 64; ++round) {
-    std::visit(
-        [&](auto& f) {
-          Halo::migrate(
-              store_, decomp_, comm_,
-              [&](const std::vector<std::size_t>& leaving) {
-                std::vector<GlobalId> gids(leaving.size());
-                for (std::size_t k = 0; k < leaving.size(); ++k) gids[k] = store_.gid[leaving[k]];
-                return f.history.copies_for(gids);
-              },
-              [&](std::size_t, const std::string& bytes) { f.history.give(bytes); });
-        },
-        forces_);
-    // Between list builds nothing moves more than half the skin, less than any sub-domain is
-    // wide: one hop per axis takes every particle to its owner unless the cut planes moved.
-    if (!cuts_moved_) break;
-    bool stray = false;
-    for (std::size_t i = 0; i < store_.n_owned() && !stray; ++i) stray = !decomp_.owns(store_.x[i]);
-    if (!comm_.any(stray)) break;
-  }
-  cuts_moved_ = false;
-}
-
-void Simulation::rebalance() {
-  // Cost of a particle: itself plus the pairs in its neighbour-list row.
-  std::vector<double> cost(store_.n_owned(), 1.0);
-  for (std::size_t i = 0; i + 1 < list_.offsets.size() && i < cost.size(); ++i)
-    cost[i] += list_.offsets[i + 1] - list_.offsets[i];
-  // By time: this rank's costs scaled to sum to the seconds it computed (pairs, its own part
-  // of the list builds, integration: PhaseTimes::busy) since the last balancing. The cuts then
-  // give each rank the share it computes in equal time, as measured on its own particles: the
-  // next balancing corrects what that leaves wrong for the particles that move.
-  const double busy = timers_.busy();
-  if (config_.balance_by == BalanceBy::time) {
-    double counted = 0.0;
-    for (double c : cost) counted += c;
-    const double seconds = busy - busy_at_balance_;
-    if (!comm_.any(!(seconds > 0.0)) && counted > 0.0) // (every rank has timed some work)
-      for (double& c : cost) c *= seconds / counted;
-  }
-  busy_at_balance_ = busy;
-  cuts_moved_ = true;
-  decomp_.balance(
-      std::vector<Vec3>(store_.x.begin(),
-                        store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),
-      cost, comm_);
-  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
 }
 
 void Simulation::stop_together(const std::string& local_error) const {
@@ -554,61 +259,19 @@ double Simulation::imbalance() const {
 }
 
 std::size_t Simulation::memory_bytes() const {
-  const std::size_t history =
-      std::visit([](const auto& f) { return f.history.memory_bytes(); }, forces_);
   return store_.memory_bytes() + grid_.memory_bytes() + list_.memory_bytes() +
-         near_.memory_bytes() + history;
-}
-
-std::vector<double> Simulation::particle_elastic_energy() const {
-  if (!record_.enabled) throw std::logic_error("particle_elastic_energy needs contact recording");
-  std::vector<analysis::ContactEnergy> contacts;
-  contacts.reserve(list_.n_pairs() + list_.planes.size());
-  for (std::uint32_t i = 0; i + 1 < list_.offsets.size(); ++i)
-    for (std::uint32_t p = list_.offsets[i]; p < list_.offsets[i + 1]; ++p)
-      if (record_.pair_elastic[p] != 0.0)
-        contacts.push_back({i, list_.partners[p], record_.pair_elastic[p]});
-  for (std::size_t k = 0; k < list_.planes.size(); ++k)
-    if (record_.plane_elastic[k] != 0.0)
-      contacts.push_back(
-          {list_.planes[k].particle, analysis::wall_partner, record_.plane_elastic[k]});
-  // Pairs with a ghost were computed here once; the ghost's half goes back to its owner.
-  std::vector<double> e = analysis::grain_elastic_energy(store_.size(), contacts);
-  halo_.reverse_sum(e, comm_);
-  e.resize(store_.n_owned());
-  return e;
-}
-
-ParticleStore Simulation::gather_particles() const {
-  ArchiveWriter out;
-  ParticleStore mine = store_; // owned only, for the archive
-  mine.clear_ghosts();
-  mine.checkpoint(out);
-  const auto parts = comm_.gather(out.data());
-  ParticleStore all;
-  if (!comm_.root()) return all;
-  std::vector<ParticleStore> stores(parts.size());
-  std::vector<std::pair<GlobalId, std::pair<std::size_t, std::size_t>>> order;
-  for (std::size_t r = 0; r < parts.size(); ++r) {
-    ArchiveReader in(parts[r]);
-    stores[r].checkpoint(in);
-    for (std::size_t i = 0; i < stores[r].n_owned(); ++i)
-      order.push_back({stores[r].gid[i], {r, i}});
-  }
-  std::sort(order.begin(), order.end());
-  for (const auto& [gid, where] : order) all.append_copy(stores[where.first], where.second);
-  return all;
+         near_.memory_bytes() + history_->memory_bytes();
 }
 
 void Simulation::settle_energy_books() {
   if (!books_due_) return;
-  std::array<double, energy_sums> sums = *books_due_;
+  EnergyBooks books = *books_due_;
   books_due_.reset();
-  comm_.sum(sums.data(), energy_sums);
-  check_energy_books(report_of(sums));
+  books.sum_over(comm_);
+  check_energy_books(books);
 }
 
-void Simulation::check_energy_books(const EnergyReport& e) const {
+void Simulation::check_energy_books(const EnergyBooks& e) const {
   // The books (mechanical + dissipated + removed - wall work) stay constant up to the
   // integrator's error, about 1 % in violent runs at t_c/dt = 20. A gain of 10 % of the energy
   // in play means the integration is unstable.
@@ -632,39 +295,6 @@ void Simulation::check_energy_books(const EnergyReport& e) const {
   }
 }
 
-void Simulation::handle_escapes() {
-  std::string error;
-  try {
-    handle_escapes_here();
-  } catch (const SimulationError& e) {
-    error = e.what();
-  }
-  stop_together(error);
-}
-
-void Simulation::handle_escapes_here() {
-  const std::size_t n = store_.n_owned();
-  std::vector<std::size_t> gone;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!is_finite(store_.x[i]) || !is_finite(store_.v[i]) || !is_finite(store_.w[i]))
-      throw SimulationError(fmt::format("step {}, t = {}: non-finite state of {}; its contacts: {}",
-                                        step_, time_, describe_particle(i), describe_contacts(i)));
-    if (!store_.is_grain(i) || config_.box.contains(store_.x[i])) continue;
-    if (config_.on_escape == EscapePolicy::stop)
-      throw SimulationError(fmt::format("step {}, t = {}: {} left the domain [{}, {}] x [{}, {}] "
-                                        "x [{}, {}] (set on_escape = \"remove\" to drop it); its "
-                                        "contacts: {}",
-                                        step_, time_, describe_particle(i), config_.box.lo.x,
-                                        config_.box.hi.x, config_.box.lo.y, config_.box.hi.y,
-                                        config_.box.lo.z, config_.box.hi.z, describe_contacts(i)));
-    gone.push_back(i);
-    removed_energy_ += mechanical_energy(i);
-  }
-  if (gone.empty()) return;
-  store_.remove_owned(gone);
-  escaped_ += gone.size();
-}
-
 void Simulation::start_forces_from_gravity() {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     store_.f[i] = store_.is_grain(i) ? store_.mass[i] * config_.gravity : Vec3{};
@@ -673,7 +303,7 @@ void Simulation::start_forces_from_gravity() {
 }
 
 void Simulation::compute_forces(bool advance_history) {
-  auto t0 = Clock::now();
+  PhaseTimer timer(timers_.pair);
   // Owned particles start from gravity (step() or start_forces_from_gravity()); ghosts
   // collect contact forces only, summed back to their owners.
   for (std::size_t i = store_.n_owned(); i < store_.size(); ++i) {
@@ -692,25 +322,20 @@ void Simulation::compute_forces(bool advance_history) {
   };
   if (list_.ghost_pairs.empty()) {
     compute(PairSet::all);
-    timers_.pair += seconds_since(t0);
-    t0 = Clock::now();
+    timer.switch_to(timers_.comm);
     halo_.reverse(store_, comm_);
   } else {
     // The pairs with a ghost first: their forces travel back to the ghosts' owners while the
     // pairs of owned particles are computed, so neither rank waits for the message unless the
     // other is later than that whole computation.
     compute(PairSet::ghost);
-    timers_.pair += seconds_since(t0);
-    t0 = Clock::now();
+    timer.switch_to(timers_.comm);
     halo_.reverse_start(store_, comm_);
-    timers_.comm += seconds_since(t0);
-    t0 = Clock::now();
+    timer.switch_to(timers_.pair);
     compute(PairSet::owned);
-    timers_.pair += seconds_since(t0);
-    t0 = Clock::now();
+    timer.switch_to(timers_.comm);
     halo_.reverse_finish(store_, comm_);
   }
-  timers_.comm += seconds_since(t0);
   check_health();
 }
 
@@ -725,12 +350,8 @@ void Simulation::refresh_near_pairs() {
   const double pace = last_displacement_ + position_round_off_;
   const double margin = std::min(config_.near_fraction * config_.skin, 2.0 * lasting * pace);
   if (!(margin > 0.0) || 2.0 * min_steps * pace >= margin) return;
-  std::visit(
-      [&](auto& f) {
-        pick_near_pairs(store_.x.data(), store_.radius.data(), list_, f.history.pair_slot.data(),
-                        margin, near_);
-      },
-      forces_);
+  pick_near_pairs(store_.x.data(), store_.radius.data(), list_, history_->pair_slots(), margin,
+                  near_);
 }
 
 void Simulation::check_health() {
@@ -777,48 +398,27 @@ std::string Simulation::describe_contacts(std::size_t i) const {
   return out.empty() ? "none" : out;
 }
 
-EnergyReport Simulation::energies() const {
-  std::array<double, energy_sums> sums = energy_parts();
-  comm_.sum(sums.data(), energy_sums); // one reduction for all
-  return report_of(sums);
+EnergyBooks Simulation::energies() const {
+  EnergyBooks e = energy_parts();
+  e.sum_over(comm_); // one reduction for all
+  return e;
 }
 
-std::array<double, Simulation::energy_sums> Simulation::energy_parts() const {
+EnergyBooks Simulation::energy_parts() const {
   const Vec3 g_potential = potential_gravity();
-  double translational = 0, rotational = 0, gravitational = 0, grains = 0;
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
-    translational += 0.5 * store_.mass[i] * norm2(store_.v[i]);
-    rotational += rotational_energy(i);
-    gravitational -= store_.mass[i] * dot(g_potential, store_.x[i]);
-    ++grains;
-  }
-  // The counts ride along as doubles, exact below 2^53.
-  return {translational,
-          rotational,
-          gravitational,
-          tally_.elastic,
-          dissipated_,
-          wall_work_,
-          removed_energy_,
-          grains,
-          static_cast<double>(tally_.touching),
-          static_cast<double>(escaped_),
-          gravity_work_,
-          tally_.relaxation};
-}
-
-EnergyReport Simulation::report_of(const std::array<double, energy_sums>& sums) const {
-  EnergyReport e;
+  EnergyBooks e = books_;
   e.step = step_;
   e.time = time_;
-  e.gravity_work = sums[10];
-  e.relaxation = sums[11];
-  e.translational = sums[0], e.rotational = sums[1], e.gravitational = sums[2];
-  e.elastic = sums[3], e.dissipated = sums[4], e.wall_work = sums[5], e.removed = sums[6];
-  e.grains = static_cast<std::size_t>(std::llround(sums[7]));
-  e.contacts = static_cast<std::size_t>(std::llround(sums[8]));
-  e.escaped = static_cast<std::size_t>(std::llround(sums[9]));
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    if (!store_.is_grain(i)) continue;
+    e.translational += 0.5 * store_.mass[i] * norm2(store_.v[i]);
+    e.rotational += rotational_energy(i);
+    e.gravitational -= store_.mass[i] * dot(g_potential, store_.x[i]);
+    ++e.grains;
+  }
+  e.elastic = tally_.elastic;
+  e.relaxation = tally_.relaxation;
+  e.contacts = tally_.touching;
   return e;
 }
 
@@ -842,8 +442,7 @@ Vec3 Simulation::periodic_gravity() const {
 
 StiffestContact Simulation::stiffest_contact() const {
   // Smallest grain mass and radius per material, and which materials appear on walls.
-  const std::size_t n_mat =
-      std::visit([](const auto& f) { return f.law().coeffs.n_materials(); }, forces_);
+  const std::size_t n_mat = n_materials_;
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> m_min(n_mat, inf), r_min(n_mat, inf);
   std::vector<bool> on_wall(n_mat, false);
@@ -866,9 +465,9 @@ StiffestContact Simulation::stiffest_contact() const {
   }
   StiffestContact best{inf, 0, 0, 0};
   std::visit(
-      [&](const auto& f) {
-        using M = typename std::decay_t<decltype(f.law())>::model_type;
-        const auto& table = f.law().coeffs;
+      [&](const auto& law) {
+        using M = typename std::decay_t<decltype(law)>::model_type;
+        const auto& table = law.coeffs;
         for (std::size_t a = 0; a < n_mat; ++a)
           for (std::size_t b = 0; b < n_mat; ++b) {
             if (!table.has(a, b) || m_min[a] == inf) continue;
@@ -883,7 +482,7 @@ StiffestContact Simulation::stiffest_contact() const {
             if (on_wall[b]) consider(m_min[a], r_min[a]);
           }
       },
-      forces_);
+      law_);
   return best;
 }
 

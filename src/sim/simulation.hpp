@@ -1,15 +1,17 @@
 // A DEM simulation: owns the particles, walls, neighbour list and contact model, and advances
 // them with velocity Verlet (Allen & Tildesley 3.2.1; rotation likewise for spheres, whose
 // inertia tensor is isotropic). One step, phase by phase (see step()):
-//   1. half kick and drift of grains; walls placed at t + dt by their prescribed motion
-//   2. neighbour list rebuilt if some particle moved more than skin/2 (history stashed by
-//      global ids, periodic wrap, particles sorted by cell, ghosts, list, history restored);
-//      otherwise ghosts refreshed
-//   3. forces: gravity, contacts with other particles and flat walls; ghost forces summed back
-//   4. second half kick
+//   1. kick_drift(): half kick and drift of grains; walls placed at t + dt by their motion
+//   2. exchange_or_rebuild(): the neighbour list rebuilt if some particle moved more than
+//      skin/2 (history stashed by global ids, periodic wrap, particles sorted by cell, ghosts,
+//      list, history restored: simulation_rebuild.cpp); otherwise ghosts refreshed
+//   3. compute_forces(): gravity, contacts with other particles and flat walls; ghost forces
+//      summed back
+//   4. final_kick(): second half kick
+// Saving and loading the state (checkpoints, resuming on any number of ranks) is in
+// simulation_restart.cpp.
 #pragma once
 
-#include "analysis/energy_report.hpp"
 #include "contact/contact_model.hpp"
 #include "core/box.hpp"
 #include "core/cell_grid.hpp"
@@ -22,6 +24,8 @@
 #include "scene/plane_wall.hpp"
 #include "scene/wall_motion.hpp"
 #include "sim/contact_forces.hpp"
+#include "sim/energy_books.hpp"
+#include "sim/phase_times.hpp"
 
 #include <array>
 #include <chrono>
@@ -67,17 +71,6 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-// Wall-clock seconds spent in each phase.
-struct PhaseTimes {
-  double integrate = 0, neighbor = 0, pair = 0, comm = 0;
-  // The part of `neighbor` this rank spends on its own work (sorting, binning, the lists, the
-  // contact states), without the rebuild's exchanges and waits for other ranks.
-  double neighbor_local = 0;
-  double total() const { return integrate + neighbor + pair + comm; }
-  // What balancing by time evens out: the time a rank computes, waiting for no other.
-  double busy() const { return pair + neighbor_local + integrate; }
-};
-
 // The contact that limits the time step.
 struct StiffestContact {
   double contact_time = 0; // t_c [time]
@@ -118,18 +111,13 @@ public:
   // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
   const NearPairs& near_pairs() const { return near_; }
   const CellGrid& grid() const { return grid_; }
-  double cell_edge() const { return cell_edge_; }
-  const AnyContactLaw& contact_law() const { return law_; }
-  EnergyReport energies() const;
+  // The energy books, summed over the ranks. Collective.
+  EnergyBooks energies() const;
   const ContactTally& last_tally() const { return tally_; }
   // Records every contact's force and stored energy at each force evaluation (costs memory
   // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
   void record_contacts(bool on) { record_.enabled = on; }
   const ContactRecord& contact_record() const { return record_; }
-  // Elastic energy per owned particle at the last force evaluation: half of each contact's
-  // stored energy to each partner (flat walls keep theirs). Needs record_contacts(true) during
-  // that evaluation. Collective.
-  std::vector<double> particle_elastic_energy() const;
   // J w^2 / 2 of owned particle i (0 when its rotation is locked).
   double rotational_energy(std::size_t i) const;
   // Bytes of this rank's simulation data: particles (with ghosts), cells, neighbour list,
@@ -137,24 +125,19 @@ public:
   std::size_t memory_bytes() const;
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
-  std::size_t escaped() const { return escaped_; }
-  std::size_t n_grains() const;
   StiffestContact stiffest_contact() const;
 
-  // Saves or loads the whole dynamic state: time, step, particles in their order, contact
-  // history, the last forces and energy tally, and the energy books. Save only right after a
-  // step that rebuilt the neighbour list (request_rebuild() before it): loading then rebuilds
-  // the identical list, so a resumed run continues bit for bit. Loading keeps the stored forces
-  // (they were computed with the half-step velocities) and computes none.
+  // Saves or loads the whole dynamic state: time, step, particles in the order of the last list
+  // build (with where each stood then, x_build), contact history, the last forces and energy
+  // tally, and the energy books. Save after any step: loading builds the list of the run's last
+  // build again (rebuild_after_load), so a resumed run continues bit for bit, and saving
+  // changes nothing in the run that saves. Loading keeps the stored forces (they were computed
+  // with the half-step velocities) and computes none.
   template <class Archive> void checkpoint(Archive& ar) {
     ar.value(time_);
     ar.value(step_);
-    ar.value(dissipated_);
-    ar.value(wall_work_);
-    ar.value(removed_energy_);
-    ar.value(gravity_work_);
+    ar.value(books_);
     ar.value(rebuilds_);
-    ar.value(escaped_);
     ar.value(initial_balance_);
     ar.value(tally_);
     for (int a = 0; a < 3; ++a) {
@@ -168,11 +151,14 @@ public:
       if (loading_ != Loading::merged) grid_ = CellGrid(decomp_.local_box(), cell_edge_);
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
-    std::visit([&](auto& f) { f.history.checkpoint(ar, store_, list_); }, forces_);
+    if constexpr (Archive::loading)
+      history_->load(ar);
+    else
+      history_->save(ar, store_, list_);
     if constexpr (Archive::loading)
       if (loading_ == Loading::whole) {
         validate_loaded_particles();
-        rebuild_after_load();
+        rebuild_after_load(true);
       }
   }
 
@@ -206,17 +192,30 @@ public:
   void refresh();
 
 private:
+  // The phases of a step: the half kick and drift (true if the list must be rebuilt), the
+  // step's one collective (every rank learns whether any must rebuild), the rebuild or ghost
+  // refresh, and the second half kick.
+  bool kick_drift();
+  bool agree_on_rebuild(bool rebuild_here);
+  void exchange_or_rebuild(bool rebuild_now);
+  void final_kick();
   // Walls to their prescribed place at t; true if one moved more than half the skin.
   // `every_one` false skips those of a motion at rest: placed before, they stay there.
   // `moved2`, if given, gets the largest squared displacement of a wall particle.
   bool place_walls(double t, bool every_one = false, double* moved2 = nullptr);
-  // `after_load`: the rebuild of a loaded state, whose contact states are in the stash already
-  // and whose cut planes are the saved ones (the run's next rebuild balances as it would have).
-  void rebuild(bool after_load = false);
+  // How a list build starts: in a step (the history stashed from the current list, balancing
+  // when due); after loading a state, whose contact states are in the stash already and whose
+  // cut planes are the saved ones (the run's next build balances as it would have); or after
+  // loading one saved at any step, built from the positions of its last build (x, which the
+  // build leaves in x_build as it found it: rebuild_after_load).
+  enum class BuildAfter { step, load, load_at_last_build };
+  void rebuild(BuildAfter after = BuildAfter::step);
   void migrate();
   void rebalance();
   void stop_together(const std::string& local_error) const;
-  void rebuild_after_load();
+  // `as_saved`: the state of as many ranks as saved it, continued bit for bit; otherwise
+  // particles merged from other ranks' sections, given a new list.
+  void rebuild_after_load(bool as_saved);
   // load()'s parts on this rank: its own section, or the merge of its share.
   void load_own_section(const std::string& section);
   void merge_sections(const std::vector<std::string>& share);
@@ -233,13 +232,10 @@ private:
   // Notes (in health_error_) an overlap beyond max_overlap_ratio; the next collective stops
   // every rank with it.
   void check_health();
-  // The energy books (EnergyReport) as sums of the ranks' parts: this rank's parts, and the
-  // report of their sums over the ranks.
-  static constexpr int energy_sums = 12;
-  std::array<double, energy_sums> energy_parts() const;
-  EnergyReport report_of(const std::array<double, energy_sums>& sums) const;
+  // This rank's part of the energy books (their sums over the ranks are the books).
+  EnergyBooks energy_parts() const;
   // Throws SimulationError if the books have gained energy (an unstable integration).
-  void check_energy_books(const EnergyReport& e) const;
+  void check_energy_books(const EnergyBooks& e) const;
   // Collective: sums and checks the books that a list build left due.
   void settle_energy_books();
   std::string describe_particle(std::size_t i) const;
@@ -263,12 +259,15 @@ private:
   std::vector<WallMotion> motions_;
   AnyContactLaw law_;
   Forces forces_;
-  double cell_edge_ = 0.0; // linked-cell edge >= largest contact distance + skin
+  ContactStates* history_;  // the contact states of forces_ (per-rebuild operations)
+  std::size_t n_materials_; // of the contact law's table
+  double cell_edge_ = 0.0;  // linked-cell edge >= largest contact distance + skin
   CellGrid grid_;
   double range_ = 0.0;           // neighbour range beyond touching (the skin)
   std::size_t owned_grains_ = 0; // owned particles [0, owned_grains_) are grains, the rest walls
   NeighborList list_;
   NearPairs near_;
+  double moved2_ = 0.0;             // largest squared displacement of a particle this step
   double last_displacement_ = 0.0;  // largest displacement of a particle in the last step
   double position_round_off_ = 0.0; // bound on the round-off of one step's displacement
   bool walls_still_ = false;        // every wall particle at rest (place_walls)
@@ -277,10 +276,9 @@ private:
   ContactRecord record_;
   double time_ = 0.0;
   std::int64_t step_ = 0;
-  double dissipated_ = 0.0;
-  double wall_work_ = 0.0;
-  double removed_energy_ = 0.0;
-  double gravity_work_ = 0.0;    // work of gravity along periodic axes
+  // This rank's cumulative books: dissipated, wall work, removed energy and grains, and the
+  // work of gravity along periodic axes (the other totals are of an instant: energy_parts()).
+  EnergyBooks books_;
   double initial_balance_ = 0.0; // energy books at the start (blow-up diagnosis)
   double busy_at_balance_ = 0.0; // timers_.busy() at the last balancing
   std::int64_t rebuilds_ = 0;
@@ -288,14 +286,13 @@ private:
   std::string health_error_; // this rank's diagnosis of the last force evaluation ("" if sound)
   // This rank's parts of the energy books at the last list build, until the next collective
   // sums and checks them (settle_energy_books).
-  std::optional<std::array<double, energy_sums>> books_due_;
+  std::optional<EnergyBooks> books_due_;
   bool cuts_moved_ = false; // since the last list build (migrate() then checks for strays)
   // How checkpoint() loads: a whole state (rebuilt at once), one section whose rebuild load()
   // does once every rank has loaded, or one of several sections that load() merges (the cut
   // planes are set afresh).
   enum class Loading { whole, deferred, merged };
   Loading loading_ = Loading::whole;
-  std::size_t escaped_ = 0;
   PhaseTimes timers_;
 };
 

@@ -1,8 +1,8 @@
 // The exact two-grain collision of the thermodynamic contact law (Jiang & Liu, Acta Phys. Sin. 67,
 // 044502 (2018)), in the paper's own setting: two grains in 2-D, no rotation, head-on or oblique.
-// The model is the reconstruction of thermo_contact_model.md (the paper's displayed equations are
-// lost); equation numbers and status labels ([TEXT], [RECON-H], [RECON-M], [RECON-L], [EXT]) are
-// that document's, and the numbers of its reference model REF are not the paper's.
+// The model is the reconstruction of docs/models/thermodynamic-contact.md (the paper's displayed
+// equations are lost); equation numbers and status labels ([TEXT], [RECON-H], [RECON-M], [RECON-L],
+// [EXT]) are that document's, and the numbers of its reference model REF are not the paper's.
 //
 // The ODEs (28)-(33) are integrated by Boost.Odeint's Dormand-Prince 5(4) with dense output to a
 // tight tolerance; contact start, separation and the stick/slip switches of the yield condition

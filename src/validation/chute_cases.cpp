@@ -1,9 +1,9 @@
-// The LAMMPS chute benchmark (validation.md section 3): C1, 100 steps of data.chute against
-// LAMMPS itself (reference output and the command that made it: tests/validation/data); C2,
+// The LAMMPS chute benchmark (docs/models/validation.md section 3): C1, 100 steps of data.chute
+// against LAMMPS itself (reference output and the command that made it: tests/validation/data); C2,
 // steady flow of a slice of it down a 24 degree incline (Silbert et al. 2001).
 #include "core/units.hpp"
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
 #include "validation/validation_case.hpp"
 
 #include <algorithm>
@@ -140,7 +140,8 @@ CaseResult chute_c2(const Paths& paths) {
   if (!(total > 0)) throw std::runtime_error("YUXI_C2_TAU must be a positive number of tau");
   const double dt = scene.sim.dt;
   // Kinetic energy of the flowing grains per grain, in windows of total / 20 over the second
-  // half of the run: steady flow keeps it within +-2 % (validation.md C2, "over 500 tau").
+  // half of the run: steady flow keeps it within +-2 %
+  // (docs/models/validation.md C2, "over 500 tau").
   const auto grain_kinetic = [&sim] {
     const auto& s = sim->particles();
     double ke = 0, n = 0;

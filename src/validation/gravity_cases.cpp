@@ -1,5 +1,5 @@
-// One or two spheres under gravity: validation.md L3 (MFiX DEM01), L4 (DEM02), L5 (DEM03),
-// L9 (DEM04, slip to roll) and L10 (sphere on an incline).
+// One or two spheres under gravity: docs/models/validation.md L3 (MFiX DEM01), L4 (DEM02),
+// L5 (DEM03), L9 (DEM04, slip to roll) and L10 (sphere on an incline).
 #include "core/units.hpp"
 #include "validation/impact_probe.hpp"
 #include "validation/validation_case.hpp"
@@ -13,7 +13,7 @@ namespace {
 constexpr double g_mfix = 9.80665;
 
 // Damping rate that gives restitution e for a linear spring k and effective mass m:
-// gamma = 2 sqrt(k/m) |ln e| / sqrt(pi^2 + ln^2 e)  (validation.md L1, inverse).
+// gamma = 2 sqrt(k/m) |ln e| / sqrt(pi^2 + ln^2 e)  (docs/models/validation.md L1, inverse).
 double gamma_for(double e, double k, double m) {
   if (e >= 1) return 0.0;
   const double le = std::log(e);

@@ -1,5 +1,5 @@
-// Binary impacts without gravity: validation.md L1, L2, L6, L7, Chung & Ooi (2011) Tests 1-8,
-// and the restitution of Luding's hysteretic spring.
+// Binary impacts without gravity: docs/models/validation.md L1, L2, L6, L7, Chung & Ooi (2011)
+// Tests 1-8, and the restitution of Luding's hysteretic spring.
 #include "core/units.hpp"
 #include "validation/impact_probe.hpp"
 #include "validation/validation_case.hpp"
@@ -203,7 +203,7 @@ CaseResult chung_ooi_3(const Paths&) {
 }
 
 // Test 4: oblique impacts at 3.9 m/s; gross sliding above 32.5 deg is analytic (table of
-// validation.md); below it the Mindlin stick/slip features of Chung & Ooi's DEM curve.
+// docs/models/validation.md); below it the Mindlin stick/slip features of Chung & Ooi's DEM curve.
 CaseResult chung_ooi_4(const Paths&) {
   CaseResult res;
   const double e = 0.98, mu = 0.092, v = 3.9, r = 2.5e-3;

@@ -1,6 +1,6 @@
-// The validation suite: published and analytic cases (spec: validation.md), each a function
-// that runs the engine and returns rows of (quantity, expected, measured, tolerance). The same
-// cases drive the test suite (tests/validation) and `yuxi validate`, which prints the table.
+// The validation suite: published and analytic cases (spec: docs/models/validation.md), each a
+// function that runs the engine and returns rows of (quantity, expected, measured, tolerance). The
+// same cases drive the test suite (tests/validation) and `yuxi validate`, which prints the table.
 #pragma once
 
 #include <cmath>
@@ -44,7 +44,7 @@ struct Case {
   std::function<CaseResult(const Paths&)> run;
 };
 
-// Every case, in the order of validation.md.
+// Every case, in the order of docs/models/validation.md.
 const std::vector<Case>& all_cases();
 
 // Collects the cases of one group (each file registers its own).

@@ -3,8 +3,8 @@
 // fed the input as the state of a small simulation. Refusals (CheckpointError) are fine;
 // anything else is a finding.
 #include "io/checkpoint_file.hpp"
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
 
 #include <cstddef>
 #include <cstdint>

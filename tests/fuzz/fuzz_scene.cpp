@@ -1,7 +1,7 @@
 // libFuzzer target: the scene reader and builder. A scene may be refused (SceneError, or
 // invalid_argument from the engine's own checks); anything else is a finding.
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -4,12 +4,14 @@
 // Round-off differs (forces are summed in another order), so agreement is to a tolerance.
 #include "core/archive.hpp"
 #include "core/random.hpp"
+#include "domain/mpi_session.hpp"
 #include "domain/shared_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/lammps_dump_writer.hpp"
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/particle_elastic_energy.hpp"
+#include "run/scene_builder.hpp"
 #include "temp_folder.hpp"
 #include "test_support.hpp"
 
@@ -26,7 +28,7 @@ namespace {
 
 struct Snapshot {
   std::map<GlobalId, std::pair<Vec3, Vec3>> state; // x, v by global id
-  EnergyReport energies;
+  EnergyBooks energies;
 };
 
 Snapshot snapshot(const Simulation& sim) {
@@ -214,7 +216,7 @@ TEST(Mpi, PerParticleElasticEnergyMatchesTheTotalAndTheSerialRun) {
   const auto shares = [](Simulation& sim) {
     sim.record_contacts(true);
     sim.run(300);
-    const std::vector<double> e = sim.particle_elastic_energy(); // collective
+    const std::vector<double> e = particle_elastic_energy(sim); // collective
     double sum[2] = {0, 0};
     for (double x : e) sum[0] += x;
     for (double x : sim.contact_record().plane_elastic) sum[1] += 0.5 * x;
@@ -664,7 +666,7 @@ TEST(Mpi, SnapshotsHoldEveryParticleOnceFromEveryRank) {
 } // namespace yuxi
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  const yuxi::MpiSession mpi(&argc, &argv);
   ::testing::InitGoogleTest(&argc, argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -675,6 +677,5 @@ int main(int argc, char** argv) {
   const int failed = RUN_ALL_TESTS();
   int any = failed;
   MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
   return any;
 }

@@ -1,7 +1,7 @@
-// The fish basin (fish_basin.md section 6): the builder reproduces the paper's particle counts,
-// the bed settles without losing a grain, and the vibrating wall holds its grains.
-#include "io/scene_builder.hpp"
+// The fish basin (docs/models/fish-basin.md section 6): the builder reproduces the paper's particle
+// counts, the bed settles without losing a grain, and the vibrating wall holds its grains.
 #include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
 #include "scene/fish_basin.hpp"
 
 #include <cmath>

@@ -3,9 +3,9 @@
 // file and the problem, and the newest valid one is used.
 #include "core/archive.hpp"
 #include "io/checkpoint_file.hpp"
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "run/scene_builder.hpp"
 #include "temp_folder.hpp"
 
 #include <filesystem>

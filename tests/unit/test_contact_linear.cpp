@@ -1,5 +1,5 @@
 // The linear spring-dashpot law on its own: Newton's third law, objectivity under rotation,
-// and the static/dynamic friction switch (fish_basin.md section 5).
+// and the static/dynamic friction switch (docs/models/fish-basin.md section 5).
 #include "contact/linear_spring_dashpot.hpp"
 #include "core/random.hpp"
 
@@ -155,7 +155,7 @@ TEST(LinearContact, OpeningContactForgetsItsSpringAndLosesItsEnergy) {
 }
 
 TEST(LinearContact, ContactTimeFormula) {
-  // validation.md L1, Silbert et al. 2001 units: t_c = 4.97118e-3.
+  // docs/models/validation.md L1, Silbert et al. 2001 units: t_c = 4.97118e-3.
   Law::Coeffs c{2e5, 0, 50.0, 0, 0, 0};
   EXPECT_NEAR(Law::contact_time(c, 0.5, 0.5, 1.0), 4.97118e-3, 1e-8);
 }

@@ -90,7 +90,7 @@ TEST(EnergyCsv, RowsMatchTheHeader) {
   const auto dir = temp_dir("csv");
   {
     EnergyCsv csv(dir / "e.csv");
-    EnergyReport e;
+    EnergyBooks e;
     e.translational = 1.5;
     e.elastic = 0.25;
     e.dissipated = 2.0;

@@ -1,8 +1,8 @@
 // Scene files: the shipped scenes parse, the resolved echo reads back to the same scene, and
 // every kind of mistake gets one error naming the file, line, column and key.
-#include "io/scene_builder.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "run/scene_builder.hpp"
 
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -155,8 +155,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"outside the domain", "position = [5.0, 5.0, 5.0]", "position = [5.0, 5.0, 50.0]",
                  "particle[1].position", 30},
         BadScene{"time step too large", "dt = 1.0e-4", "dt = 1.0e-3", "run.dt: 0.001 is", 4},
-        BadScene{"unknown model", "model = \"linear\"", "model = \"hooke\"",
-                 "contact.model: unknown value \"hooke\"", 15},
+        BadScene{"unknown model", "model = \"linear\"", "model = \"walton_braun\"",
+                 "contact.model: unknown value \"walton_braun\"", 15},
         BadScene{"unknown balance", "wall_material = \"wall\"",
                  "wall_material = \"wall\"\nbalance_by = \"luck\"",
                  "domain.balance_by: unknown value \"luck\"", 13}),

@@ -1,6 +1,6 @@
 // Prescribed wall motion: the fish-basin excitation against its defining formula
-// (fish_basin.md section 6), r = R + dr cos(m alpha) sin(omega (t - t0)), with the velocity its
-// time derivative.
+// (docs/models/fish-basin.md section 6), r = R + dr cos(m alpha) sin(omega (t - t0)), with the
+// velocity its time derivative.
 #include "scene/wall_motion.hpp"
 
 #include <cmath>

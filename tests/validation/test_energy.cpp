@@ -1,4 +1,4 @@
-// Energy conservation and the energy books (fish_basin.md section 8).
+// Energy conservation and the energy books (docs/models/fish-basin.md section 8).
 //  - No damping, no friction: total mechanical energy is conserved up to the O(dt^2) error of
 //    velocity Verlet: halving dt divides the largest deviation by about 4.
 //  - With damping and friction: mechanical + dissipated stays constant. The dashpot power is

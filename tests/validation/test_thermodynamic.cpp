@@ -1,6 +1,6 @@
-// The thermodynamic contact model in the DEM engine (thermo_contact_model.md sections 7 and 8):
-// the contact routine against closed forms (T8-T11) and two-grain collisions run by the engine
-// against the spec's reference numbers (T1, T2, T4, T6).
+// The thermodynamic contact model in the DEM engine (docs/models/thermodynamic-contact.md
+// sections 7 and 8): the contact routine against closed forms (T8-T11) and two-grain collisions
+// run by the engine against the spec's reference numbers (T1, T2, T4, T6).
 #include "contact/contact_model.hpp"
 #include "core/random.hpp"
 #include "thermo/two_grain.hpp"

@@ -1,6 +1,6 @@
 // The exact two-grain collision of the thermodynamic contact law against the published numbers of
-// thermo_contact_model.md, section 8 (tests T1-T7, T14). Unless said otherwise: m1 = m2 = 1,
-// a1 = a2 = 0.5 (d = 1), k = 1, m* = 1/2, head-on at +-v0, E0 = m v0^2, sharp step.
+// docs/models/thermodynamic-contact.md, section 8 (tests T1-T7, T14). Unless said otherwise:
+// m1 = m2 = 1, a1 = a2 = 0.5 (d = 1), k = 1, m* = 1/2, head-on at +-v0, E0 = m v0^2, sharp step.
 // Where the spec prints a number, the tolerance is half a unit of its last printed digit.
 #include "thermo/two_grain.hpp"
 

@@ -1,5 +1,5 @@
-// The validation suite (src/validation, spec: validation.md): one test per case, one assertion
-// per published or analytic number. `yuxi validate` prints the same cases as a table.
+// The validation suite (src/validation, spec: docs/models/validation.md): one test per case, one
+// assertion per published or analytic number. `yuxi validate` prints the same cases as a table.
 #include "validation/validation_case.hpp"
 
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
-#include "io/run_driver.hpp"
+#include "run/run_driver.hpp"
 
 #include "io/checkpoint_file.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
-#include "io/progress.hpp"
-#include "io/run_analysis.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/progress.hpp"
+#include "run/run_analysis.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -46,7 +46,7 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume,
                                               sim.comm());
   const auto write_energies = [&] {
-    const EnergyReport e = sim.energies(); // collective
+    const EnergyBooks e = sim.energies(); // collective
     if (energies) energies->write(e);
   };
   CheckpointSet checkpoints(dir, scene.checkpoint.keep);

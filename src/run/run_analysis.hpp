@@ -1,7 +1,7 @@
-// The fish-basin analysis during a run (fish_basin.md section 7), from the scene's [analysis]
-// table: at the requested times and over the first excitation period it computes, on every
-// rank from its own grains, the free surface (Figs. 5-6), the velocities in the vertical plane
-// through two antinodes (Fig. 7), the elastic energy summed over z (Fig. 8), the energies of
+// The fish-basin analysis during a run (docs/models/fish-basin.md section 7), from the scene's
+// [analysis] table: at the requested times and over the first excitation period it computes, on
+// every rank from its own grains, the free surface (Figs. 5-6), the velocities in the vertical
+// plane through two antinodes (Fig. 7), the elastic energy summed over z (Fig. 8), the energies of
 // horizontal slabs averaged over the period (Fig. 9) and the densities of per-grain kinetic,
 // elastic and total energy with power-law fits (Fig. 10). Grids and histograms are reduced
 // over ranks (no particle is gathered), and rank 0 writes CSV files into <run>/analysis/;

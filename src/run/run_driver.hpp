@@ -33,7 +33,7 @@ struct RunSummary {
   double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
   double snapshot_seconds = 0.0;          // wall time writing VTK and LAMMPS dump frames
   double checkpoint_seconds = 0.0;        // wall time writing checkpoints
-  EnergyReport final_energies;
+  EnergyBooks final_energies;
   bool failed = false;
   bool interrupted = false; // stopped by a signal after writing a checkpoint
   std::string failure;      // the diagnosis when failed

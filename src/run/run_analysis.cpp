@@ -1,10 +1,11 @@
-#include "io/run_analysis.hpp"
+#include "run/run_analysis.hpp"
 
 #include "analysis/analysis_csv.hpp"
 #include "analysis/free_surface.hpp"
 #include "analysis/grain_energy.hpp"
 #include "analysis/velocity_section.hpp"
 #include "core/archive.hpp"
+#include "run/particle_elastic_energy.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -70,7 +71,7 @@ RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
   const auto& p = sim.particles();
   Grains g;
   std::vector<double> elastic;
-  if (energies) elastic = sim.particle_elastic_energy(); // collective
+  if (energies) elastic = particle_elastic_energy(sim); // collective
   for (std::size_t i = 0; i < p.n_owned(); ++i) {
     if (!p.is_grain(i)) continue;
     g.x.push_back(p.x[i]);

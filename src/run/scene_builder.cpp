@@ -1,4 +1,4 @@
-#include "io/scene_builder.hpp"
+#include "run/scene_builder.hpp"
 
 #include <fmt/format.h>
 

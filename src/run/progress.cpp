@@ -1,4 +1,4 @@
-#include "io/progress.hpp"
+#include "run/progress.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Fails when an #include in src/ breaks the layer order (docs/ARCHITECTURE.md): each layer may
+# include only itself and the layers below it.
+#   core
+#   contact, domain, scene, analysis   on core
+#   thermo                             on contact
+#   sim                                on contact, domain, scene (never analysis)
+#   io                                 on sim
+#   run                                on io, sim, analysis
+#   validation                         on run, thermo
+# apps/, tests/ and bench/ may include any layer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+declare -A below=(
+  [core]=""
+  [contact]="core"
+  [domain]="core"
+  [scene]="core"
+  [analysis]="core"
+  [thermo]="contact core"
+  [sim]="contact domain scene core"
+  [io]="sim contact domain scene core"
+  [run]="io sim analysis contact domain scene core"
+  [validation]="run thermo io sim analysis contact domain scene core"
+)
+
+status=0
+for dir in src/*/; do
+  layer=$(basename "$dir")
+  if [[ -z ${below[$layer]+set} ]]; then
+    echo "src/$layer: a layer the check does not know; add it to scripts/check-layers.sh"
+    status=1
+    continue
+  fi
+  allowed=" $layer ${below[$layer]} "
+  while IFS=: read -r file line include; do
+    target=${include%%/*}
+    if [[ $allowed != *" $target "* ]]; then
+      echo "$file:$line: $layer includes $include (allowed: ${below[$layer]:-nothing})"
+      status=1
+    fi
+  done < <(grep -rnoE '^#include "[a-z_]+/[^"]+"' "$dir" | sed -E 's/#include "([^"]+)"/\1/')
+done
+if ((status == 0)); then echo "layers: every include follows the layer order"; fi
+exit $status
