@@ -31,20 +31,27 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   const std::int64_t energy_every = every(scene.output.energy_interval, dt);
   const std::int64_t snapshot_every = every(scene.output.snapshot_interval, dt);
 
-  const std::optional<std::int64_t> resume =
-      options.resumed ? std::optional<std::int64_t>(first) : std::nullopt;
+  // A resumed run keeps the rows and frames of the steps up to its checkpoint, except one that
+  // the saved run wrote only because it ended there (off the output's interval): extended to a
+  // later end, the files are then those of a run straight to it.
+  const auto resume_after = [&](std::int64_t interval) -> std::optional<std::int64_t> {
+    if (!options.resumed) return std::nullopt;
+    const bool off_interval = interval > 0 && first % interval != 0;
+    return off_interval && first < last ? first - 1 : first;
+  };
   // energies.csv is written by rank 0, from energies reduced over ranks; every rank writes its
   // own particles into the snapshots and checkpoints (no rank gathers the others').
   const bool root = sim.comm().root();
   std::unique_ptr<EnergyCsv> energies;
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
-  if (root) energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume);
+  if (root)
+    energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume_after(energy_every));
   if (scene.output.vtk && snapshot_every)
-    vtk = std::make_unique<VtkSeries>(dir, "particles", resume, sim.comm());
+    vtk = std::make_unique<VtkSeries>(dir, "particles", resume_after(snapshot_every), sim.comm());
   if (scene.output.lammps_dump && snapshot_every)
-    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box, resume,
-                                              sim.comm());
+    dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box,
+                                              resume_after(snapshot_every), sim.comm());
   const auto write_energies = [&] {
     const EnergyBooks e = sim.energies(); // collective
     if (energies) energies->write(e);
@@ -54,10 +61,11 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   auto last_checkpoint = std::chrono::steady_clock::now();
   // A signal reaches one rank or all; every rank must stop at the same step.
   const auto stop_requested = [&] { return sim.comm().any(options.stop && *options.stop != 0); };
-  // A checkpoint is written after a step that rebuilt the neighbour list (see
-  // Simulation::checkpoint), so whether one is due is decided before the step. The signal and
-  // the clock are polled every poll_steps steps only: each poll is a collective, and one per
-  // step costs more than the step itself on small systems split over ranks.
+  // A checkpoint may follow any step and leaves the trajectory untouched (see
+  // Simulation::checkpoint): a run repeats itself to the bit whenever its checkpoints were
+  // written, by step count, by the clock, on a signal or at the end. The signal and the clock
+  // are polled every poll_steps steps only: each poll is a collective, and one per step costs
+  // more than the step itself on small systems split over ranks.
   const auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
@@ -93,7 +101,6 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   try {
     while (sim.step_count() < last) {
       const bool checkpoint_now = checkpoint_due(sim.step_count() + 1);
-      if (checkpoint_now) sim.request_rebuild();
       if (analysis) analysis->before_step(sim);
       sim.step();
       if (analysis) analysis->after_step(sim);

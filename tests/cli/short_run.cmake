@@ -21,7 +21,8 @@ if(NOT rc2 EQUAL 2 OR NOT err2 MATCHES "already holds a run")
   message(FATAL_ERROR "an existing run was not protected: ${rc2} ${err2}")
 endif()
 # A resumed run logs its own list builds, not the count since t = 0 that the checkpoint keeps:
-# the grains fall 1e-3 sigma in either segment, so each builds only for its final checkpoint.
+# the grains fall 1e-3 sigma in either segment, so neither builds a list (a checkpoint needs
+# none).
 execute_process(COMMAND ${YUXI} run --resume ${WORK}/short --t-end 0.04 --no-plots
   RESULT_VARIABLE rc3 ERROR_VARIABLE err3 OUTPUT_VARIABLE out3)
 if(NOT rc3 EQUAL 0)

@@ -3,6 +3,7 @@
 #include "io/lammps_data_reader.hpp"
 
 #include <gtest/gtest.h>
+#include <ostream>
 
 namespace yuxi {
 namespace {
@@ -45,6 +46,10 @@ struct Broken {
   const char* what;
   std::string from, to, expected;
 };
+// ctest lists a case by its name and this, not by a dump of the parameter's bytes.
+void PrintTo(const Broken& c, std::ostream* os) {
+  *os << c.what;
+}
 
 class BrokenData : public ::testing::TestWithParam<Broken> {};
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <gtest/gtest.h>
+#include <ostream>
 #include <tuple>
 
 namespace yuxi {
@@ -68,6 +69,25 @@ ContactGeometry geometry_of(const Contact& k, double dt) {
 
 class LinearBatchMatches : public testing::TestWithParam<std::tuple<CapOn, Carry>> {};
 
+// The conventions by name in ctest's list, not as bytes.
+const char* cap_name(CapOn c) {
+  return c == CapOn::spring ? "spring" : c == CapOn::total ? "total" : "total_lammps";
+}
+const char* carry_name(Carry c) {
+  return c == Carry::rotate ? "rotate" : "project";
+}
+
+} // namespace
+
+void PrintTo(CapOn c, std::ostream* os) {
+  *os << cap_name(c);
+}
+void PrintTo(Carry c, std::ostream* os) {
+  *os << carry_name(c);
+}
+
+namespace {
+
 TEST_P(LinearBatchMatches, TheOneByOneLawBitForBit) {
   const auto [cap, carry] = GetParam();
   const double dt = 1e-4;
@@ -119,7 +139,11 @@ TEST_P(LinearBatchMatches, TheOneByOneLawBitForBit) {
 INSTANTIATE_TEST_SUITE_P(EveryConvention, LinearBatchMatches,
                          testing::Combine(testing::Values(CapOn::spring, CapOn::total,
                                                           CapOn::total_lammps),
-                                          testing::Values(Carry::rotate, Carry::project)));
+                                          testing::Values(Carry::rotate, Carry::project)),
+                         [](const testing::TestParamInfo<std::tuple<CapOn, Carry>>& p) {
+                           return std::string("cap_") + cap_name(std::get<0>(p.param)) + "_carry_" +
+                                  carry_name(std::get<1>(p.param));
+                         });
 
 } // namespace
 } // namespace yuxi

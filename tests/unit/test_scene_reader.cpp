@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <ostream>
 #include <toml++/toml.h>
 
 namespace yuxi {
@@ -105,6 +106,10 @@ struct BadScene {
   std::string expected; // substring of the message
   int line;             // expected line of the error (0: not checked)
 };
+// ctest lists a case by its name and this, not by a dump of the parameter's bytes.
+void PrintTo(const BadScene& c, std::ostream* os) {
+  *os << c.what;
+}
 
 class BadScenes : public ::testing::TestWithParam<BadScene> {};
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <gtest/gtest.h>
+#include <ostream>
 
 namespace yuxi {
 namespace {
@@ -60,6 +61,10 @@ struct ModelCase {
   AnyContactLaw (*law)();
   double dt;
 };
+// ctest lists a case by its name and this, not by a dump of the parameter's bytes.
+void PrintTo(const ModelCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class EnergyBooks : public ::testing::TestWithParam<ModelCase> {};
 

@@ -3,11 +3,21 @@
 #include "validation/validation_case.hpp"
 
 #include <gtest/gtest.h>
+#include <ostream>
 
 namespace yuxi::validation {
 namespace {
 
 class Validation : public ::testing::TestWithParam<Case> {};
+
+} // namespace
+
+// ctest lists a case by its id and title, not by a dump of the parameter's bytes.
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.id << ": " << c.title;
+}
+
+namespace {
 
 TEST_P(Validation, MatchesTheReference) {
   const Case& c = GetParam();
