@@ -135,14 +135,15 @@ def read_scene(run):
 
 
 def flatten(d, prefix=""):
-    """Leaf keys of a TOML document as [(dotted.key, value)]; arrays of tables indexed."""
+    """Leaf keys of a TOML document as [(dotted.key, value)]; arrays of tables indexed from 1,
+    as the scene reader's messages number them (the first [[contact.pair]] is contact.pair[1])."""
     rows = []
     for k, v in d.items():
         key = f"{prefix}{k}"
         if isinstance(v, dict):
             rows += flatten(v, key + ".")
         elif isinstance(v, list) and v and all(isinstance(e, dict) for e in v):
-            for n, e in enumerate(v):
+            for n, e in enumerate(v, start=1):
                 rows += flatten(e, f"{key}[{n}].")
         else:
             rows.append((key, v))

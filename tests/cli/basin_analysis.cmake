@@ -19,6 +19,16 @@ foreach(f fig4_energies.png fig5_surface.png fig6_contours.png fig7_velocity.png
     message(FATAL_ERROR "missing figure ${f}: ${err}")
   endif()
 endforeach()
+# The report's parameter table numbers [[contact.pair]] tables from 1, as the scene reader's
+# messages do (where Python can parse the scene into a table; else it prints the TOML as is).
+file(READ ${WORK}/analysis/report.md report)
+if(report MATCHES "\\| parameter \\| value \\|")
+  if(NOT report MATCHES "`contact\\.pair\\[1\\]\\.k_n`" OR
+     NOT report MATCHES "`contact\\.pair\\[2\\]\\.k_n`" OR
+     report MATCHES "contact\\.pair\\[0\\]")
+    message(FATAL_ERROR "report.md does not number the [[contact.pair]] tables from 1")
+  endif()
+endif()
 file(STRINGS ${WORK}/analysis/analysis/fits.csv fits)
 list(LENGTH fits n)
 if(NOT n EQUAL 7) # header + kinetic, elastic, total in ranges A and B
