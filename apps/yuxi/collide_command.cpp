@@ -1,6 +1,6 @@
 #include "collide_command.hpp"
 
-#include "core/units.hpp"
+#include "contact/contact_model.hpp"
 #include "io/scene_reader.hpp"
 #include "plot_script.hpp"
 #include "thermo/two_grain.hpp"
@@ -20,46 +20,14 @@ namespace yuxi {
 namespace fs = std::filesystem;
 namespace {
 
-// Model units of the study (thermo_contact_model.md section 8): m = 1, a = 0.5, so d = 1 and
-// m* = 1/2; every model's normal stiffness is 1 there (Hertz: (4/3) E* sqrt(R*) = 1, i.e.
-// E* = 1.5), friction 0.5, tangential stiffness 2/7 of the normal one where it is free.
-constexpr double unit_e_star = 1.5, unit_poisson = 0.3, unit_friction = 0.5;
-constexpr double speed_independent_e = 0.88; // linear and Hertz-Mindlin: REF's e near v0 = 1e-3
-
-// The linear damping rate giving restitution e: e = exp(-gamma t_c / 2),
-// t_c = pi / sqrt(k/m* - gamma^2/4).
-double linear_damping(double e, double k, double m_eff) {
-  const double b = -std::log(e) / pi;
-  const double omega = std::sqrt(k / m_eff / (1 + b * b));
-  return 2 * b * omega;
-}
-
+// The model's example coefficients (Model::example(), in the model units of the study:
+// contact/example_units.hpp) for one material.
 AnyContactLaw builtin_law(const std::string& model) {
   AnyContactLaw law = make_contact_law(model, 1);
   std::visit(
-      [&](auto& l) {
+      [](auto& l) {
         using Model = typename std::decay_t<decltype(l)>::model_type;
-        typename Model::Coeffs c{};
-        if constexpr (std::is_same_v<Model, LinearSpringDashpot>) {
-          c.k_n = 1;
-          c.k_t = 2.0 / 7.0;
-          c.gamma_n = linear_damping(speed_independent_e, 1, 0.5);
-          c.mu_s = c.mu_d = unit_friction;
-        } else if constexpr (std::is_same_v<Model, HertzMindlin>) {
-          const double youngs = 2 * unit_e_star * (1 - unit_poisson * unit_poisson);
-          c = HertzMindlin::mix(youngs, unit_poisson, youngs, unit_poisson, speed_independent_e,
-                                unit_friction);
-        } else if constexpr (std::is_same_v<Model, Luding>) {
-          // Plastic hysteresis: e = sqrt(k1/k2(delta_max)) falls from 1 to sqrt(1/5).
-          c.k1 = 1;
-          c.kp = 5;
-          c.phi_f = 0.05;
-          c.k_t = 2.0 / 7.0;
-          c.mu_s = c.mu_d = unit_friction;
-        } else { // thermodynamic: REF of the spec (section 6.3)
-          c.e_star = unit_e_star;
-        }
-        l.coeffs.set(0, 0, c);
+        l.coeffs.set(0, 0, Model::example());
       },
       law);
   return law;
@@ -98,8 +66,7 @@ std::vector<Study> studies(const CollideOptions& o) {
     return out;
   }
   std::vector<std::string> names = o.models;
-  if (names.empty())
-    for (auto n : contact_model_names) names.emplace_back(n);
+  if (names.empty()) names = built_in_models();
   for (const auto& n : names) out.push_back({n, builtin_law(n)});
   return out;
 }
@@ -212,6 +179,10 @@ void write_series(const CollideOptions& o, const std::vector<Study>& runs, const
 }
 
 } // namespace
+
+std::vector<std::string> built_in_models() {
+  return {contact_model_names.begin(), contact_model_names.end()};
+}
 
 int collide_command(const CollideOptions& o) {
   try {

@@ -21,6 +21,9 @@ struct CollideOptions {
   bool plots = true;
 };
 
+// The models with a built-in parameter set: every registered contact model.
+std::vector<std::string> built_in_models();
+
 // 0 on success, 1 on bad input or a failed run.
 int collide_command(const CollideOptions& options);
 

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   collide->add_option("--scene", copt.scene_path, "Take the contact law of this scene's first pair")
       ->check(CLI::ExistingFile);
   collide->add_option("--models", copt.models, "Built-in parameter sets (default: all models)")
-      ->check(CLI::IsMember({"linear", "hertz_mindlin", "luding", "thermodynamic"}))
+      ->check(CLI::IsMember(yuxi::built_in_models()))
       ->excludes("--scene");
   collide->add_option("--radius", copt.radius, "Grain radius")->capture_default_str();
   collide->add_option("--mass", copt.mass, "Grain mass")->capture_default_str();

@@ -1,5 +1,6 @@
 #include "contact/hertz_mindlin.hpp"
 
+#include "contact/example_units.hpp"
 #include "core/units.hpp"
 
 #include <algorithm>
@@ -37,6 +38,12 @@ HertzMindlin::Coeffs HertzMindlin::mix(double e1, double nu1, double e2, double 
   const double le = std::log(restitution);
   c.beta = restitution > 0 ? le / std::sqrt(le * le + pi * pi) : -1.0;
   return c;
+}
+
+HertzMindlin::Coeffs HertzMindlin::example() {
+  using namespace example_units;
+  const double youngs = 2 * e_star * (1 - poisson * poisson); // E of each of two equal grains
+  return mix(youngs, poisson, youngs, poisson, restitution, friction);
 }
 
 double HertzMindlin::contact_time(const Coeffs& c, double m_eff, double r_eff, double v) {

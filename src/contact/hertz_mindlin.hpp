@@ -19,6 +19,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/scene_fields.hpp"
 
 #include <cstdint>
 #include <string_view>
@@ -39,6 +40,20 @@ struct HertzMindlin {
   // Derived coefficients from the two materials (a rigid material has E = infinity).
   static Coeffs mix(double youngs_1, double poisson_1, double youngs_2, double poisson_2,
                     double restitution, double friction);
+
+  // The scene keys of the coefficients (scene_fields.hpp); E* and G* come from the materials.
+  template <class V> static void fields(V& v, Coeffs& c) {
+    v.fraction("restitution", c.restitution);
+    v.optional("friction", c.friction);
+  }
+  // The coefficients read from a scene completed with the two materials' elastic constants.
+  static Coeffs with_materials(const Coeffs& c, double youngs_1, double poisson_1, double youngs_2,
+                               double poisson_2) {
+    return mix(youngs_1, poisson_1, youngs_2, poisson_2, c.restitution, c.friction);
+  }
+  // Example coefficients in model units (example_units.hpp): (4/3) E* sqrt(R*) = 1, restitution
+  // 0.88, friction 0.5.
+  static Coeffs example();
 
   using State = TangentialRollingState;
 

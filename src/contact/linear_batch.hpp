@@ -1,6 +1,7 @@
 // The linear spring-dashpot law (linear_spring_dashpot.hpp) evaluated on a batch of contacts
 // at once, for the pair loop's common case: no rolling resistance, and one friction convention
-// (friction_cap, tangential_carry) for every pair of materials.
+// (friction_cap, tangential_carry) for every pair of materials. The model names it as its
+// `Batch` (sim/contact_forces.hpp takes any model's batch through the same members).
 //
 // The contacts are held as a structure of arrays and the evaluation is one loop without
 // branches (both arms of the Coulomb test are computed and one is selected), so the compiler
@@ -15,6 +16,7 @@
 
 #include "contact/frictional_spring.hpp"
 #include "contact/linear_spring_dashpot.hpp"
+#include "contact/pair_table.hpp"
 #include "core/always_inline.hpp"
 
 #include <cmath>
@@ -25,9 +27,47 @@ namespace yuxi {
 
 struct LinearBatch {
   static constexpr std::size_t capacity = 32;
+  using Coeffs = LinearSpringDashpot::Coeffs;
+  using State = LinearSpringDashpot::State;
+
+  // Takes the law's table of coefficients: false where some pair of materials needs the
+  // one-by-one law (rolling resistance, or friction conventions that differ between pairs).
+  // Where every pair has the same coefficients, the lanes hold them from here on.
+  bool prepare(const PairTable<Coeffs>& table) {
+    const Coeffs* first = nullptr;
+    for (std::size_t a = 0; a < table.n_materials(); ++a)
+      for (std::size_t b = 0; b < table.n_materials(); ++b) {
+        if (!table.has(a, b)) continue;
+        const auto& c = table(a, b);
+        if (c.rolling()) return false;
+        if (!first) first = &c;
+        if (c.friction_cap != first->friction_cap || c.carry != first->carry) return false;
+      }
+    if (!first) return false;
+    friction_cap = first->friction_cap;
+    tangential_carry = first->carry;
+    uniform = true;
+    for (std::size_t a = 0; a < table.n_materials(); ++a)
+      for (std::size_t c = 0; c < table.n_materials(); ++c) {
+        if (!table.has(a, c)) continue;
+        const auto& x = table(a, c);
+        uniform = uniform && x.k_n == first->k_n && x.k_t == first->k_t &&
+                  x.gamma_n == first->gamma_n && x.gamma_t == first->gamma_t &&
+                  x.mu_s == first->mu_s && x.mu_d == first->mu_d;
+      }
+    if (uniform)
+      for (std::size_t k = 0; k < capacity; ++k) set_coeffs(k, *first);
+    return true;
+  }
+
+  std::size_t size = 0; // lanes in use, counted by the caller
+  // The law's conventions, the same for every pair of materials (set by prepare(); they fill
+  // bytes that the alignment of the lanes leaves free).
+  CapOn friction_cap = CapOn::spring;
+  Carry tangential_carry = Carry::rotate;
+  bool uniform = false; // one law for every pair of materials: the lanes hold its coefficients
 
   // Filled by the caller, one lane per contact.
-  std::size_t size = 0;
   alignas(64) double dx[capacity], dy[capacity], dz[capacity];    // x_i - x_j [length]
   alignas(64) double a_i[capacity], a_j[capacity];                // radii [length]
   alignas(64) double vx[capacity], vy[capacity], vz[capacity];    // v_i - v_j [length/time]
@@ -50,19 +90,18 @@ struct LinearBatch {
   bool full() const { return size == capacity; }
 
   // Fills lane k with one contact: d = x_i - x_j, v = v_i - v_j, its law's coefficients and
-  // its tangential spring.
+  // its state (the tangential spring).
   void set_lane(std::size_t k, const Vec3& d, double radius_i, double radius_j, const Vec3& v,
-                const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum,
-                const LinearSpringDashpot::Coeffs& c, const SliderState& spring) {
-    set_contact(k, d, radius_i, radius_j, v, w_i, w_j, inverse_mass_sum, spring);
+                const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum, const Coeffs& c,
+                const State& state) {
+    set_contact(k, d, radius_i, radius_j, v, w_i, w_j, inverse_mass_sum, state);
     set_coeffs(k, c);
   }
   // The same without the coefficients: where every pair of materials has the same law, the
-  // lanes hold it from the start (set_coeffs on every lane once) and each contact fills the
-  // rest.
+  // lanes hold it from the start (prepare()) and each contact fills the rest.
   void set_contact(std::size_t k, const Vec3& d, double radius_i, double radius_j, const Vec3& v,
-                   const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum,
-                   const SliderState& spring) {
+                   const Vec3& w_i, const Vec3& w_j, double inverse_mass_sum, const State& state) {
+    const SliderState& spring = state.tangential;
     dx[k] = d.x, dy[k] = d.y, dz[k] = d.z;
     a_i[k] = radius_i, a_j[k] = radius_j;
     vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
@@ -73,7 +112,7 @@ struct LinearBatch {
     s_k[k] = spring.k;
     sliding[k] = spring.sliding ? 1.0 : 0.0;
   }
-  void set_coeffs(std::size_t k, const LinearSpringDashpot::Coeffs& c) {
+  void set_coeffs(std::size_t k, const Coeffs& c) {
     k_n[k] = c.k_n, k_t[k] = c.k_t;
     gamma_n[k] = c.gamma_n, gamma_t[k] = c.gamma_t;
     mu_s[k] = c.mu_s, mu_d[k] = c.mu_d;
@@ -88,7 +127,13 @@ struct LinearBatch {
     return st;
   }
 
-  // Evaluates every lane (the state arrays are updated in place).
+  // The state of the contact in lane k after evaluate() (the rolling spring is unused here).
+  void save_state(std::size_t k, State& state) const { state.tangential = spring(k); }
+
+  // Evaluates every lane with the conventions prepare() took (the state arrays are updated in
+  // place).
+  void evaluate(double dt) { evaluate(friction_cap, tangential_carry, dt); }
+  // The same with the conventions given.
   void evaluate(CapOn cap, Carry carry, double dt) {
     switch (cap) {
     case CapOn::spring:

@@ -29,11 +29,14 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/scene_fields.hpp"
 #include "core/always_inline.hpp"
 
 #include <string_view>
 
 namespace yuxi {
+
+struct LinearBatch; // linear_batch.hpp, included at the end of this file
 
 struct LinearSpringDashpot {
   static constexpr std::string_view name = "linear";
@@ -54,7 +57,32 @@ struct LinearSpringDashpot {
     bool rolling() const { return k_r > 0 || mu_r > 0; }
   };
 
+  // The scene keys of the coefficients (scene_fields.hpp).
+  template <class V> static void fields(V& v, Coeffs& c) {
+    v.required("k_n", c.k_n);
+    v.optional("k_t", c.k_t);
+    v.optional("gamma_n", c.gamma_n);
+    v.optional("gamma_t", c.gamma_t);
+    friction_fields(v, c.mu_s, c.mu_d);
+    slider_fields(v, "k_r", c.k_r, "gamma_r", c.gamma_r, "mu_r", c.mu_r);
+    v.choice("friction_cap", c.friction_cap,
+             {{"spring", CapOn::spring},
+              {"total", CapOn::total},
+              {"total_lammps", CapOn::total_lammps}});
+    v.choice("tangential_carry", c.carry, {{"rotate", Carry::rotate}, {"project", Carry::project}});
+  }
+  // The scene's preset = "lammps": LAMMPS gran/hooke/history's conventions as the defaults.
+  static void lammps_preset(Coeffs& c) {
+    c.friction_cap = CapOn::total_lammps;
+    c.carry = Carry::project;
+  }
+  // Example coefficients in model units (example_units.hpp): k_n = 1, k_t = 2/7, mu = 0.5 and
+  // the damping of restitution 0.88.
+  static Coeffs example();
+
   using State = TangentialRollingState;
+  // The pair loop evaluates the law in SIMD batches where every pair of materials allows it.
+  using Batch = LinearBatch;
 
   // Contact time of a normal collision with effective mass m_eff (validation.md L1):
   // t_c = pi / sqrt(k_n/m_eff - gamma_n^2/4). Infinite when overdamped.
@@ -99,3 +127,6 @@ YUXI_ALWAYS_INLINE ContactResult LinearSpringDashpot::evaluate(const ContactGeom
 }
 
 } // namespace yuxi
+
+// The batch evaluates the law above: every user of the model gets both.
+#include "contact/linear_batch.hpp" // IWYU pragma: export

@@ -28,6 +28,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/scene_fields.hpp"
 
 #include <string_view>
 
@@ -46,6 +47,24 @@ struct Luding {
     double k_r = 0, gamma_r = 0, mu_r = 0;           // rolling
     double k_o = 0, gamma_o = 0, mu_o = 0;           // torsion
   };
+
+  // The scene keys of the coefficients (scene_fields.hpp).
+  template <class V> static void fields(V& v, Coeffs& c) {
+    v.required("k1", c.k1);
+    v.optional_or("kp", c.kp, c.k1);
+    v.check(c.kp >= c.k1, "kp", fmt::format("kp = {} must be at least k1 = {}", c.kp, c.k1));
+    v.optional("kc", c.kc);
+    v.fraction("phi_f", c.phi_f);
+    v.optional("gamma_n", c.gamma_n);
+    v.optional("k_t", c.k_t);
+    v.optional("gamma_t", c.gamma_t);
+    friction_fields(v, c.mu_s, c.mu_d);
+    slider_fields(v, "k_r", c.k_r, "gamma_r", c.gamma_r, "mu_r", c.mu_r);
+    slider_fields(v, "k_o", c.k_o, "gamma_o", c.gamma_o, "mu_o", c.mu_o);
+  }
+  // Example coefficients in model units (example_units.hpp): k1 = 1 and plastic hysteresis up
+  // to kp = 5, so e = sqrt(k1/k2(delta_max)) falls from 1 to sqrt(1/5); k_t = 2/7, mu = 0.5.
+  static Coeffs example();
 
   struct State {
     double delta_max = 0; // largest overlap reached (lowered on the adhesive branch)

@@ -1,6 +1,8 @@
 #include "contact/thermodynamic.hpp"
 
+#include "contact/example_units.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/hertz_mindlin.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,20 @@ thermo::ExampleModel Thermodynamic::Coeffs::model() const {
   m.epsilon = 0;
   m.viscosity_to_heat = viscosity_to == ViscosityChannel::heat;
   return m;
+}
+
+Thermodynamic::Coeffs Thermodynamic::with_materials(const Coeffs& c, double youngs_1,
+                                                    double poisson_1, double youngs_2,
+                                                    double poisson_2) {
+  Coeffs out = c;
+  out.e_star = HertzMindlin::mix(youngs_1, poisson_1, youngs_2, poisson_2, 1.0, 0.0).e_star;
+  return out;
+}
+
+Thermodynamic::Coeffs Thermodynamic::example() {
+  Coeffs c;
+  c.e_star = example_units::e_star;
+  return c;
 }
 
 thermo::ExampleCoefficients Thermodynamic::coefficients(const Coeffs& c, double m_eff, double r_eff,

@@ -1,7 +1,7 @@
 #include "io/scene_reader.hpp"
 
+#include "contact/contact_model.hpp"
 #include "core/units.hpp"
-#include "io/contact_fields.hpp"
 #include "io/lammps_data_reader.hpp"
 #include "io/toml_reader.hpp"
 
@@ -12,7 +12,9 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
+#include <vector>
 
 namespace yuxi {
 namespace {
@@ -188,7 +190,7 @@ void read_materials(Scene& scene, TomlReader& root) {
   props->finish();
 }
 
-// Reads one model's pair keys (contact_fields.hpp) from a [[contact.pair]] table.
+// Reads one model's pair keys (Model::fields, scene_fields.hpp) from a [[contact.pair]] table.
 struct FieldReader {
   TomlReader& t;
   void required(std::string_view k, double& x) { x = t.positive(k); }
@@ -221,19 +223,36 @@ struct FieldReader {
   }
 };
 
+// A model whose coefficients also depend on the materials' elastic constants.
+template <class M>
+concept UsesElasticMaterials = requires(const typename M::Coeffs& c) {
+  { M::with_materials(c, 1.0, 0.3, 1.0, 0.3) } -> std::same_as<typename M::Coeffs>;
+};
+
+// A model that takes the scene's preset = "lammps".
+template <class M>
+concept HasLammpsPreset = requires(typename M::Coeffs& c) {
+  M::lammps_preset(c);
+};
+
+// The names of the models that take preset = "lammps", joined by "or".
+std::string models_with_lammps_preset() {
+  std::vector<std::string_view> names;
+  ContactModels::for_each([&]<class M>(std::type_identity<M>) {
+    if constexpr (HasLammpsPreset<M>) names.push_back(M::name);
+  });
+  return fmt::format("{}", fmt::join(names, " or "));
+}
+
 // Coefficients of model M for the pair (a, b) from its table.
 template <class M>
 typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, std::uint8_t b) {
   typename M::Coeffs c{};
-  if constexpr (std::is_same_v<M, LinearSpringDashpot>) {
-    if (scene.contact_preset == "lammps") { // gran/hooke/history conventions
-      c.friction_cap = CapOn::total_lammps;
-      c.carry = Carry::project;
-    }
-  }
+  if constexpr (HasLammpsPreset<M>)
+    if (scene.contact_preset == "lammps") M::lammps_preset(c);
   FieldReader reader{p};
-  contact_fields(reader, c);
-  if constexpr (std::is_same_v<M, HertzMindlin> || std::is_same_v<M, Thermodynamic>) {
+  M::fields(reader, c);
+  if constexpr (UsesElasticMaterials<M>) {
     for (std::uint8_t k : {a, b}) {
       const auto& m = scene.material_properties[k];
       if (std::isnan(m.youngs_modulus) || std::isnan(m.poisson_ratio))
@@ -245,28 +264,28 @@ typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, 
     const auto& mb = scene.material_properties[b];
     if (std::isinf(ma.youngs_modulus) && std::isinf(mb.youngs_modulus))
       p.fail("materials", "both materials are rigid (youngs_modulus = inf)");
-    if constexpr (std::is_same_v<M, HertzMindlin>)
-      c = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
-                            mb.poisson_ratio, c.restitution, c.friction);
-    else // the thermodynamic model's spring constant k = (4/3) E* sqrt(R*)
-      c.e_star = HertzMindlin::mix(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
-                                   mb.poisson_ratio, 1.0, 0.0)
-                     .e_star;
+    c = M::with_materials(c, ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                          mb.poisson_ratio);
   }
   return c;
+}
+
+// Whether the model of `law` takes preset = "lammps".
+bool takes_lammps_preset(const AnyContactLaw& law) {
+  return std::visit(
+      [](const auto& l) { return HasLammpsPreset<typename std::decay_t<decltype(l)>::model_type>; },
+      law);
 }
 
 void read_contact(Scene& scene, TomlReader& root) {
   auto c = root.table("contact");
   if (!c) root.fail("", "missing table [contact]");
-  scene.contact_model = c->choice("model",
-                                  {contact_model_names[0], contact_model_names[1],
-                                   contact_model_names[2], contact_model_names[3]},
-                                  "linear");
+  scene.contact_model = c->choice("model", contact_model_names, LinearSpringDashpot::name);
   scene.contact_preset = c->choice("preset", {"paper", "lammps"}, "paper");
-  if (scene.contact_preset == "lammps" && scene.contact_model != "linear")
-    c->fail("preset", "the lammps preset applies to the linear model only");
   scene.law = make_contact_law(scene.contact_model, scene.materials.size());
+  if (scene.contact_preset == "lammps" && !takes_lammps_preset(scene.law))
+    c->fail("preset", fmt::format("the lammps preset applies to the {} model only",
+                                  models_with_lammps_preset()));
   auto pairs = c->tables("pair");
   if (pairs.empty()) c->fail("pair", "no [[contact.pair]] given");
   for (auto& p : pairs) {

@@ -1,6 +1,6 @@
 #include "io/scene_writer.hpp"
 
-#include "io/contact_fields.hpp"
+#include "contact/contact_model.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -14,7 +14,7 @@ toml::array vec(const Vec3& v) {
   return toml::array{v.x, v.y, v.z};
 }
 
-// Writes one model's pair keys (contact_fields.hpp) into a table.
+// Writes one model's pair keys (Model::fields, scene_fields.hpp) into a table.
 struct FieldWriter {
   toml::table& t;
   void required(std::string_view k, double& x) { t.insert(k, x); }
@@ -70,13 +70,14 @@ std::string resolved_scene_toml(const Scene& s) {
   toml::array pairs;
   std::visit(
       [&](const auto& law) {
+        using Model = typename std::decay_t<decltype(law)>::model_type;
         for (std::size_t i = 0; i < s.materials.size(); ++i)
           for (std::size_t j = i; j < s.materials.size(); ++j) {
             if (!law.coeffs.has(i, j)) continue;
             toml::table pair{{"materials", toml::array{s.materials[i], s.materials[j]}}};
             auto coeffs = law.coeffs(i, j);
             FieldWriter writer{pair};
-            contact_fields(writer, coeffs);
+            Model::fields(writer, coeffs);
             pairs.push_back(pair);
           }
       },

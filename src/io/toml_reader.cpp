@@ -141,6 +141,11 @@ std::string TomlReader::string(std::string_view key, std::string fallback) {
 std::string TomlReader::choice(std::string_view key,
                                std::initializer_list<std::string_view> options,
                                std::string_view fallback) {
+  return choice(key, std::span<const std::string_view>(options.begin(), options.size()), fallback);
+}
+
+std::string TomlReader::choice(std::string_view key, std::span<const std::string_view> options,
+                               std::string_view fallback) {
   const std::string v = string(key, std::string(fallback));
   for (auto o : options)
     if (v == o) return v;

@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <toml++/toml.h>
@@ -36,6 +37,8 @@ public:
   std::string string(std::string_view key);
   std::string string(std::string_view key, std::string fallback);
   std::string choice(std::string_view key, std::initializer_list<std::string_view> options,
+                     std::string_view fallback);
+  std::string choice(std::string_view key, std::span<const std::string_view> options,
                      std::string_view fallback);
   Vec3 vec3(std::string_view key);
   Vec3 vec3(std::string_view key, Vec3 fallback);

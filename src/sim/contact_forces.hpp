@@ -1,11 +1,15 @@
 // The pair loop: evaluates one contact model on every listed pair and grain-plane candidate,
 // and accumulates forces, torques and the energy tallies. Templated on the model, so the inner
 // loop is monomorphic and the model's evaluate() inlines.
+//
+// A model that can be evaluated on many contacts at once names its SIMD lanes as
+// `using Batch = ...;` (the linear law: linear_batch.hpp). Where Batch::prepare() accepts the
+// law's coefficients, the pair loop fills batches; every other model, and a law the batch does
+// not take, is evaluated contact by contact. The choice is made once, at construction.
 #pragma once
 
 #include "contact/contact_history.hpp"
 #include "contact/contact_model.hpp"
-#include "contact/linear_batch.hpp"
 #include "core/always_inline.hpp"
 #include "core/near_pairs.hpp"
 #include "core/neighbor_list.hpp"
@@ -17,7 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 namespace yuxi {
@@ -26,6 +29,21 @@ namespace yuxi {
 // list has its ghost pairs apart: NeighborList::ghost_pairs) those with a ghost partner first,
 // then the others with the flat walls.
 enum class PairSet { all, ghost, owned };
+
+// A model with SIMD lanes for the pair loop (see above).
+template <class Model>
+concept BatchedModel = requires {
+  typename Model::Batch;
+};
+
+// The lanes of a model's batches; a placeholder for a model without (never allocated).
+template <class Model> struct BatchLanes {
+  struct None {
+    static constexpr std::size_t capacity = 1;
+  };
+  using type = None;
+};
+template <BatchedModel Model> struct BatchLanes<Model> { using type = typename Model::Batch; };
 
 template <class Model> class ContactForces {
 public:
@@ -53,7 +71,7 @@ public:
       record.plane_elastic.assign(list.planes.size(), 0.0);
     }
     bool batched = false;
-    if constexpr (std::is_same_v<Model, LinearSpringDashpot>) {
+    if constexpr (BatchedModel<Model>) {
       if (batch_) {
         compute_pairs_in_batches(s, list, dt, tally, record);
         batched = true;
@@ -176,45 +194,20 @@ private:
           });
   }
 
-  // The linear law in SIMD batches (linear_batch.hpp) where every pair of materials allows it.
+  // The model's SIMD lanes and, for each lane, the pair it holds.
+  using Lanes = typename BatchLanes<Model>::type;
   struct Batch {
-    LinearBatch lanes;
-    std::uint32_t row[LinearBatch::capacity];
-    std::uint32_t partner[LinearBatch::capacity];
-    std::uint32_t pair[LinearBatch::capacity];
-    CapOn cap; // the friction convention, the same for every pair of materials
-    Carry carry;
-    bool uniform; // one law for every pair of materials: the lanes hold its coefficients
+    Lanes lanes;
+    std::uint32_t row[Lanes::capacity];
+    std::uint32_t partner[Lanes::capacity];
+    std::uint32_t pair[Lanes::capacity];
   };
 
-  // A batch where every pair of materials allows one (else null).
+  // A batch where the model has lanes and they take the law (else null).
   static std::unique_ptr<Batch> make_batch(const ContactLaw<Model>& law) {
-    if constexpr (std::is_same_v<Model, LinearSpringDashpot>) {
-      const auto& table = law.coeffs;
-      const typename Model::Coeffs* first = nullptr;
-      for (std::size_t a = 0; a < table.n_materials(); ++a)
-        for (std::size_t b = 0; b < table.n_materials(); ++b) {
-          if (!table.has(a, b)) continue;
-          const auto& c = table(a, b);
-          if (c.rolling()) return nullptr;
-          if (!first) first = &c;
-          if (c.friction_cap != first->friction_cap || c.carry != first->carry) return nullptr;
-        }
-      if (!first) return nullptr;
+    if constexpr (BatchedModel<Model>) {
       auto b = std::make_unique<Batch>();
-      b->cap = first->friction_cap;
-      b->carry = first->carry;
-      b->uniform = true;
-      for (std::size_t a = 0; a < table.n_materials(); ++a)
-        for (std::size_t c = 0; c < table.n_materials(); ++c) {
-          if (!table.has(a, c)) continue;
-          const auto& x = table(a, c);
-          b->uniform = b->uniform && x.k_n == first->k_n && x.k_t == first->k_t &&
-                       x.gamma_n == first->gamma_n && x.gamma_t == first->gamma_t &&
-                       x.mu_s == first->mu_s && x.mu_d == first->mu_d;
-        }
-      if (b->uniform)
-        for (std::size_t k = 0; k < LinearBatch::capacity; ++k) b->lanes.set_coeffs(k, *first);
+      if (!b->lanes.prepare(law.coeffs)) return nullptr;
       return b;
     } else {
       return nullptr;
@@ -223,7 +216,7 @@ private:
 
   void compute_pairs_in_batches(ParticleStore& s, const NeighborList& list, double dt,
                                 ContactTally& tally, ContactRecord& record) {
-    if (batch_->uniform)
+    if (batch_->lanes.uniform)
       fill_batches<true>(s, list, dt, tally, record);
     else
       fill_batches<false>(s, list, dt, tally, record);
@@ -233,14 +226,14 @@ private:
   void fill_batches(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
                     ContactRecord& record) {
     Batch& b = *batch_;
-    LinearBatch& lanes = b.lanes;
+    Lanes& lanes = b.lanes;
     lanes.size = 0;
     sweep(s, list, tally,
           [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double, double ai,
               double aj) {
             const std::size_t k = lanes.size++;
             lanes.set_contact(k, d, ai, aj, s.v[i] - s.v[j], s.w[i], s.w[j],
-                              s.inv_mass[i] + s.inv_mass[j], history.open(p).tangential);
+                              s.inv_mass[i] + s.inv_mass[j], history.open(p));
             if constexpr (!uniform) lanes.set_coeffs(k, law_.coeffs(s.material[i], s.material[j]));
             b.row[k] = i, b.partner[k] = j, b.pair[k] = p;
             if (lanes.full()) flush(s, dt, tally, record);
@@ -252,8 +245,8 @@ private:
   // order (so the sums are those of the one-by-one loop).
   void flush(ParticleStore& s, double dt, ContactTally& tally, ContactRecord& record) {
     Batch& b = *batch_;
-    LinearBatch& lanes = b.lanes;
-    lanes.evaluate(b.cap, b.carry, dt);
+    Lanes& lanes = b.lanes;
+    lanes.evaluate(dt);
     for (std::size_t k = 0; k < lanes.size; ++k) {
       const std::uint32_t i = b.row[k], j = b.partner[k], p = b.pair[k];
       const Vec3 force{lanes.fx[k], lanes.fy[k], lanes.fz[k]};
@@ -268,7 +261,7 @@ private:
       record.keep_pair(p, force, lanes.elastic[k]);
       book_wall_work(s, i, j, force, dt, tally);
       track_overlap(lanes.overlap[k], std::min(lanes.a_i[k], lanes.a_j[k]), i, tally);
-      history.states[history.pair_slot[p]].tangential = lanes.spring(k);
+      lanes.save_state(k, history.states[history.pair_slot[p]]);
     }
     lanes.size = 0;
   }

@@ -104,7 +104,7 @@ TEST_P(LinearBatchMatches, TheOneByOneLawBitForBit) {
       for (std::size_t k = 0; k < n; ++k) {
         const Contact& c = contacts[k];
         batch.set_lane(k, c.d, c.a_i, c.a_j, c.v_rel, c.w_i, c.w_j, c.inv_m_i + c.inv_m_j, c.c,
-                       states[k].tangential);
+                       states[k]);
       }
       batch.evaluate(cap, carry, dt);
       for (std::size_t k = 0; k < n; ++k) {
