@@ -1,5 +1,6 @@
 // Hertz-Mindlin contact with Tsuji-type damping, the model of Chung & Ooi (2011) and of most
-// DEM codes (EDEM, LIGGGHTS "hertz/tangential_history"). Spec: validation.md section 0.2 and 2.
+// DEM codes (EDEM, LIGGGHTS "hertz/tangential_history").
+// Spec: docs/models/validation.md section 0.2 and 2.
 //
 //   normal:     F_n = (4/3) E* sqrt(R*) delta^{3/2} - eta_n v_n,
 //               eta_n = -2 sqrt(5/6) beta sqrt(S_n m*),  S_n = 2 E* sqrt(R* delta)
@@ -9,7 +10,7 @@
 //               spring; no friction while the dashpot pulls the surfaces together
 //   beta = ln(e) / sqrt(ln^2(e) + pi^2)
 // With this damping the normal restitution coefficient equals e at every impact speed
-// (Tsuji, Tanaka & Ishida 1992; validation.md Test 3, "attractive force allowed").
+// (Tsuji, Tanaka & Ishida 1992; docs/models/validation.md Test 3, "attractive force allowed").
 //
 // Energy: stored (8/15) E* sqrt(R*) delta^{5/2} + S_t |s_t|^2 / 2. The tangential spring's
 // stiffness follows the overlap (Mindlin's no-slip law), which is not conservative by itself:
@@ -57,8 +58,8 @@ struct HertzMindlin {
 
   using State = TangentialRollingState;
 
-  // Hertz contact time at impact speed v (validation.md section 2): t_c = 2.94328 delta_max / v,
-  // delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^{2/5}.
+  // Hertz contact time at impact speed v (docs/models/validation.md section 2):
+  // t_c = 2.94328 delta_max / v, delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^{2/5}.
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
 
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.

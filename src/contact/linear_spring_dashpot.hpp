@@ -1,6 +1,6 @@
 // Linear spring-dashpot contact with a tangential spring and separate static and dynamic
 // friction: the law of Li & Cai (2008), eq. (5)-(6), after Cundall & Strack (1979) and
-// Silbert et al., PRE 64, 051302 (2001). Spec: fish_basin.md section 5.
+// Silbert et al., PRE 64, 051302 (2001). Spec: docs/models/fish-basin.md section 5.
 //
 //   F_n = k_n delta n - m_e gamma_n v_n                     (normal: spring + dashpot)
 //   F_t = -k_t s_t - m_e gamma_t v_t, s_t the tangential spring (frictional_spring.hpp)
@@ -16,7 +16,7 @@
 //    reload to mu_s after every step of steady sliding. mu_s = mu_d gives one coefficient.
 // Always: m_e = m_i against wall particles and flat walls (LAMMPS: against frozen particles);
 // lever arm = radius; no clamp of the attractive dashpot force, so e = exp(-gamma_n t_c / 2)
-// exactly (validation.md L1).
+// exactly (docs/models/validation.md L1).
 //
 // Optional rolling resistance (k_r > 0 or mu_r > 0): a spring-dashpot-slider on the rolling
 // displacement, u_r = -a n x (w_i - w_j) with a = a_i a_j / (a_i + a_j), torque a n x F_r on i
@@ -84,7 +84,7 @@ struct LinearSpringDashpot {
   // The pair loop evaluates the law in SIMD batches where every pair of materials allows it.
   using Batch = LinearBatch;
 
-  // Contact time of a normal collision with effective mass m_eff (validation.md L1):
+  // Contact time of a normal collision with effective mass m_eff (docs/models/validation.md L1):
   // t_c = pi / sqrt(k_n/m_eff - gamma_n^2/4). Infinite when overdamped.
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
 

@@ -1,7 +1,7 @@
 // The thermodynamic contact model of Jiang & Liu (2018) in the DEM engine, 3-D with rotation:
-// thermo_contact_model.md sections 2.2, 3, 4 and 7. A reconstruction: the paper's equations are
-// lost; the formulas carry the spec's labels (thermodynamic_law.hpp), and the default parameter
-// set is the spec's REF, not the paper's numbers.
+// docs/models/thermodynamic-contact.md sections 2.2, 3, 4 and 7. A reconstruction: the paper's
+// equations are lost; the formulas carry the spec's labels (thermodynamic_law.hpp), and the default
+// parameter set is the spec's REF, not the paper's numbers.
 //
 // Per contact the state holds the springs' own deformations u_n <= 0 and u_t (a vector in the
 // tangent plane), the relaxation energy w_R, and the normal and overlap of the previous step.
