@@ -95,6 +95,22 @@ Simulation dense(Comm comm, double near_fraction = 0.25, bool rolling = true,
 // and the rest while those forces travel (simulation.cpp: compute_forces()); the near pairs
 // keep the two apart, so scanning them instead of the whole list still changes nothing, to the
 // bit, on every rank: through the one-by-one law (rolling) and the SIMD batches.
+// A session opened where MPI runs already (a host such as mpi4py started it: here the tests'
+// own session) joins it: it sees the same job, and leaves MPI running when it ends.
+TEST(Mpi, ASessionJoinsTheMpiItsHostStarted) {
+  const Comm before = Comm::world();
+  {
+    const MpiSession joined;
+    EXPECT_FALSE(joined.started_here());
+    EXPECT_EQ(joined.world().size(), before.size());
+    EXPECT_EQ(joined.world().rank(), before.rank());
+  }
+  int finalized = 1;
+  MPI_Finalized(&finalized);
+  EXPECT_EQ(finalized, 0);
+  EXPECT_EQ(Comm::world().sum(std::int64_t{1}), before.size()); // still usable
+}
+
 TEST(Mpi, NearPairsChangeNothingWithTheGhostPairsFirst) {
   for (const bool rolling : {true, false}) {
     Simulation whole = dense(Comm::world(), 0.0, rolling);
