@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
 # errors), checks formatting, runs the unit, validation, CLI, crash and MPI tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer, then each fuzzer on its kept
-# corpus for a fixed number of inputs from a fixed seed, then every test in Release. Long validation cases:
-# ctest --preset long.
+# AddressSanitizer + UndefinedBehaviorSanitizer (but those labelled heavy, minutes each there),
+# then each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every
+# test in Release. Long validation cases: ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,7 +16,8 @@ scripts/check-layers.sh
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null
 cmake --build --preset asan
-ctest --preset asan -L "unit|validation|cli|reliability|mpi"
+ctest --test-dir build/asan -L "unit|validation|cli|reliability|mpi" -LE "heavy|long" -j 2 \
+  --output-on-failure
 
 echo "== fuzzers (bounded)"
 tests/fuzz/run.sh --runs "${YUXI_FUZZ_RUNS:-20000}"
