@@ -18,10 +18,10 @@ elif [[ -n "${1:-}" ]]; then
 fi
 if ((seconds > 0)); then limit=(-max_total_time="$seconds"); fi
 cmake --preset fuzz > /dev/null
-cmake --build --preset fuzz --target fuzz_scene fuzz_lammps_data fuzz_checkpoint
+cmake --build --preset fuzz --target fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl
 mkdir -p build/fuzz/artifacts
 status=0
-for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint; do
+for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl; do
   corpus=tests/fuzz/corpus/${target#fuzz_}
   echo "== $target: ${limit[*]} on $(ls "$corpus" | wc -l) corpus files"
   # New inputs go to a scratch folder; the kept corpus is only read. To keep what a run found:
