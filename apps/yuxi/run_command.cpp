@@ -39,6 +39,8 @@ Scene load(const RunCommandOptions& o) {
     scene.run.t_end = *o.t_end;
   }
   apply_balance_by(o, scene);
+  if (Comm::world().root())
+    for (const auto& w : scene.warnings) fmt::print(stderr, "warning: {}\n", w);
   return scene;
 }
 

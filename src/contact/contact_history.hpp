@@ -9,6 +9,12 @@
 // picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
 // state. Only states that differ from a fresh one are stashed: a default state carries nothing.
 //
+// A grain touching a shaped wall (a mesh or a cylinder) may have several contacts with it at
+// once (a groove's two faces), and each moves over the wall's triangles: a grain-wall candidate
+// keeps up to max_wall_contacts states, each with the normal it had, and the wall's new
+// contacts pick up the states whose normals are nearest theirs (sim/contact_forces.hpp). They
+// are stashed by (grain id, wall index) with their normals.
+//
 // Ownership (for MPI ranks and checkpoints): a contact's state lives on the rank that computes
 // the pair, which is the rank that lists it: the owner of both particles, or, for a pair across
 // ranks, the owner of the particle that sees the other in its half shell of ghosts
@@ -30,11 +36,13 @@
 #include "core/particle_store.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -110,6 +118,18 @@ public:
   virtual const std::uint32_t* pair_slots() const = 0;
 };
 
+inline constexpr std::size_t max_wall_contacts = 6;
+
+// The contacts of one grain with one shaped wall.
+template <class State> struct WallContactSet {
+  struct Contact {
+    Vec3 normal; // of the contact when last evaluated
+    State state;
+  };
+  std::uint8_t n = 0;
+  std::array<Contact, max_wall_contacts> at;
+};
+
 template <class State> class ContactHistory final : public ContactStates {
 public:
   static constexpr std::uint32_t none = 0xFFFFFFFFu; // slot of a pair that does not touch
@@ -121,6 +141,7 @@ public:
   // 1 where the plane state may differ from a fresh one (the contact touched since it was last
   // released).
   std::vector<std::uint8_t> plane_live;
+  std::vector<WallContactSet<State>> wall; // aligned with NeighborList::walls
 
   // The state of listed pair p, opened fresh if it has none.
   State& open(std::uint32_t p) {
@@ -144,6 +165,23 @@ public:
     ContactKey key;
     State state; // as seen from key.first
   };
+  // A grain-wall contact: key (grain id, wall index).
+  struct WallEntry {
+    ContactKey key;
+    Vec3 normal;
+    State state;
+  };
+
+  // The grain-wall contacts of the current list.
+  std::vector<WallEntry> wall_entries(const ParticleStore& s, const NeighborList& list) const {
+    std::vector<WallEntry> out;
+    for (std::size_t k = 0; k < list.walls.size() && k < wall.size(); ++k)
+      for (std::size_t c = 0; c < wall[k].n; ++c)
+        out.push_back({{s.gid[list.walls[k].particle], static_cast<GlobalId>(list.walls[k].wall)},
+                       wall[k].at[c].normal,
+                       wall[k].at[c].state});
+    return out;
+  }
 
   // Every non-default state, keyed by global ids, in neighbour-list order.
   std::vector<Entry> entries(const ParticleStore& s, const NeighborList& list) const {
@@ -165,17 +203,23 @@ public:
   // Moves every non-default state into the stash, keyed by global ids.
   void stash(const ParticleStore& s, const NeighborList& list) override {
     stash_ = entries(s, list);
+    wall_stash_ = wall_entries(s, list);
   }
 
   // Saves the states of the current list, or loads them into the stash for the next restore().
   void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) override {
     std::vector<Entry> all = entries(s, list);
     ar.vector(all);
+    std::vector<WallEntry> walls = wall_entries(s, list);
+    ar.vector(walls);
   }
   void load(ArchiveReader& ar) override {
     std::vector<Entry> all;
     ar.vector(all);
     stash_ = std::move(all);
+    std::vector<WallEntry> walls;
+    ar.vector(walls);
+    wall_stash_ = std::move(walls);
   }
 
   // Gives each entry of the new list its stashed state (or a fresh one).
@@ -188,6 +232,7 @@ public:
     free_.clear();
     plane.assign(list.planes.size(), State{});
     plane_live.assign(list.planes.size(), 0);
+    restore_walls(s, list);
     if (stash_.empty()) return forget_copies();
     const OwnedIndex owned = owned_.has_value() ? std::move(*owned_) : OwnedIndex(s);
     // The row of particle `row` (if owned here) lists the pair when its partner has global id
@@ -220,17 +265,19 @@ public:
   std::size_t memory_bytes() const override {
     return (pair_slot.capacity() + free_.capacity()) * sizeof(std::uint32_t) +
            (states.capacity() + plane.capacity()) * sizeof(State) + plane_live.capacity() +
-           stash_.capacity() * sizeof(Entry);
+           stash_.capacity() * sizeof(Entry) + wall.capacity() * sizeof(WallContactSet<State>) +
+           wall_stash_.capacity() * sizeof(WallEntry);
   }
 
   std::size_t stashed() const { return stash_.size(); }
   const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
 
   // Migration between ranks: copies of the stashed states of the contacts that the particles
-  // `gids` take part in (with either partner, or as the grain of a plane contact), packed as
-  // bytes, one string per particle. The stash keeps them: the pair may still be computed here,
-  // with the particle that left as a ghost. One pass over the stash for all the particles that
-  // leave (a few hundred at a rebuild, against thousands of stashed contacts).
+  // `gids` take part in (with either partner, or as the grain of a plane or wall contact),
+  // packed as bytes, one string per particle (a block: see pack()). The stash keeps them: the pair
+  // may still be computed here, with the particle that left as a ghost. One pass over the stash for
+  // all the particles that leave (a few hundred at a rebuild, against thousands of stashed
+  // contacts).
   std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const override {
     std::vector<std::string> out(gids.size());
     if (gids.empty()) return out;
@@ -244,25 +291,50 @@ public:
       leaving.emplace(gids[k], k);
       maybe[bit(gids[k]) >> 6] |= std::uint64_t{1} << (bit(gids[k]) & 63);
     }
+    std::vector<std::string> pairs(gids.size()), walls(gids.size());
     for (const Entry& e : stash_)
       for (const GlobalId g : {e.key.first, e.key.second}) {
         if (!(maybe[bit(g) >> 6] >> (bit(g) & 63) & 1)) continue;
         const auto it = leaving.find(g);
         if (it != leaving.end())
-          out[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
+          pairs[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
       }
+    for (const WallEntry& e : wall_stash_) {
+      const auto it = leaving.find(e.key.first);
+      if (it != leaving.end())
+        walls[it->second].append(reinterpret_cast<const char*>(&e), sizeof e);
+    }
+    for (std::size_t k = 0; k < gids.size(); ++k)
+      if (!pairs[k].empty() || !walls[k].empty()) out[k] = pack(pairs[k], walls[k]);
     return out;
   }
+  // Takes blocks of pack() (any number, one after another).
   void give(const std::string& bytes) override {
-    for (std::size_t at = 0; at + sizeof(Entry) <= bytes.size(); at += sizeof(Entry)) {
-      Entry e;
-      std::memcpy(&e, bytes.data() + at, sizeof e);
-      stash_.push_back(e);
+    std::size_t at = 0;
+    while (at + 2 * sizeof(std::uint64_t) <= bytes.size()) {
+      std::uint64_t n_pairs = 0, n_walls = 0;
+      std::memcpy(&n_pairs, bytes.data() + at, sizeof n_pairs);
+      std::memcpy(&n_walls, bytes.data() + at + sizeof n_pairs, sizeof n_walls);
+      at += 2 * sizeof(std::uint64_t);
+      for (std::uint64_t k = 0; k < n_pairs && at + sizeof(Entry) <= bytes.size(); ++k) {
+        Entry e;
+        std::memcpy(&e, bytes.data() + at, sizeof e);
+        stash_.push_back(e);
+        at += sizeof e;
+      }
+      for (std::uint64_t k = 0; k < n_walls && at + sizeof(WallEntry) <= bytes.size(); ++k) {
+        WallEntry e;
+        std::memcpy(&e, bytes.data() + at, sizeof e);
+        wall_stash_.push_back(e);
+        at += sizeof e;
+      }
     }
   }
-  // Every stashed state as bytes (for give()).
+  // Every stashed state as bytes (one block, for give()).
   std::string stashed_bytes() const override {
-    return {reinterpret_cast<const char*>(stash_.data()), stash_.size() * sizeof(Entry)};
+    return pack({reinterpret_cast<const char*>(stash_.data()), stash_.size() * sizeof(Entry)},
+                {reinterpret_cast<const char*>(wall_stash_.data()),
+                 wall_stash_.size() * sizeof(WallEntry)});
   }
 
   // The states that travel with ghosts at a halo build (domain/halo.hpp, GhostPayload).
@@ -322,6 +394,35 @@ public:
   }
 
 private:
+  // A block of copies: the counts of pair and wall entries (8 bytes each), then the entries.
+  static std::string pack(std::string_view pairs, std::string_view walls) {
+    const std::uint64_t counts[2] = {pairs.size() / sizeof(Entry),
+                                     walls.size() / sizeof(WallEntry)};
+    std::string out(reinterpret_cast<const char*>(counts), sizeof counts);
+    out.append(pairs);
+    out.append(walls);
+    return out;
+  }
+  // Gives each grain-wall candidate of the new list its stashed contacts, in stash order.
+  void restore_walls(const ParticleStore& s, const NeighborList& list) {
+    wall.assign(list.walls.size(), WallContactSet<State>{});
+    if (!wall_stash_.empty() && !list.walls.empty()) {
+      std::unordered_map<ContactKey, std::size_t, ContactKeyHash> candidate;
+      candidate.reserve(list.walls.size());
+      for (std::size_t k = 0; k < list.walls.size(); ++k)
+        candidate.emplace(
+            ContactKey{s.gid[list.walls[k].particle], static_cast<GlobalId>(list.walls[k].wall)},
+            k);
+      for (const WallEntry& e : wall_stash_) {
+        const auto it = candidate.find(e.key);
+        if (it == candidate.end()) continue;
+        WallContactSet<State>& set = wall[it->second];
+        if (set.n == max_wall_contacts) continue;
+        set.at[set.n++] = {e.normal, e.state};
+      }
+    }
+    wall_stash_ = std::vector<WallEntry>();
+  }
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
@@ -339,6 +440,7 @@ private:
   };
   std::vector<std::uint32_t> free_; // slots of `states` that no contact holds
   std::vector<Entry> stash_;        // copies of one contact hold the same state
+  std::vector<WallEntry> wall_stash_;
   // During a rebuild, between prepare_ghost_copies() and restore(): the stashed states that
   // travel with each particle sent as a ghost (sorted by particle: ghosts arrive in order),
   // a flag per particle that has any, and the owned particles by global id.

@@ -26,6 +26,7 @@ public:
   void bin(std::span<const Vec3> positions);
 
   std::array<int, 3> dims() const { return dims_; }
+  Vec3 origin() const { return lo_; } // the low corner of the outer layer of cells
   Vec3 edge() const { return edge_; }
   std::size_t n_cells() const { return static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2]; }
   std::array<int, 3> cell_of(const Vec3& p) const;

@@ -36,17 +36,29 @@ struct PlaneContactRef {
   std::uint32_t plane;
 };
 
+// A grain near a shaped wall (a mesh or a cylinder), with the triangles of a mesh that it may
+// touch before the next build: wall_elements[first, first + count), ascending.
+struct WallContactRef {
+  std::uint32_t particle;
+  std::uint32_t wall;
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
 struct NeighborList {
-  std::vector<std::uint32_t> offsets;     // n_owned + 1 row offsets into partners
-  std::vector<std::uint32_t> partners;    // j of each pair, grouped by i
-  std::vector<std::uint32_t> rows;        // i of each pair (aligned with partners)
-  std::vector<PlaneContactRef> planes;    // grain-plane candidate contacts (filled by the owner)
-  std::vector<std::uint32_t> ghost_pairs; // pairs whose partner is a ghost, ascending (or none)
+  std::vector<std::uint32_t> offsets;       // n_owned + 1 row offsets into partners
+  std::vector<std::uint32_t> partners;      // j of each pair, grouped by i
+  std::vector<std::uint32_t> rows;          // i of each pair (aligned with partners)
+  std::vector<PlaneContactRef> planes;      // grain-plane candidate contacts (filled by the owner)
+  std::vector<WallContactRef> walls;        // grain-wall candidates (meshes, cylinders; the owner)
+  std::vector<std::uint32_t> wall_elements; // their triangles
+  std::vector<std::uint32_t> ghost_pairs;   // pairs whose partner is a ghost, ascending (or none)
 
   std::size_t memory_bytes() const {
     return (offsets.capacity() + partners.capacity() + rows.capacity() + ghost_pairs.capacity()) *
                sizeof(std::uint32_t) +
-           planes.capacity() * sizeof(PlaneContactRef);
+           planes.capacity() * sizeof(PlaneContactRef) + walls.capacity() * sizeof(WallContactRef) +
+           wall_elements.capacity() * sizeof(std::uint32_t);
   }
 
   // The owned particles' count (partners at or above it are ghosts).

@@ -8,7 +8,8 @@
 
 namespace yuxi {
 
-EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64_t> resume_after)
+EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64_t> resume_after,
+                     const std::string& header_line)
     : file_(nullptr) {
   if (resume_after) {
     // Keep the header and the complete rows up to the checkpoint; later ones (and a row cut
@@ -32,7 +33,7 @@ EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64
     file_ = std::fopen(path.c_str(), "w");
   }
   if (!file_) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-  if (!resume_after) fmt::print(file_, "{}\n", EnergyBooks::csv_header());
+  if (!resume_after) fmt::print(file_, "{}\n", header_line);
 }
 
 EnergyCsv::~EnergyCsv() {
@@ -40,8 +41,12 @@ EnergyCsv::~EnergyCsv() {
 }
 
 void EnergyCsv::write(const EnergyBooks& e) {
-  fmt::print(file_, "{}\n", e.csv_row());
-  if (std::fflush(file_) != 0) throw std::runtime_error("error while writing energies.csv");
+  write_row(e.csv_row());
+}
+
+void EnergyCsv::write_row(const std::string& row) {
+  fmt::print(file_, "{}\n", row);
+  if (std::fflush(file_) != 0) throw std::runtime_error("error while writing a table of rows");
 }
 
 } // namespace yuxi

@@ -83,6 +83,8 @@ struct Scene {
   std::string contact_preset = "paper";
   AnyContactLaw law;
   std::vector<PlaneWall> planes;
+  std::vector<ShapedWall> walls;     // [[mesh]] and [[cylinder]], in file order
+  std::vector<std::string> warnings; // for the user, once (e.g. mesh triangles left out)
   std::optional<FishBasinSpec> basin;
   std::optional<AnalysisSettings> analysis;
   std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms

@@ -4,6 +4,7 @@
 #include "core/units.hpp"
 #include "io/lammps_data_reader.hpp"
 #include "io/toml_reader.hpp"
+#include "io/wall_scene_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,11 +18,6 @@
 #include <vector>
 
 namespace yuxi {
-namespace {
-
-Boundary to_boundary(const std::string& s) {
-  return s == "periodic" ? Boundary::periodic : s == "wall" ? Boundary::wall : Boundary::open;
-}
 
 std::uint8_t material_of(const Scene& scene, TomlReader& t, std::string_view key) {
   const std::string name = t.string(key);
@@ -29,6 +25,12 @@ std::uint8_t material_of(const Scene& scene, TomlReader& t, std::string_view key
   if (!k)
     t.fail(key, fmt::format("material \"{}\" is not in the top-level 'materials' list", name));
   return *k;
+}
+
+namespace {
+
+Boundary to_boundary(const std::string& s) {
+  return s == "periodic" ? Boundary::periodic : s == "wall" ? Boundary::wall : Boundary::open;
 }
 
 void read_run(Scene& scene, TomlReader& root) {
@@ -480,6 +482,7 @@ void check_consistency(Scene& scene, TomlReader& root) {
   }
   if (rg == 0.0) root.fail("", "the scene has no grains: add a [basin] or [[particle]] entries");
   for (const auto& w : scene.planes) other_mat[w.material] = true;
+  for (const auto& w : scene.walls) other_mat[wall_material(w)] = true;
   for (int a = 0; a < 3; ++a)
     if (scene.sim.box.boundary[a] == Boundary::wall) other_mat[scene.sim.box_wall_material] = true;
 
@@ -528,6 +531,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_domain(scene, root);
   read_contact(scene, root);
   read_planes(scene, root);
+  read_shaped_walls(scene, root);
   read_basin(scene, root);
   read_analysis(scene, root);
   read_lammps_data_section(scene, root);

@@ -10,6 +10,33 @@
 namespace yuxi {
 namespace {
 
+// The motion of a mesh as the keys of its [[mesh]] table.
+void write_motion(const WallMotion& motion, toml::table& t) {
+  if (const auto* r = std::get_if<RigidMotion>(&motion)) {
+    t.insert("omega", r->omega);
+    t.insert("axis", toml::array{r->axis.x, r->axis.y, r->axis.z});
+    t.insert("axis_point", toml::array{r->center.x, r->center.y, r->center.z});
+    t.insert("velocity", toml::array{r->drift.x, r->drift.y, r->drift.z});
+    if (r->amplitude != 0.0) {
+      t.insert("oscillate_amplitude", r->amplitude);
+      t.insert("oscillate_direction", toml::array{r->direction.x, r->direction.y, r->direction.z});
+      t.insert("oscillate_omega", r->frequency);
+    }
+    t.insert("t0", r->t0);
+  } else if (const auto* m = std::get_if<RadialCosineMotion>(&motion)) {
+    t.insert("radial_mode", m->mode);
+    t.insert("radial_amplitude", m->amplitude);
+    t.insert("radial_omega", m->omega);
+    t.insert("radial_center", toml::array{m->center.x, m->center.y, m->center.z});
+    t.insert("t0", m->t0);
+  }
+}
+
+void write_window(const ActiveWindow& w, toml::table& t) {
+  if (std::isfinite(w.from)) t.insert("active_from", w.from);
+  if (std::isfinite(w.until)) t.insert("active_until", w.until);
+}
+
 toml::array vec(const Vec3& v) {
   return toml::array{v.x, v.y, v.z};
 }
@@ -29,6 +56,43 @@ struct FieldWriter {
   }
   void check(bool, std::string_view, const std::string&) {}
 };
+
+void write_shaped_walls(const Scene& s, toml::table& doc) {
+  toml::array meshes, cylinders;
+  for (const ShapedWall& wall : s.walls) {
+    if (const auto* m = std::get_if<MeshWall>(&wall)) {
+      toml::table t{{"name", m->name},
+                    {"file", m->file},
+                    {"material", s.materials[m->material]},
+                    {"scale", m->scale},
+                    {"rotate_axis", vec(m->rotate_axis)},
+                    {"rotate_degrees", m->rotate_degrees},
+                    {"translate", vec(m->translate)},
+                    {"surface_velocity", vec(m->surface_velocity)},
+                    {"merge_degrees", m->merge_degrees},
+                    {"torque_point", vec(m->torque_point)}};
+      write_motion(m->motion, t);
+      write_window(m->active, t);
+      meshes.push_back(t);
+    } else {
+      const auto& c = std::get<CylinderWall>(wall);
+      toml::table t{{"name", c.name},
+                    {"center", vec(c.center)},
+                    {"axis", vec(c.axis)},
+                    {"radius", c.radius},
+                    {"grains", c.inside ? "inside" : "outside"},
+                    {"ends", c.capped ? "capped" : "open"},
+                    {"omega", c.omega},
+                    {"material", s.materials[c.material]}};
+      if (std::isfinite(c.lo)) t.insert("lo", c.lo);
+      if (std::isfinite(c.hi)) t.insert("hi", c.hi);
+      write_window(c.active, t);
+      cylinders.push_back(t);
+    }
+  }
+  if (!meshes.empty()) doc.insert("mesh", meshes);
+  if (!cylinders.empty()) doc.insert("cylinder", cylinders);
+}
 
 } // namespace
 
@@ -107,6 +171,7 @@ std::string resolved_scene_toml(const Scene& s) {
                                    {"t0", p.t0}});
     doc.insert("plane", planes);
   }
+  write_shaped_walls(s, doc);
   if (s.basin) {
     const auto& k = *s.basin;
     doc.insert("basin",

@@ -45,8 +45,15 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   std::unique_ptr<EnergyCsv> energies;
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
+  std::unique_ptr<EnergyCsv> walls;
   if (root)
     energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume_after(energy_every));
+  // walls.csv: per shaped wall, the force and torque the grains put on it and its cumulative
+  // work on them (docs/scene-format.md, "walls.csv").
+  if (root && !sim.walls().empty())
+    walls = std::make_unique<EnergyCsv>(dir / "walls.csv", resume_after(energy_every),
+                                        "step,time,wall,fx,fy,fz,torque_x,torque_y,torque_z,"
+                                        "work,contacts");
   if (scene.output.vtk && snapshot_every)
     vtk = std::make_unique<VtkSeries>(dir, "particles", resume_after(snapshot_every), sim.comm());
   if (scene.output.lammps_dump && snapshot_every)
@@ -55,6 +62,16 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   const auto write_energies = [&] {
     const EnergyBooks e = sim.energies(); // collective
     if (energies) energies->write(e);
+    if (sim.walls().empty()) return;
+    const std::vector<WallLoad> loads = sim.wall_loads(); // collective
+    for (std::size_t w = 0; walls && w < loads.size(); ++w) {
+      const WallLoad& l = loads[w];
+      walls->write_row(fmt::format("{},{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                                   "{:.10g},{}",
+                                   sim.step_count(), sim.time(), wall_name(sim.walls()[w]),
+                                   l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y,
+                                   l.torque.z, l.work, l.contacts));
+    }
   };
   CheckpointSet checkpoints(dir, scene.checkpoint.keep);
   const auto& policy = scene.checkpoint;

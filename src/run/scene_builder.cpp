@@ -22,7 +22,7 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
     (p.kind == Kind::grain ? r.grains : r.walls) += 1;
   }
   auto sim = std::make_unique<Simulation>(scene.sim, std::move(particles), scene.planes,
-                                          std::move(motions), scene.law, comm);
+                                          std::move(motions), scene.law, comm, scene.walls);
   r.stiffest = sim->stiffest_contact();
   r.dt_over_tc = scene.sim.dt / r.stiffest.contact_time;
   if (r.dt_over_tc > 0.1 && !scene.run.allow_large_dt && !force_dt) {

@@ -1,18 +1,16 @@
-// Prescribed motions of wall particles: pure functions of the rest position and the time that
-// give the position and the velocity. A wall particle never integrates an equation of motion.
+// Prescribed motions of wall particles and of the vertices of mesh walls: pure functions of the
+// rest position and the time that give the position and the velocity. A wall particle or a
+// mesh vertex never integrates an equation of motion.
 #pragma once
 
 #include "core/vec3.hpp"
+#include "scene/placed_state.hpp"
+#include "scene/rigid_motion.hpp"
 
 #include <cmath>
 #include <variant>
 
 namespace yuxi {
-
-struct PlacedState {
-  Vec3 position;
-  Vec3 velocity;
-};
 
 // Does not move.
 struct StaticMotion {
@@ -75,11 +73,16 @@ struct RadialCosineMotion {
   double max_excursion() const { return std::abs(amplitude); }
 };
 
-using WallMotion = std::variant<StaticMotion, RadialCosineMotion>;
-using WallMotionAtTime = std::variant<StaticMotion::AtTime, RadialCosineMotion::AtTime>;
+using WallMotion = std::variant<StaticMotion, RadialCosineMotion, RigidMotion>;
+using WallMotionAtTime =
+    std::variant<StaticMotion::AtTime, RadialCosineMotion::AtTime, RigidMotion::AtTime>;
 
 inline WallMotionAtTime at_time(const WallMotion& m, double t) {
-  return std::visit([&](const auto& motion) -> WallMotionAtTime { return motion.at_time(t); }, m);
+  // (alternative by alternative: GCC 12 warns of uninitialised reads, wrongly, through the
+  // std::visit of a variant it inlines whole)
+  if (const auto* r = std::get_if<RigidMotion>(&m)) return r->at_time(t);
+  if (const auto* c = std::get_if<RadialCosineMotion>(&m)) return c->at_time(t);
+  return StaticMotion::AtTime{};
 }
 inline bool at_rest(const WallMotionAtTime& m) {
   return std::visit([](const auto& motion) { return motion.at_rest(); }, m);

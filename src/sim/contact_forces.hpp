@@ -16,6 +16,7 @@
 #include "core/overlap_scan.hpp"
 #include "core/particle_store.hpp"
 #include "scene/plane_wall.hpp"
+#include "scene/shaped_wall.hpp"
 #include "sim/contact_tally.hpp"
 
 #include <algorithm>
@@ -79,6 +80,82 @@ public:
     }
     if (!batched) compute_pairs(s, list, dt, tally, record);
     if (set != PairSet::ghost) compute_planes(s, list, planes, t, dt, tally, record);
+  }
+
+  // The contacts of grains with shaped walls (meshes, cylinders), placed at time t: each
+  // candidate's touches (scene/wall_touch.hpp) pick up the states of its previous contacts
+  // whose normals are nearest theirs (within 60 degrees), so a contact's history carries over
+  // when its point moves onto another triangle; a previous contact that nothing picks up has
+  // opened. `loads` (one per wall) gets what the grains do to each wall.
+  void compute_walls(ParticleStore& s, const NeighborList& list,
+                     const std::vector<ShapedWall>& walls, double t, double dt, ContactTally& tally,
+                     std::vector<WallLoad>& loads) {
+    loads.assign(walls.size(), WallLoad{});
+    if (list.walls.empty()) return;
+    std::vector<Vec3> torque_points(walls.size());
+    std::vector<std::uint8_t> active(walls.size());
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      torque_points[w] = torque_point(walls[w]);
+      active[w] = wall_active(walls[w], t) ? 1 : 0;
+    }
+    WallTouches touches;
+    for (std::size_t k = 0; k < list.walls.size(); ++k) {
+      const WallContactRef ref = list.walls[k];
+      const std::uint32_t i = ref.particle;
+      const ShapedWall& wall = walls[ref.wall];
+      const auto& coeffs = law_.coeffs(s.material[i], wall_material(wall));
+      const double ai = s.radius[i];
+      touches.n = 0;
+      if (active[ref.wall]) {
+        if (const auto* mesh = std::get_if<MeshWall>(&wall))
+          mesh->touches(s.x[i], ai, {list.wall_elements.data() + ref.first, ref.count}, scratch_,
+                        order_, touches);
+        else
+          std::get<CylinderWall>(wall).touches(s.x[i], ai, touches);
+      }
+      WallContactSet<State>& before = history.wall[k];
+      if (touches.n == 0 && before.n == 0) continue;
+      WallContactSet<State> now;
+      std::array<bool, max_wall_contacts> taken{};
+      for (std::size_t c = 0; c < touches.n && c < max_wall_contacts; ++c) {
+        const WallTouch& touch = touches.at[c];
+        int match = -1;
+        double best = 0.5; // cos 60 degrees
+        for (std::size_t m = 0; m < before.n; ++m)
+          if (!taken[m] && dot(before.at[m].normal, touch.normal) > best)
+            best = dot(before.at[m].normal, touch.normal), match = static_cast<int>(m);
+        State state = match >= 0 ? before.at[static_cast<std::size_t>(match)].state : State{};
+        if (match >= 0) taken[static_cast<std::size_t>(match)] = true;
+        ContactGeometry g;
+        g.n = touch.normal;
+        g.overlap = ai - touch.distance;
+        g.distance = touch.distance;
+        g.v_rel = s.v[i] - touch.velocity;
+        g.w_i = s.w[i];
+        g.w_j = Vec3{};
+        g.a_i = ai;
+        g.a_j = 0.0;
+        g.m_eff = 1.0 / s.inv_mass[i];
+        g.r_eff = ai;
+        g.dt = dt;
+        const ContactResult r = Model::evaluate(g, coeffs, state);
+        s.f[i] += r.force;
+        s.torque[i] += r.torque_i;
+        book(r, tally);
+        const double work = dot(r.force, touch.velocity) * dt;
+        tally.wall_work += work;
+        WallLoad& load = loads[ref.wall];
+        load.force -= r.force;
+        load.torque -= cross(touch.point - torque_points[ref.wall], r.force);
+        load.work += work;
+        ++load.contacts;
+        track_overlap(g.overlap, ai, i, tally);
+        now.at[now.n++] = {touch.normal, state};
+      }
+      for (std::size_t m = 0; m < before.n; ++m)
+        if (!taken[m]) tally.dissipated += Model::release(coeffs, before.at[m].state);
+      before = now;
+    }
   }
 
 private:
@@ -307,6 +384,8 @@ private:
   }
 
   ContactLaw<Model> law_;
+  std::vector<FeatureTouch> scratch_; // a mesh's candidate touches of one grain
+  std::vector<std::uint32_t> order_;
   std::unique_ptr<Batch> batch_;    // null where the law needs the one-by-one loop
   bool walls_still_ = false;        // of the step being computed
   PairSet set_ = PairSet::all;      // of the call being computed

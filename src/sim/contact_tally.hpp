@@ -18,6 +18,14 @@ struct ContactTally {
   std::size_t worst_particle = 0; // owned particle of that contact
 };
 
+// What the grains do to one shaped wall in one force evaluation (walls.csv).
+struct WallLoad {
+  Vec3 force;      // on the wall [force]
+  Vec3 torque;     // on the wall about its torque point [force length]
+  double work = 0; // the wall's work on the grains this step: sum F_wall->grain . v_wall dt
+  std::size_t contacts = 0;
+};
+
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
 // energy analyses): aligned with NeighborList::partners and NeighborList::planes. A contact
 // that does not touch has zero force and energy.

@@ -63,11 +63,12 @@ double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
 
 Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                        std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
-                       AnyContactLaw law, Comm comm)
+                       AnyContactLaw law, Comm comm, std::vector<ShapedWall> walls)
     : config_(std::move(config)), comm_(comm),
       decomp_(config_.box, comm_, config_.ranks, occupied_lengths(config_.box, particles)),
       store_(std::move(particles)), planes_(std::move(planes)), motions_(std::move(motions)),
-      law_(std::move(law)),
+      walls_(std::move(walls)), wall_work_(walls_.size(), 0.0), mesh_bins_(walls_.size()),
+      mesh_x_build_(walls_.size()), law_(std::move(law)),
       forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
       history_(std::visit([](auto& f) -> ContactStates* { return &f.history; }, forces_)),
       n_materials_(std::visit([](const auto& l) { return l.coeffs.n_materials(); }, law_)),
@@ -112,7 +113,7 @@ void Simulation::refresh() {
 
 bool Simulation::place_walls(double t, bool every_one, double* moved2) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
-  bool moved_far = false;
+  bool moved_far = place_meshes(t, every_one);
   std::vector<WallMotionAtTime> now;
   std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
   now.reserve(motions_.size());
@@ -124,7 +125,7 @@ bool Simulation::place_walls(double t, bool every_one, double* moved2) {
   }
   // Motions only start (never stop), and refresh() places every wall particle: while all are
   // at rest, every wall particle stands with zero velocity, and none needs placing again.
-  if (walls_still_ && !every_one) return false; // (frozen bases, a basin before its start)
+  if (walls_still_ && !every_one) return moved_far; // (frozen bases, a basin before its start)
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (store_.is_grain(i) || skip[store_.motion[i]]) continue;
     const PlacedState p = place(now[store_.motion[i]], store_.x_rest[i]);
@@ -143,6 +144,7 @@ void Simulation::step() {
   final_kick();
   books_.dissipated += tally_.dissipated;
   books_.wall_work += tally_.wall_work;
+  for (std::size_t w = 0; w < wall_loads_.size(); ++w) wall_work_[w] += wall_loads_[w].work;
 }
 
 bool Simulation::kick_drift() {
@@ -335,6 +337,12 @@ void Simulation::compute_forces(bool advance_history) {
     compute(PairSet::owned);
     timer.switch_to(timers_.comm);
     halo_.reverse_finish(store_, comm_);
+  }
+  if (!walls_.empty()) {
+    timer.switch_to(timers_.pair);
+    std::visit(
+        [&](auto& f) { f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_); },
+        forces_);
   }
   check_health();
 }

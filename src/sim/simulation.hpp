@@ -22,6 +22,7 @@
 #include "domain/decomposition.hpp"
 #include "domain/halo.hpp"
 #include "scene/plane_wall.hpp"
+#include "scene/shaped_wall.hpp"
 #include "scene/wall_motion.hpp"
 #include "sim/contact_forces.hpp"
 #include "sim/energy_books.hpp"
@@ -82,8 +83,10 @@ class Simulation {
 public:
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
+  // `walls`: the triangle meshes and cylinders (every rank is given all of them).
   Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
-             std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world());
+             std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world(),
+             std::vector<ShapedWall> walls = {});
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
   // Waits for the last forces sent back to another rank to be taken (halo.hpp: close()).
@@ -106,6 +109,12 @@ public:
   // Owned particles per rank, max over mean (1 when serial). Collective.
   double imbalance() const;
   const std::vector<PlaneWall>& planes() const { return planes_; }
+  // The meshes (placed at the current time) and cylinders.
+  const std::vector<ShapedWall>& walls() const { return walls_; }
+  // What the grains did to each shaped wall at the last force evaluation, and each wall's
+  // cumulative work on the grains (in `work`), summed over the ranks onto every rank.
+  // Collective.
+  std::vector<WallLoad> wall_loads() const;
   const NeighborList& neighbor_list() const { return list_; }
   const Halo& halo() const { return halo_; }
   // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
@@ -140,6 +149,7 @@ public:
     ar.value(rebuilds_);
     ar.value(initial_balance_);
     ar.value(tally_);
+    checkpoint_walls(ar);
     for (int a = 0; a < 3; ++a) {
       std::vector<double> cuts = decomp_.cuts(a);
       ar.vector(cuts);
@@ -203,6 +213,27 @@ private:
   // `every_one` false skips those of a motion at rest: placed before, they stay there.
   // `moved2`, if given, gets the largest squared displacement of a wall particle.
   bool place_walls(double t, bool every_one = false, double* moved2 = nullptr);
+  // Meshes to their place at t; true if a vertex moved more than half the skin since the last
+  // list build (simulation_walls.cpp).
+  bool place_meshes(double t, bool every_one);
+  // The grain-wall candidates of a list build, from the triangles binned on the cells.
+  void list_wall_candidates();
+  // The walls' part of a checkpoint: each mesh file's CRC-32 (a resume with another file is
+  // refused), the time of the last list build (where the meshes stood), the work of each wall.
+  template <class Archive> void checkpoint_walls(Archive& ar) {
+    std::vector<std::uint32_t> crcs;
+    for (const ShapedWall& w : walls_)
+      crcs.push_back(std::holds_alternative<MeshWall>(w) ? std::get<MeshWall>(w).file_crc32 : 0);
+    std::vector<std::uint32_t> saved = crcs;
+    ar.vector(saved);
+    if constexpr (Archive::loading) check_wall_files(saved);
+    ar.value(walls_built_at_);
+    ar.vector(wall_work_);
+    if constexpr (Archive::loading)
+      if (wall_work_.size() != walls_.size())
+        throw std::invalid_argument("the checkpoint's walls are not this scene's");
+  }
+  void check_wall_files(const std::vector<std::uint32_t>& saved) const;
   // How a list build starts: in a step (the history stashed from the current list, balancing
   // when due); after loading a state, whose contact states are in the stash already and whose
   // cut planes are the saved ones (the run's next build balances as it would have); or after
@@ -257,6 +288,21 @@ private:
   ParticleStore store_;
   std::vector<PlaneWall> planes_;
   std::vector<WallMotion> motions_;
+  std::vector<ShapedWall> walls_;
+  std::vector<WallLoad> wall_loads_; // this rank's, of the last force evaluation
+  std::vector<double> wall_work_;    // this rank's part of each shaped wall's cumulative work
+  // Each mesh's triangles binned on the cells (CSR by cell), reused while a still mesh and the
+  // cells stay as they were.
+  struct MeshBins {
+    std::vector<std::uint32_t> start, members;
+    bool valid = false;
+    double reach = 0.0;
+    Vec3 origin;
+    std::array<int, 3> dims{};
+  };
+  std::vector<MeshBins> mesh_bins_;
+  std::vector<std::vector<Vec3>> mesh_x_build_; // each mesh's vertices at the last list build
+  double walls_built_at_ = 0.0;                 // time of the last list build
   AnyContactLaw law_;
   Forces forces_;
   ContactStates* history_;  // the contact states of forces_ (per-rebuild operations)

@@ -71,6 +71,7 @@ void Simulation::rebuild(BuildAfter after) {
           store_.radius[i] + range_ + planes_[p].max_excursion())
         list_.planes.push_back({i, p});
   }
+  list_wall_candidates();
   history_->restore(store_, list_);
   if (after != BuildAfter::load_at_last_build)
     for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];

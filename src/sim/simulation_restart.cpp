@@ -79,6 +79,9 @@ void Simulation::load(const std::vector<std::string>& share, std::uint64_t writt
   double tally[] = {tally_.elastic, tally_.relaxation, static_cast<double>(tally_.touching)};
   comm_.sum(tally, 3);
   const bool root = comm_.root();
+  wall_work_.resize(walls_.size(), 0.0);
+  if (!wall_work_.empty()) comm_.sum(wall_work_.data(), static_cast<int>(wall_work_.size()));
+  if (!root) std::fill(wall_work_.begin(), wall_work_.end(), 0.0);
   if (!root) books_ = EnergyBooks{};
   tally_ = ContactTally{};
   if (root) {
@@ -109,6 +112,7 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
   ParticleStore pool;
   std::string states;
   EnergyBooks books;
+  std::vector<double> wall_work;
   ContactTally tally;
   double time = 0, initial_balance = 0;
   std::int64_t step = 0, rebuilds = 0;
@@ -122,6 +126,8 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
     for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
     states += history_->stashed_bytes();
     books.add(books_);
+    wall_work.resize(wall_work_.size(), 0.0);
+    for (std::size_t w = 0; w < wall_work_.size(); ++w) wall_work[w] += wall_work_[w];
     tally.elastic += tally_.elastic;
     tally.relaxation += tally_.relaxation;
     tally.touching += tally_.touching;
@@ -130,6 +136,8 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
   history_->give(states);
   time_ = time, step_ = step, rebuilds_ = rebuilds, initial_balance_ = initial_balance;
   books_ = books;
+  wall_work_ = wall_work;
+  wall_work_.resize(walls_.size(), 0.0);
   tally_ = tally;
 }
 
@@ -144,9 +152,14 @@ void Simulation::rebuild_after_load(bool as_saved) {
     // the ghosts and the owners are that build's again; then every particle goes back to where
     // it stands now, and the ghosts follow. The run goes on bit for bit as if never stopped,
     // whatever step it was saved at (a checkpoint leaves the trajectory untouched).
+    // The meshes likewise stand where they stood at that build while it is made again.
+    const double built = walls_built_at_;
+    place_meshes(built, true);
     std::swap(store_.x, store_.x_build);
     rebuild(BuildAfter::load_at_last_build);
     std::swap(store_.x, store_.x_build);
+    walls_built_at_ = built;
+    place_meshes(time_, true);
     halo_.forward(store_, comm_);
   }
   rebuilds_ = counted;

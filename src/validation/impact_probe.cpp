@@ -47,7 +47,7 @@ Simulation make_simulation(const Impact& setup) {
     s.spins = b.spins;
     store.add(s, id++);
   }
-  return Simulation(cfg, std::move(store), setup.planes, {}, setup.law);
+  return Simulation(cfg, std::move(store), setup.planes, {}, setup.law, Comm::world(), setup.walls);
 }
 
 std::size_t owned_index(const Simulation& sim, GlobalId id) {

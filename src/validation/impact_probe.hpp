@@ -22,6 +22,7 @@ struct Body {
 struct Impact {
   std::vector<Body> bodies;
   std::vector<PlaneWall> planes;
+  std::vector<ShapedWall> walls; // meshes and cylinders
   AnyContactLaw law;
   double dt = 1e-4;
   Vec3 gravity;

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Writes the inputs of the rotating-drum scenes: the drum as a binary STL (a closed cylinder of
+`segments` facets about the y axis, with flat end caps) and its fill of grains as a LAMMPS data
+file (atom style sphere: id type diameter density x y z), on a jittered lattice in the lower part
+of the drum. Reduced units: grain diameter d = 1, mass 1 (density 6/pi), g = 1.
+
+usage: make_drum.py [--radius R] [--length L] [--segments N] [--fill F] [--seed S] OUTDIR
+"""
+import argparse
+import math
+import random
+import struct
+from pathlib import Path
+
+
+def drum_triangles(radius, length, segments):
+    ring = [(radius * math.cos(2 * math.pi * k / segments), radius * math.sin(2 * math.pi * k / segments))
+            for k in range(segments)]
+    tris = []
+    for k in range(segments):
+        (x0, z0), (x1, z1) = ring[k], ring[(k + 1) % segments]
+        a, b, c, d = (x0, 0.0, z0), (x1, 0.0, z1), (x1, length, z1), (x0, length, z0)
+        tris += [(a, b, c), (a, c, d)]                       # the side
+        tris.append(((0.0, 0.0, 0.0), b, a))                 # the cap at y = 0
+        tris.append(((0.0, length, 0.0), d, c))              # the cap at y = length
+    return tris
+
+
+def write_binary_stl(path, tris):
+    with open(path, "wb") as f:
+        f.write(b"yuxi rotating drum".ljust(80, b" "))
+        f.write(struct.pack("<I", len(tris)))
+        for t in tris:
+            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
+            for v in t:
+                f.write(struct.pack("<3f", *v))
+            f.write(struct.pack("<H", 0))
+
+
+def grains(radius, length, fill, seed):
+    rng = random.Random(seed)
+    spacing = 1.15
+    out = []
+    top = -radius + fill * 2 * radius  # the fill reaches this height (z)
+    n = int(radius / spacing) + 1
+    for i in range(-n, n + 1):
+        for j in range(int(length / spacing) + 1):
+            for k in range(-n, n + 1):
+                x, y, z = i * spacing, 0.6 + j * spacing, k * spacing
+                if y > length - 0.6 or z > top or math.hypot(x, z) > radius - 0.7:
+                    continue
+                d = rng.uniform(0.9, 1.0)
+                out.append((d, x + rng.uniform(-0.05, 0.05), y, z + rng.uniform(-0.05, 0.05)))
+    return out
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--radius", type=float, default=10.0)
+    p.add_argument("--length", type=float, default=4.0)
+    p.add_argument("--segments", type=int, default=96)
+    p.add_argument("--fill", type=float, default=0.4)
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("outdir", type=Path)
+    a = p.parse_args()
+    a.outdir.mkdir(parents=True, exist_ok=True)
+    write_binary_stl(a.outdir / "drum.stl", drum_triangles(a.radius, a.length, a.segments))
+    g = grains(a.radius, a.length, a.fill, a.seed)
+    density = 6 / math.pi
+    with open(a.outdir / "grains.data", "w") as f:
+        f.write(f"rotating drum fill: {len(g)} grains (make_drum.py)\n\n{len(g)} atoms\n\n1 atom types\n\n")
+        f.write(f"{-a.radius - 1} {a.radius + 1} xlo xhi\n-1 {a.length + 1} ylo yhi\n")
+        f.write(f"{-a.radius - 1} {a.radius + 1} zlo zhi\n\nAtoms # sphere\n\n")
+        for k, (d, x, y, z) in enumerate(g, 1):
+            f.write(f"{k} 1 {d:.6f} {density:.12g} {x:.6f} {y:.6f} {z:.6f}\n")
+    print(f"{a.outdir}/drum.stl: {len(drum_triangles(a.radius, a.length, a.segments))} triangles; "
+          f"{a.outdir}/grains.data: {len(g)} grains")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+// An analytic cylinder wall: grains inside it (a drum, a silo) or outside it (a post), about
+// any axis, infinite or between two heights along the axis, where a finite one has flat end
+// caps or open rims. It may turn about its own axis (a rotating drum): its surface then moves
+// with omega k x (p - c) and its shape stays.
+//
+// For a grain at centre x, with h = (x - c).k its height along the axis and rho its distance
+// from the axis (docs/walls.md section 3):
+//   side  (h within the ends):  inside  distance R - rho, normal towards the axis;
+//                               outside distance rho - R, normal away from it
+//   caps  (rho <= R, capped):   inside  distance h - lo (normal +k) and hi - h (normal -k);
+//                               outside lo - h (normal -k) and h - hi (normal +k)
+//   rims  (otherwise: beyond an end and off the cap): the distance to the rim circle, normal
+//                               from its nearest point to the centre.
+// Inside a capped cylinder, side and cap meet at a concave corner and both touch; elsewhere a
+// grain touches one patch at a time, and a rim hands over to a side or cap continuously.
+#pragma once
+
+#include "core/vec3.hpp"
+#include "scene/active_window.hpp"
+#include "scene/wall_touch.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace yuxi {
+
+struct CylinderWall {
+  std::string name;
+  Vec3 center;                                          // c: a point on the axis [length]
+  Vec3 axis{0, 0, 1};                                   // k: unit
+  double radius = 1;                                    // R [length]
+  bool inside = true;                                   // grains inside the cylinder (else outside)
+  double lo = -std::numeric_limits<double>::infinity(); // ends, as heights h along k [length]
+  double hi = std::numeric_limits<double>::infinity();
+  bool capped = false; // a finite cylinder's ends: flat caps, or open rims
+  double omega = 0.0;  // turning rate about k [rad/time]
+  std::uint8_t material = 0;
+  ActiveWindow active;
+
+  bool finite() const {
+    return lo > -std::numeric_limits<double>::infinity() ||
+           hi < std::numeric_limits<double>::infinity();
+  }
+
+  // The contacts of a sphere (centre x, radius r): at most a side, a cap and a rim.
+  void touches(const Vec3& x, double r, WallTouches& out) const;
+  // The wall's velocity at surface point p.
+  Vec3 velocity_at(const Vec3& p) const { return cross(omega * axis, p - center); }
+};
+
+} // namespace yuxi

@@ -1,0 +1,68 @@
+// A wall made of triangles (an STL file's), moved as a whole or vertex by vertex by a
+// prescribed motion (wall_motion.hpp), with a material, an optional conveyor velocity along its
+// surface and a time window in which it exists. Triangles are two-sided: a grain is pushed away
+// from whichever side it touches. Contacts follow wall_touch.hpp.
+#pragma once
+
+#include "core/vec3.hpp"
+#include "scene/active_window.hpp"
+#include "scene/triangle_mesh.hpp"
+#include "scene/wall_motion.hpp"
+#include "scene/wall_touch.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+struct MeshWall {
+  std::string name;             // for messages and walls.csv
+  std::string file;             // the mesh file it was read from ("" if built in code)
+  std::uint32_t file_crc32 = 0; // of the file's bytes: a checkpoint refuses another file
+  TriangleMesh mesh;            // at rest, in the scene's frame
+  // How the file's triangles were placed in the scene (TriangleMesh::transform).
+  double scale = 1.0;
+  Vec3 rotate_axis{0, 0, 1};
+  double rotate_degrees = 0.0;
+  Vec3 translate;
+  WallMotion motion = StaticMotion{};
+  std::uint8_t material = 0;
+  ActiveWindow active;
+  // A conveyor: the surface moves with this velocity's component along each triangle, the
+  // triangles stay [length/time].
+  Vec3 surface_velocity;
+  // Touches whose normals differ by less than this angle count as one (wall_touch.hpp rule 3).
+  double merge_degrees = 15.0;
+  // The point about which walls.csv gives the torque on the wall.
+  Vec3 torque_point;
+
+  // Where each vertex is and how fast it moves, as of the last place().
+  std::vector<Vec3> x, v;
+
+  // Moves every vertex to time t.
+  void place(double t) {
+    x.resize(mesh.vertices.size());
+    v.resize(mesh.vertices.size());
+    const WallMotionAtTime now = at_time(motion, t);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const PlacedState p = yuxi::place(now, mesh.vertices[k]);
+      x[k] = p.position;
+      v[k] = p.velocity;
+    }
+  }
+  bool moves() const { return !std::holds_alternative<StaticMotion>(motion); }
+
+  // The contacts of a sphere (centre c, radius r) with the listed triangles, as placed last.
+  // `scratch` and `order` hold candidates between calls (no allocation once warm).
+  void touches(const Vec3& c, double r, std::span<const std::uint32_t> triangles,
+               std::vector<FeatureTouch>& scratch, std::vector<std::uint32_t>& order,
+               WallTouches& out) const;
+
+  double cos_merge() const { return std::cos(merge_degrees * std::numbers::pi / 180.0); }
+};
+
+} // namespace yuxi

@@ -1,0 +1,33 @@
+// A triangle mesh: vertices shared between the triangles that meet there, so that edges and
+// vertices have an identity (the contact rules of wall_touch.hpp rely on it).
+#pragma once
+
+#include "core/vec3.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace yuxi {
+
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles; // vertex indices
+
+  // Joins the corners of a triangle soup (as an STL file lists them) that have exactly the same
+  // coordinates into one vertex; triangles keep their order.
+  static TriangleMesh weld(const std::vector<std::array<Vec3, 3>>& soup);
+
+  // Scales by `scale` about the origin, then turns by `degrees` about the unit `axis` through
+  // the origin, then shifts by `shift`.
+  void transform(double scale, const Vec3& axis, double degrees, const Vec3& shift);
+
+  std::size_t n_triangles() const { return triangles.size(); }
+  // Every vertex's coordinates finite (a transform cannot make them otherwise unless huge).
+  bool finite() const;
+  // Edges shared by more than two triangles (a non-manifold mesh works, but rule 1 of
+  // wall_touch.hpp then treats the edge as bordering all of them).
+  std::size_t non_manifold_edges() const;
+};
+
+} // namespace yuxi

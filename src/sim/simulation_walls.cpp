@@ -1,0 +1,155 @@
+// Shaped walls in the simulation: placing the meshes at each step, binning their triangles on
+// the linked cells at a list build, and listing which grains may touch which wall (and which
+// of its triangles) before the next build.
+//
+// A mesh's triangles are binned into every cell that their box, grown by the largest grain
+// radius and the skin, overlaps; a grain then reads the triangles of its own cell only, so the
+// cost per grain does not grow with the size of the mesh, and triangles far from every grain
+// cost nothing per step. A still mesh keeps its bins while the cells stay the same (a rank
+// bins only the triangles near its own sub-domain).
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <limits>
+
+namespace yuxi {
+
+bool Simulation::place_meshes(double t, bool every_one) {
+  const double limit2 = 0.25 * config_.skin * config_.skin;
+  bool moved_far = false;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    auto* mesh = std::get_if<MeshWall>(&walls_[w]);
+    if (!mesh || (!every_one && !mesh->moves())) continue;
+    mesh->place(t);
+    const auto& built = mesh_x_build_[w];
+    if (built.size() != mesh->x.size()) continue; // not built yet
+    for (std::size_t k = 0; k < built.size(); ++k)
+      if (!(norm2(mesh->x[k] - built[k]) <= limit2)) {
+        moved_far = true;
+        break;
+      }
+  }
+  return moved_far;
+}
+
+void Simulation::list_wall_candidates() {
+  list_.walls.clear();
+  list_.wall_elements.clear();
+  if (walls_.empty()) return;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < owned_grains_; ++i) largest = std::max(largest, store_.radius[i]);
+  const double reach = largest + range_;
+  const Vec3 g_lo = grid_.origin(), edge = grid_.edge();
+  const auto dims = grid_.dims();
+  const Vec3 g_hi{g_lo.x + dims[0] * edge.x, g_lo.y + dims[1] * edge.y, g_lo.z + dims[2] * edge.z};
+  for (std::uint32_t w = 0; w < walls_.size(); ++w) {
+    if (const auto* cylinder = std::get_if<CylinderWall>(&walls_[w])) {
+      WallTouches near;
+      for (std::uint32_t i = 0; i < owned_grains_; ++i) {
+        cylinder->touches(store_.x[i], store_.radius[i] + range_, near);
+        if (near.n > 0) list_.walls.push_back({i, w, 0, 0});
+      }
+      continue;
+    }
+    MeshWall& mesh = std::get<MeshWall>(walls_[w]);
+    if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
+    mesh_x_build_[w] = mesh.x;
+    // Each triangle's box, as placed now.
+    const auto box_of = [&](std::uint32_t t) {
+      const auto& tri = mesh.mesh.triangles[t];
+      Vec3 lo = mesh.x[tri[0]], hi = lo;
+      for (int k = 1; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], mesh.x[tri[k]][a]);
+          hi[a] = std::max(hi[a], mesh.x[tri[k]][a]);
+        }
+      return std::pair{lo, hi};
+    };
+    MeshBins& bins = mesh_bins_[w];
+    if (mesh.moves() || !bins.valid || bins.reach < reach || bins.dims != dims ||
+        bins.origin != g_lo) {
+      // Counting sort of (cell, triangle) by cell; triangles ascend within a cell.
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> entries;
+      for (std::uint32_t t = 0; t < mesh.mesh.n_triangles(); ++t) {
+        auto [lo, hi] = box_of(t);
+        bool outside = false;
+        for (int a = 0; a < 3; ++a) {
+          lo[a] -= reach, hi[a] += reach;
+          outside = outside || hi[a] < g_lo[a] || lo[a] > g_hi[a];
+        }
+        if (outside) continue;
+        const auto c0 = grid_.cell_of(lo), c1 = grid_.cell_of(hi);
+        for (int z = c0[2]; z <= c1[2]; ++z)
+          for (int y = c0[1]; y <= c1[1]; ++y)
+            for (int x = c0[0]; x <= c1[0]; ++x)
+              entries.push_back({static_cast<std::uint32_t>(grid_.linear(x, y, z)), t});
+      }
+      bins.start.assign(grid_.n_cells() + 1, 0);
+      for (const auto& e : entries) ++bins.start[e.first + 1];
+      for (std::size_t c = 0; c < grid_.n_cells(); ++c) bins.start[c + 1] += bins.start[c];
+      bins.members.resize(entries.size());
+      std::vector<std::uint32_t> fill(bins.start.begin(), bins.start.end() - 1);
+      for (const auto& e : entries) bins.members[fill[e.first]++] = e.second;
+      bins.valid = true;
+      bins.reach = reach;
+      bins.dims = dims;
+      bins.origin = g_lo;
+    }
+    for (std::uint32_t i = 0; i < owned_grains_; ++i) {
+      const std::size_t c = grid_.cell_index(store_.x[i]);
+      const double within = store_.radius[i] + range_;
+      const auto first = static_cast<std::uint32_t>(list_.wall_elements.size());
+      for (std::uint32_t m = bins.start[c]; m < bins.start[c + 1]; ++m) {
+        const std::uint32_t t = bins.members[m];
+        const auto [lo, hi] = box_of(t);
+        double d2 = 0.0; // squared distance from the centre to the triangle's box
+        for (int a = 0; a < 3; ++a) {
+          const double p = store_.x[i][a];
+          const double out = p < lo[a] ? lo[a] - p : (p > hi[a] ? p - hi[a] : 0.0);
+          d2 += out * out;
+        }
+        if (d2 < within * within) list_.wall_elements.push_back(t);
+      }
+      const auto count = static_cast<std::uint32_t>(list_.wall_elements.size()) - first;
+      if (count > 0) list_.walls.push_back({i, w, first, count});
+    }
+  }
+  walls_built_at_ = time_;
+}
+
+void Simulation::check_wall_files(const std::vector<std::uint32_t>& saved) const {
+  if (saved.size() != walls_.size())
+    throw std::invalid_argument(fmt::format(
+        "the checkpoint has {} meshes and cylinders, this scene {}", saved.size(), walls_.size()));
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const auto* mesh = std::get_if<MeshWall>(&walls_[w]);
+    if (mesh && mesh->file_crc32 != saved[w])
+      throw std::invalid_argument(fmt::format(
+          "mesh '{}': its file {} has changed since the checkpoint was written (CRC-32 {:08x}, "
+          "then {:08x}); resuming would not continue the same run",
+          mesh->name, mesh->file, mesh->file_crc32, saved[w]));
+  }
+}
+
+std::vector<WallLoad> Simulation::wall_loads() const {
+  std::vector<double> sums;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const WallLoad l = w < wall_loads_.size() ? wall_loads_[w] : WallLoad{};
+    for (const double x : {l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z,
+                           wall_work_[w], static_cast<double>(l.contacts)})
+      sums.push_back(x);
+  }
+  if (!sums.empty()) comm_.sum(sums.data(), static_cast<int>(sums.size()));
+  std::vector<WallLoad> out(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const double* s = sums.data() + 8 * w;
+    out[w].force = {s[0], s[1], s[2]};
+    out[w].torque = {s[3], s[4], s[5]};
+    out[w].work = s[6];
+    out[w].contacts = static_cast<std::size_t>(s[7]);
+  }
+  return out;
+}
+
+} // namespace yuxi

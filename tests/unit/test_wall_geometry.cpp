@@ -1,0 +1,200 @@
+// The geometry of shaped walls: closest points on triangles, the rules that turn a grain's
+// touches with a mesh into contacts (scene/wall_touch.hpp), cylinders, rigid motions.
+#include "core/random.hpp"
+#include "scene/closest_point_on_triangle.hpp"
+#include "scene/cylinder_wall.hpp"
+#include "scene/mesh_wall.hpp"
+#include "scene/rigid_motion.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+
+namespace yuxi {
+namespace {
+
+// A mesh wall of the given triangles, placed at t = 0.
+MeshWall mesh_of(const std::vector<std::array<Vec3, 3>>& soup) {
+  MeshWall w;
+  w.mesh = TriangleMesh::weld(soup);
+  w.place(0.0);
+  return w;
+}
+
+WallTouches touches_of(const MeshWall& w, const Vec3& c, double r) {
+  std::vector<std::uint32_t> all(w.mesh.n_triangles());
+  for (std::uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+  std::vector<FeatureTouch> scratch;
+  std::vector<std::uint32_t> order;
+  WallTouches out;
+  w.touches(c, r, all, scratch, order, out);
+  return out;
+}
+
+TEST(ClosestPointOnTriangle, IsNoFartherThanAnyPointOfTheTriangle) {
+  Random rng(11);
+  const auto any = [&] { return Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}; };
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec3 a = any(), b = any(), c = any(), p = 2.0 * any();
+    const TrianglePoint q = closest_point_on_triangle(p, a, b, c);
+    // the point is the triangle's own, with its weights
+    const Vec3 from_weights = q.weight[0] * a + q.weight[1] * b + q.weight[2] * c;
+    EXPECT_LT(norm(from_weights - q.point), 1e-12);
+    for (double w : q.weight) EXPECT_GE(w, -1e-12);
+    EXPECT_NEAR(q.weight[0] + q.weight[1] + q.weight[2], 1.0, 1e-12);
+    // and no point of a dense barycentric grid is closer
+    const double d = norm(p - q.point);
+    constexpr int n = 40;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const Vec3 s = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
+        ASSERT_LE(d, norm(p - s) + 1e-12) << "trial " << trial;
+      }
+    // the feature matches the weights
+    const int zero = (q.weight[0] == 0) + (q.weight[1] == 0) + (q.weight[2] == 0);
+    if (q.feature == TriangleFeature::face) {
+      EXPECT_EQ(zero, 0);
+    }
+    if (q.feature >= TriangleFeature::vertex_a) {
+      EXPECT_EQ(zero, 2);
+    }
+  }
+}
+
+TEST(TriangleMesh, WeldsSharedCornersAndKeepsTriangleOrder) {
+  const TriangleMesh m = TriangleMesh::weld(
+      {{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}}, {{{0, 0, 0}, {1, 1, 0}, {0, 1, -0.0}}}});
+  EXPECT_EQ(m.vertices.size(), 4u);
+  EXPECT_EQ(m.triangles[1][0], m.triangles[0][0]);
+  EXPECT_EQ(m.triangles[1][1], m.triangles[0][2]);
+  EXPECT_EQ(m.non_manifold_edges(), 0u);
+}
+
+// A square of two triangles in z = 0: a sphere above their shared diagonal, or anywhere over
+// them, has one contact, straight up, at its height.
+TEST(MeshTouches, CoplanarTrianglesGiveOneContactEverywhere) {
+  const MeshWall w =
+      mesh_of({{{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}}}, {{{0, 0, 0}, {2, 2, 0}, {0, 2, 0}}}});
+  for (double s = 0.02; s < 2.0; s += 0.0137) {
+    for (const Vec3 c : {Vec3{s, s, 0.4}, Vec3{s, 1.0, 0.4}, Vec3{1.0, s, 0.4}}) {
+      const WallTouches t = touches_of(w, c, 0.5);
+      ASSERT_EQ(t.n, 1u) << "at " << c.x << ", " << c.y;
+      EXPECT_NEAR(t.at[0].distance, 0.4, 1e-15);
+      EXPECT_NEAR(t.at[0].normal.z, 1.0, 1e-15);
+    }
+  }
+  // over the shared corner (0, 0, 0) from outside the square: one vertex contact
+  const WallTouches corner = touches_of(w, {-0.1, -0.1, 0.1}, 0.5);
+  ASSERT_EQ(corner.n, 1u);
+  EXPECT_NEAR(corner.at[0].distance, std::sqrt(0.03), 1e-15);
+}
+
+// A fan of triangles around a vertex: a sphere right over it has one contact.
+TEST(MeshTouches, AFanAroundAVertexGivesOneContact) {
+  std::vector<std::array<Vec3, 3>> fan;
+  for (int k = 0; k < 7; ++k) {
+    const double a0 = 2 * std::numbers::pi * k / 7, a1 = 2 * std::numbers::pi * (k + 1) / 7;
+    fan.push_back({{{0, 0, 0}, {std::cos(a0), std::sin(a0), 0}, {std::cos(a1), std::sin(a1), 0}}});
+  }
+  const MeshWall w = mesh_of(fan);
+  const WallTouches t = touches_of(w, {0, 0, 0.3}, 0.5);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_NEAR(t.at[0].distance, 0.3, 1e-15);
+}
+
+// A 90 degree groove (faces x = z and x = -z below z = 0... as two triangles pairs): a sphere
+// in it touches both faces; a sphere over a convex ridge touches once, with a normal that turns
+// continuously and a distance that stays put as it rounds the ridge.
+TEST(MeshTouches, GrooveGivesTwoContactsRidgeOne) {
+  // faces through the line x = 0, z = 0 along y, at 45 degrees
+  const double L = 3;
+  const std::vector<std::array<Vec3, 3>> groove{{{{0, -L, 0}, {L, -L, L}, {L, L, L}}},
+                                                {{{0, -L, 0}, {L, L, L}, {0, L, 0}}},
+                                                {{{0, -L, 0}, {0, L, 0}, {-L, L, L}}},
+                                                {{{0, -L, 0}, {-L, L, L}, {-L, -L, L}}}};
+  const MeshWall g = mesh_of(groove);
+  const WallTouches in = touches_of(g, {0, 0.1, 0.6}, 0.5);
+  ASSERT_EQ(in.n, 2u);
+  EXPECT_NEAR(in.at[0].distance, 0.6 / std::sqrt(2.0), 1e-14);
+  EXPECT_NEAR(dot(in.at[0].normal, in.at[1].normal), 0.0, 1e-14);
+  // the ridge: the same faces seen from below
+  double last_nx = -1;
+  const double h = 0.3;
+  for (double s = -1.0; s <= 1.0; s += 0.001) {
+    // a path at distance h from the surface: over face x < 0, around the edge, over x > 0
+    const double phi = std::clamp(s, -0.25, 0.25) * std::numbers::pi; // normal's angle
+    Vec3 c{std::sin(phi) * h, 0.0, -std::cos(phi) * h};
+    if (s < -0.25) c = c + (s + 0.25) * Vec3{1, 0, -1} * (1 / std::sqrt(2.0));
+    if (s > 0.25) c = c + (s - 0.25) * Vec3{1, 0, 1} * (1 / std::sqrt(2.0));
+    const WallTouches t = touches_of(g, c, 0.5);
+    ASSERT_EQ(t.n, 1u) << "s = " << s;
+    EXPECT_NEAR(t.at[0].distance, h, 1e-12) << "s = " << s;
+    EXPECT_GE(t.at[0].normal.x, last_nx - 1e-12);
+    EXPECT_LT(std::abs(t.at[0].normal.x - last_nx), last_nx < -0.99 ? 2.0 : 0.01);
+    last_nx = t.at[0].normal.x;
+  }
+}
+
+TEST(MeshTouches, ConveyorMovesTheSurfaceAlongTheWall) {
+  MeshWall w = mesh_of({{{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}}}});
+  w.surface_velocity = {1.5, 0, 7}; // the part along the normal is dropped
+  const WallTouches t = touches_of(w, {1.5, 0.5, 0.2}, 0.5);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_EQ(t.at[0].velocity, (Vec3{1.5, 0, 0}));
+}
+
+TEST(CylinderTouches, InsideOutsideCapsAndRims) {
+  CylinderWall c;
+  c.radius = 2;
+  c.lo = 0, c.hi = 5, c.capped = true;
+  // inside, against the side
+  WallTouches t;
+  c.touches({1.7, 0, 2.5}, 0.5, t);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_NEAR(t.at[0].distance, 0.3, 1e-15);
+  EXPECT_NEAR(t.at[0].normal.x, -1, 1e-15);
+  // in the corner of side and floor: both
+  c.touches({1.7, 0, 0.4}, 0.5, t);
+  ASSERT_EQ(t.n, 2u);
+  EXPECT_NEAR(t.at[0].distance, 0.3, 1e-15);
+  EXPECT_NEAR(t.at[1].distance, 0.4, 1e-15);
+  // outside a post, capped: over the top, and past the rim
+  c.inside = false;
+  c.touches({0.5, 0, 5.3}, 0.5, t);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_NEAR(t.at[0].normal.z, 1, 1e-15);
+  c.touches({2.2, 0, 5.2}, 0.5, t);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_NEAR(t.at[0].distance, std::sqrt(0.08), 1e-15);
+  // the side turns: the wall's velocity at the contact is omega k x (p - c)
+  c.omega = 3;
+  c.touches({2.3, 0, 2}, 0.5, t);
+  ASSERT_EQ(t.n, 1u);
+  EXPECT_NEAR(t.at[0].velocity.y, 6.0, 1e-14);
+}
+
+TEST(RigidMotion, VelocityIsTheDerivativeOfPosition) {
+  RigidMotion m;
+  m.center = {1, 2, 3};
+  m.axis = normalized(Vec3{1, 2, 2});
+  m.omega = 1.7;
+  m.drift = {0.1, -0.2, 0.3};
+  m.direction = {0, 0, 1};
+  m.amplitude = 0.05;
+  m.frequency = 9;
+  m.t0 = 0.5;
+  const Vec3 rest{-1, 0.5, 2};
+  for (double t : {0.7, 1.3, 4.0}) {
+    const double h = 1e-6;
+    const Vec3 fd =
+        (m.at_time(t + h).place(rest).position - m.at_time(t - h).place(rest).position) / (2 * h);
+    EXPECT_LT(norm(fd - m.at_time(t).place(rest).velocity), 1e-7);
+    // a rotation keeps distances to the axis
+    const Vec3 p = m.at_time(t).place(rest).position - m.at_time(t).shift;
+    EXPECT_NEAR(norm(cross(p - m.center, m.axis)), norm(cross(rest - m.center, m.axis)), 1e-12);
+  }
+  EXPECT_EQ(m.at_time(0.2).place(rest).position, rest);
+}
+
+} // namespace
+} // namespace yuxi

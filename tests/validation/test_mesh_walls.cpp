@@ -1,0 +1,243 @@
+// Mesh and cylinder walls against closed forms and against the analytic plane
+// (docs/walls.md section 5):
+//  - a face is a plane: a sphere bouncing off a triangle leaves it as it leaves the plane the
+//    triangle lies in, to 1e-12 of the impact speed, for every contact model and angle;
+//  - a meshed plane is a plane: rolling and sliding across a plane cut into thousands of
+//    triangles of random shape follows the analytic plane's trajectory to 1e-9 over 1e5 steps
+//    (the contacts hand their tangential springs over from triangle to triangle);
+//  - a sphere at rest in a symmetric 90 degree groove loads each face with m g / sqrt(2) along
+//    its normal (statics: two forces at 45 degrees balance m g); with friction each face
+//    carries m g / 2 of the weight;
+//  - passive meshes and cylinders never add energy, over a sweep of angles, spins and models.
+#include "core/random.hpp"
+#include "core/units.hpp"
+#include "validation/impact_probe.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace yuxi {
+namespace {
+
+using validation::Body;
+using validation::Impact;
+
+// Every contact model, with its example coefficients (model units: m = 1, a = 0.5, k_n = 1).
+std::vector<AnyContactLaw> example_laws() {
+  std::vector<AnyContactLaw> laws;
+  ContactModels::for_each([&](auto model) {
+    using Model = typename decltype(model)::type;
+    ContactLaw<Model> law{PairTable<typename Model::Coeffs>(1)};
+    law.coeffs.set(0, 0, Model::example());
+    laws.push_back(law);
+  });
+  return laws;
+}
+
+// A square of side 2 h in the plane through p with unit normal n, cut into two triangles.
+MeshWall square(const Vec3& p, const Vec3& n, double h) {
+  const Vec3 e1 = normalized(cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 e2 = cross(n, e1);
+  const Vec3 a = p - h * e1 - h * e2, b = p + h * e1 - h * e2, c = p + h * e1 + h * e2,
+             d = p - h * e1 + h * e2;
+  MeshWall w;
+  w.name = "square";
+  w.mesh = TriangleMesh::weld({{{a, b, c}}, {{a, c, d}}});
+  return w;
+}
+
+// A plane z = 0 cut into triangles of random shape: an n x n grid of cells of edge h from
+// (x0, y0), inner vertices shifted at random within the plane, each cell split along a random
+// diagonal.
+MeshWall random_triangulation(int n, double h, double x0, double y0, std::uint64_t seed) {
+  Random rng(seed);
+  std::vector<Vec3> v;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool inner = i > 0 && j > 0 && i < n && j < n;
+      const double dx = inner ? rng.uniform(-0.3, 0.3) * h : 0.0;
+      const double dy = inner ? rng.uniform(-0.3, 0.3) * h : 0.0;
+      v.push_back({x0 + i * h + dx, y0 + j * h + dy, 0.0});
+    }
+  std::vector<std::array<Vec3, 3>> soup;
+  const auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * (n + 1) + i)]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Vec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      if (rng.uniform() < 0.5) {
+        soup.push_back({{a, b, c}});
+        soup.push_back({{a, c, d}});
+      } else {
+        soup.push_back({{a, b, d}});
+        soup.push_back({{b, c, d}});
+      }
+    }
+  MeshWall w;
+  w.name = "meshed plane";
+  w.mesh = TriangleMesh::weld(soup);
+  return w;
+}
+
+TEST(MeshWalls, AFaceIsAPlane) {
+  const Vec3 n = normalized(Vec3{0.3, -0.2, 1.0}), p{0.1, 0.2, -0.05};
+  int cases = 0;
+  for (const AnyContactLaw& law : example_laws())
+    for (double theta : {0.0, 30.0, 60.0, 85.0}) {
+      const double th = theta * pi / 180, r = 0.5, m = 1.0, speed = 0.01;
+      const Vec3 t1 = normalized(cross(n, Vec3{1, 0, 0})), t2 = cross(n, t1);
+      const Vec3 v = speed * (std::sin(th) * (0.8 * t1 + 0.6 * t2) - std::cos(th) * n);
+      const Vec3 w = (0.3 * speed / r) * t1;
+      Impact s;
+      s.law = law;
+      s.dt = 0.02; // t_c = pi sqrt(m*/k) ~ 3 in model units
+      s.bodies.push_back({p + (r + 1.3e-4) * n, v, w, r, m});
+      Impact with_plane = s, with_mesh = s;
+      with_plane.planes.push_back(validation::flat_wall(p, n, 0));
+      with_mesh.walls.push_back(square(p, n, 20.0));
+      const auto a = validation::run_impact(with_plane), b = validation::run_impact(with_mesh);
+      ASSERT_TRUE(a.separated && b.separated);
+      EXPECT_LT(norm(a.v[0] - b.v[0]), 1e-12 * speed) << "model " << law.index() << " " << theta;
+      EXPECT_LT(norm(a.w[0] - b.w[0]), 1e-12 * speed / r)
+          << "model " << law.index() << " " << theta;
+      EXPECT_EQ(a.contact_time, b.contact_time);
+      EXPECT_GT(norm(a.v[0] - v), 0.1 * speed); // it did bounce
+      ++cases;
+    }
+  EXPECT_EQ(cases, 4 * static_cast<int>(ContactModels::names.size()));
+}
+
+// One grain on the plane z = 0, as an analytic plane or as a meshed one, under gravity tilted
+// by `tangential`; returns its position, velocity and spin after `steps` steps.
+struct Track {
+  Vec3 x, v, w;
+};
+Track roll(bool meshed, Vec3 gravity, Vec3 v0, Vec3 w0, double mu, int steps) {
+  LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 20.0, 10.0, mu, mu};
+  SimulationConfig cfg;
+  cfg.box = {{-2, -2, -1}, {38, 38, 3}};
+  cfg.gravity = gravity;
+  cfg.dt = 1e-4;
+  cfg.skin = 0.05;
+  const double r = 0.5, m = 1.0;
+  ParticleStore store;
+  ParticleSpec sp;
+  sp.position = {0.5, 0.5, r - m * 9.81 / 1e5}; // at its resting overlap
+  sp.velocity = v0;
+  sp.angular_velocity = w0;
+  sp.radius = r;
+  sp.mass = m;
+  store.add(sp, 0);
+  std::vector<PlaneWall> planes;
+  std::vector<ShapedWall> walls;
+  if (meshed)
+    walls.push_back(random_triangulation(100, 0.37, -1.0, -1.0, 7));
+  else
+    planes.push_back(validation::flat_wall({0, 0, 0}, {0, 0, 1}, 0));
+  Simulation sim(cfg, std::move(store), planes, {}, validation::linear_law(c, 1), Comm::self(),
+                 walls);
+  sim.run(steps);
+  const auto& s = sim.particles();
+  return {s.x[0], s.v[0], s.w[0]};
+}
+
+TEST(MeshWalls, AMeshedPlaneIsAPlane) {
+  // rolling with a little spin about the normal; sliding down a tilt beyond friction
+  for (const auto& [g, v0, w0, mu] :
+       {std::tuple{Vec3{0, 0, -9.81}, Vec3{0.2, 0.1, 0}, Vec3{-0.2, 0.4, 0.3}, 0.5},
+        std::tuple{Vec3{0.8, 0.4, -9.81}, Vec3{0.1, 0, 0}, Vec3{}, 0.05}}) {
+    const int steps = 100000;
+    const Track a = roll(false, g, v0, w0, mu, steps), b = roll(true, g, v0, w0, mu, steps);
+    const double travel = norm(a.x - Vec3{0.5, 0.5, 0.5});
+    EXPECT_GT(travel, 1.5); // it crossed many triangles
+    EXPECT_LT(norm(a.x - b.x), 1e-9 * travel);
+    EXPECT_LT(norm(a.v - b.v), 1e-9 * norm(a.v));
+    EXPECT_LT(norm(a.w - b.w), 1e-9 * (norm(a.w) + norm(a.v) / 0.5));
+  }
+}
+
+// The two faces of a 90 degree groove along y (z = |x|), each its own mesh wall.
+std::vector<ShapedWall> groove() {
+  const double L = 3;
+  MeshWall right, left;
+  right.name = "right";
+  left.name = "left";
+  right.mesh = TriangleMesh::weld(
+      {{{{0, -L, 0}, {L, -L, L}, {L, L, L}}}, {{{0, -L, 0}, {L, L, L}, {0, L, 0}}}});
+  left.mesh = TriangleMesh::weld(
+      {{{{0, -L, 0}, {0, L, 0}, {-L, L, L}}}, {{{0, -L, 0}, {-L, L, L}, {-L, -L, L}}}});
+  return {right, left};
+}
+
+TEST(MeshWalls, AGroovesFacesShareTheWeight) {
+  const double r = 0.5, m = 1.0, g = 9.81;
+  for (double mu : {0.0, 0.5}) {
+    LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 200.0, 100.0, mu, mu};
+    SimulationConfig cfg;
+    cfg.box = {{-4, -4, -1}, {4, 4, 5}};
+    cfg.gravity = {0, 0, -g};
+    cfg.dt = 1e-4;
+    cfg.skin = 0.05;
+    ParticleStore store;
+    ParticleSpec sp;
+    sp.position = {0, 0, r * std::sqrt(2.0) + 0.01};
+    sp.radius = r;
+    sp.mass = m;
+    store.add(sp, 0);
+    Simulation sim(cfg, std::move(store), {}, {}, validation::linear_law(c, 1), Comm::self(),
+                   groove());
+    sim.run(30000);
+    ASSERT_LT(norm(sim.particles().v[0]), 1e-10);
+    const auto loads = sim.wall_loads();
+    ASSERT_EQ(loads.size(), 2u);
+    for (const WallLoad& l : loads) {
+      // on the wall: without friction m g / sqrt(2) along the face's normal; with friction
+      // (where friction may hold part of the load along the face) m g / 2 downwards
+      if (mu == 0.0) {
+        EXPECT_NEAR(norm(l.force), m * g / std::sqrt(2.0), 1e-6 * m * g);
+      }
+      EXPECT_NEAR(l.force.z, -m * g / 2, 1e-6 * m * g) << "mu " << mu;
+    }
+  }
+}
+
+double kinetic(const Vec3& v, const Vec3& w, double m, double r) {
+  return 0.5 * m * norm2(v) + 0.5 * 0.4 * m * r * r * norm2(w);
+}
+
+TEST(MeshWalls, PassiveMeshesAndCylindersNeverAddEnergy) {
+  int impacts = 0;
+  for (const AnyContactLaw& law : example_laws())
+    for (bool cylinder : {false, true})
+      for (double theta : {0.0, 45.0, 80.0, 89.0})
+        for (double spin : {-1.0, 0.0, 1.0})
+          for (double aim : {0.0, 0.37}) { // on a face, on an edge or vertex of the triangulation
+            const double th = theta * pi / 180, r = 0.5, m = 1.0, speed = 0.01;
+            Impact s;
+            s.law = law;
+            s.dt = 0.02;
+            const Vec3 v = speed * Vec3{std::sin(th), 0.3 * std::sin(th), -std::cos(th)};
+            const Vec3 w = (speed / r) * Vec3{spin * 0.3, spin, 0};
+            if (cylinder) {
+              CylinderWall c; // a drum of radius 4 about the y axis, grains inside
+              c.name = "drum";
+              c.axis = {0, 1, 0};
+              c.center = {0, 0, 4};
+              c.radius = 4;
+              s.walls.push_back(c);
+            } else {
+              MeshWall mesh = random_triangulation(8, 0.5, -2.0 + aim, -2.0, 3);
+              s.walls.push_back(mesh);
+            }
+            s.bodies.push_back({{0, 0, r + 1e-4}, v, w, r, m});
+            const auto out = validation::run_impact(s);
+            ASSERT_TRUE(out.separated);
+            EXPECT_LE(kinetic(out.v[0], out.w[0], m, r), kinetic(v, w, m, r) * (1 + 1e-9))
+                << "model " << law.index() << (cylinder ? " cylinder" : " mesh") << " theta "
+                << theta << " spin " << spin << " aim " << aim;
+            ++impacts;
+          }
+  EXPECT_EQ(impacts, 2 * 4 * 3 * 2 * static_cast<int>(ContactModels::names.size()));
+}
+
+} // namespace
+} // namespace yuxi
