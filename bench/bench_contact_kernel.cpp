@@ -1,5 +1,8 @@
-// Google Benchmark of the contact kernel: one linear spring-dashpot evaluation, and whole
-// steps of a dense polydisperse packing (the pair loop with neighbour lists).
+// Google Benchmark of the contact kernel: one linear spring-dashpot evaluation, whole steps of a
+// dense polydisperse packing (the pair loop with neighbour lists), and the cost of a wall
+// contact: a layer of 4,096 grains resting each on one fixed sphere, on a triangle of a flat
+// mesh, or on nothing (the steps' other costs), and on the mesh with a mesh of a million
+// triangles far above them (which should cost nothing).
 #include "contact/linear_spring_dashpot.hpp"
 #include "core/random.hpp"
 #include "sim/simulation.hpp"
@@ -60,6 +63,64 @@ void BM_DenseStep(benchmark::State& st) {
       static_cast<double>(side * side * side), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_DenseStep)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
+
+// A 64 x 64 layer of grains (radius 0.5, spacing 1.2) under gravity, at their resting overlap
+// on what `support` puts beneath them: 0 nothing (gravity off), 1 a fixed sphere each, 2 a flat
+// mesh of 2 triangles per grain, 3 that mesh and a million-triangle mesh 30 above.
+void BM_GrainsOn(benchmark::State& st) {
+  const int support = static_cast<int>(st.range(0));
+  constexpr int side = 64;
+  constexpr double spacing = 1.2, r = 0.5, k_n = 1e5;
+  SimulationConfig cfg;
+  cfg.box = {{0, 0, -2}, {side * spacing, side * spacing, 40}};
+  cfg.gravity = {0, 0, support == 0 ? 0.0 : -1.0};
+  cfg.dt = 1e-4;
+  cfg.skin = 0.1;
+  ParticleStore p;
+  GlobalId id = 0;
+  const double rest = r - 1.0 / k_n; // the overlap that carries m g = 1
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      ParticleSpec s;
+      s.position = {(i + 0.35) * spacing, (j + 0.6) * spacing,
+                    support == 1 ? 1.0 - 1.0 / k_n : rest};
+      s.radius = r;
+      s.mass = 1.0;
+      p.add(s, id++);
+    }
+  if (support == 1)
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        ParticleSpec s;
+        s.position = {(i + 0.35) * spacing, (j + 0.6) * spacing, 0.0};
+        s.radius = r;
+        s.mass = 1.0;
+        s.kind = Kind::wall;
+        p.add(s, id++);
+      }
+  const auto plane = [](int n, double edge, double z) {
+    std::vector<std::array<Vec3, 3>> soup;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const Vec3 a{i * edge, j * edge, z}, b{(i + 1) * edge, j * edge, z},
+            c{(i + 1) * edge, (j + 1) * edge, z}, d{i * edge, (j + 1) * edge, z};
+        soup.push_back({a, b, c});
+        soup.push_back({a, c, d});
+      }
+    MeshWall w;
+    w.mesh = TriangleMesh::weld(soup);
+    return w;
+  };
+  std::vector<ShapedWall> walls;
+  if (support >= 2) walls.push_back(plane(side, spacing, 0.0));
+  if (support == 3) walls.push_back(plane(707, side * spacing / 707, 30.0));
+  ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(1)};
+  law.coeffs.set(0, 0, {k_n, 2.0 / 7.0 * k_n, 20.0, 10.0, 0.5, 0.5});
+  Simulation sim(cfg, std::move(p), {}, {}, law, Comm::self(), walls);
+  for (auto _ : st) sim.step();
+  st.counters["contacts"] = static_cast<double>(sim.last_tally().touching);
+}
+BENCHMARK(BM_GrainsOn)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 } // namespace
 } // namespace yuxi

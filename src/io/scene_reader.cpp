@@ -341,6 +341,7 @@ void read_basin(Scene& scene, TomlReader& root) {
   s.radius = b->positive("radius", s.radius);
   s.wall_thickness = b->positive("wall_thickness", s.wall_thickness);
   s.wall_height = static_cast<int>(b->integer("wall_height", s.wall_height, 1, 1 << 20));
+  s.side_particles = b->choice("side_wall", {"particles", "none"}, "particles") == "particles";
   s.bottom_layers = static_cast<int>(b->integer("bottom_layers", s.bottom_layers, 1, 1 << 20));
   s.fill_layers = static_cast<int>(b->integer("fill_layers", s.fill_layers, 0, 1 << 20));
   s.wall_radius = b->positive("wall_radius", s.wall_radius);

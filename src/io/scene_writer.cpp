@@ -73,6 +73,12 @@ void write_shaped_walls(const Scene& s, toml::table& doc) {
                     {"torque_point", vec(m->torque_point)}};
       write_motion(m->motion, t);
       write_window(m->active, t);
+      if (const auto* servo = dynamic_cast<const ForceServo*>(m->controller.get())) {
+        t.insert("servo_axis", vec(m->servo_axis));
+        t.insert("servo_force", servo->target());
+        t.insert("servo_gain", servo->gain());
+        t.insert("servo_max_speed", servo->max_speed());
+      }
       meshes.push_back(t);
     } else {
       const auto& c = std::get<CylinderWall>(wall);
@@ -180,6 +186,7 @@ std::string resolved_scene_toml(const Scene& s) {
                            {"radius", k.radius},
                            {"wall_thickness", k.wall_thickness},
                            {"wall_height", k.wall_height},
+                           {"side_wall", k.side_particles ? "particles" : "none"},
                            {"bottom_layers", k.bottom_layers},
                            {"fill_layers", k.fill_layers},
                            {"wall_radius", k.wall_radius},

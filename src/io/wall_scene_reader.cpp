@@ -122,6 +122,13 @@ void read_mesh(Scene& scene, TomlReader& t, std::size_t index) {
   w.torque_point = t.vec3("torque_point", std::holds_alternative<RigidMotion>(w.motion)
                                               ? std::get<RigidMotion>(w.motion).center
                                               : Vec3{});
+  if (t.has("servo_force")) {
+    // A piston: its speed along servo_axis is gain (servo_force - the grains' push), at most
+    // servo_max_speed. Stable for gain k_n dt < 1 (k_n: the stiffest grain-wall spring).
+    w.servo_axis = unit(t, "servo_axis", Vec3{0, 0, -1});
+    w.controller = std::make_shared<ForceServo>(t.number("servo_force"), t.positive("servo_gain"),
+                                                t.positive("servo_max_speed"));
+  }
   check_mesh_in_box(scene, t, w);
   t.finish();
   scene.walls.push_back(std::move(w));

@@ -60,8 +60,8 @@ BuiltParticles build_fish_basin(const FishBasinSpec& b, const Vec3& origin) {
         const Vec3 centre = origin + b.spacing * Vec3{i + 0.5, j + 0.5, k + 0.5};
         const bool bottom = k < b.bottom_layers && rho <= outer;
         const bool above_bottom = k >= b.bottom_layers;
-        const bool side =
-            above_bottom && k < b.bottom_layers + b.wall_height && rho > b.radius && rho <= outer;
+        const bool side = b.side_particles && above_bottom && k < b.bottom_layers + b.wall_height &&
+                          rho > b.radius && rho <= outer;
         const bool grain = k >= b.bottom_layers + gap &&
                            k < b.bottom_layers + gap + b.fill_layers && rho <= b.radius - gap;
         if (bottom || side) {

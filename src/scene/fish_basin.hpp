@@ -38,6 +38,8 @@ struct FishBasinSpec {
   RadialCosineMotion excitation{{}, 2, 0.9, 400.0, 10.0}; // centre is set by the builder
   std::uint8_t grain_material = 0;
   std::uint8_t wall_material = 1;
+  // false: no side wall of particles (a [[mesh]] or [[cylinder]] stands in for it)
+  bool side_particles = true;
 };
 
 struct BuiltParticles {

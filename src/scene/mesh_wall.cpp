@@ -9,6 +9,7 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
                        WallTouches& out) const {
   scratch.clear();
   const double r2 = r * r;
+  const bool still = !moves(); // every vertex velocity zero
   for (const std::uint32_t t : triangles) {
     const auto& tri = mesh.triangles[t];
     const Vec3 &a = x[tri[0]], &b = x[tri[1]], &cc = x[tri[2]];
@@ -24,7 +25,8 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
       f.touch.normal = normalized(cross(b - a, cc - a));
     }
     f.touch.point = q.point;
-    Vec3 vel = q.weight[0] * v[tri[0]] + q.weight[1] * v[tri[1]] + q.weight[2] * v[tri[2]];
+    Vec3 vel = still ? Vec3{}
+                     : q.weight[0] * v[tri[0]] + q.weight[1] * v[tri[1]] + q.weight[2] * v[tri[2]];
     if (surface_velocity != Vec3{})
       vel += surface_velocity - dot(surface_velocity, f.touch.normal) * f.touch.normal;
     f.touch.velocity = vel;
@@ -48,8 +50,14 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
     }
     scratch.push_back(f);
   }
+  if (scratch.size() <= 1) { // (the rules keep a lone touch)
+    out.n = scratch.size();
+    out.dropped = 0;
+    if (out.n == 1) out.at[0] = scratch[0].touch;
+    return;
+  }
   select_touches(
-      scratch, cos_merge(), [&](std::uint32_t t) { return mesh.triangles[t]; }, order, out);
+      scratch, cos_merge_, [&](std::uint32_t t) { return mesh.triangles[t]; }, order, out);
 }
 
 } // namespace yuxi

@@ -7,11 +7,13 @@
 #include "core/vec3.hpp"
 #include "scene/active_window.hpp"
 #include "scene/triangle_mesh.hpp"
+#include "scene/wall_controller.hpp"
 #include "scene/wall_motion.hpp"
 #include "scene/wall_touch.hpp"
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <string>
@@ -39,22 +41,31 @@ struct MeshWall {
   double merge_degrees = 15.0;
   // The point about which walls.csv gives the torque on the wall.
   Vec3 torque_point;
+  // A servo-controlled wall: its controller sets its speed along servo_axis (unit) at every
+  // step; servo_offset is how far it has moved along the axis, servo_speed its speed now. The
+  // prescribed motion, if any, adds to it.
+  std::shared_ptr<WallController> controller;
+  Vec3 servo_axis{0, 0, -1};
+  double servo_offset = 0.0; // [length]
+  double servo_speed = 0.0;  // [length/time]
 
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;
 
-  // Moves every vertex to time t.
+  // Moves every vertex to time t (and takes the cosine of the merge angle).
   void place(double t) {
+    cos_merge_ = std::cos(merge_degrees * std::numbers::pi / 180.0);
     x.resize(mesh.vertices.size());
     v.resize(mesh.vertices.size());
     const WallMotionAtTime now = at_time(motion, t);
+    const Vec3 shift = servo_offset * servo_axis, push = servo_speed * servo_axis;
     for (std::size_t k = 0; k < x.size(); ++k) {
       const PlacedState p = yuxi::place(now, mesh.vertices[k]);
-      x[k] = p.position;
-      v[k] = p.velocity;
+      x[k] = p.position + shift;
+      v[k] = p.velocity + push;
     }
   }
-  bool moves() const { return !std::holds_alternative<StaticMotion>(motion); }
+  bool moves() const { return controller || !std::holds_alternative<StaticMotion>(motion); }
 
   // The contacts of a sphere (centre c, radius r) with the listed triangles, as placed last.
   // `scratch` and `order` hold candidates between calls (no allocation once warm).
@@ -62,7 +73,8 @@ struct MeshWall {
                std::vector<FeatureTouch>& scratch, std::vector<std::uint32_t>& order,
                WallTouches& out) const;
 
-  double cos_merge() const { return std::cos(merge_degrees * std::numbers::pi / 180.0); }
+private:
+  double cos_merge_ = 1.0; // of merge_degrees, at the last place()
 };
 
 } // namespace yuxi

@@ -78,11 +78,7 @@ using WallMotionAtTime =
     std::variant<StaticMotion::AtTime, RadialCosineMotion::AtTime, RigidMotion::AtTime>;
 
 inline WallMotionAtTime at_time(const WallMotion& m, double t) {
-  // (alternative by alternative: GCC 12 warns of uninitialised reads, wrongly, through the
-  // std::visit of a variant it inlines whole)
-  if (const auto* r = std::get_if<RigidMotion>(&m)) return r->at_time(t);
-  if (const auto* c = std::get_if<RadialCosineMotion>(&m)) return c->at_time(t);
-  return StaticMotion::AtTime{};
+  return std::visit([&](const auto& motion) -> WallMotionAtTime { return motion.at_time(t); }, m);
 }
 inline bool at_rest(const WallMotionAtTime& m) {
   return std::visit([](const auto& motion) { return motion.at_rest(); }, m);

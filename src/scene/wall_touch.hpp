@@ -106,10 +106,15 @@ void select_touches(const std::vector<FeatureTouch>& cand, double cos_merge, con
         if (cand[j].kind == c.kind && cand[j].a == c.a && cand[j].b == c.b) keep = false;
     if (keep) order.push_back(static_cast<std::uint32_t>(k));
   }
-  // Rule 3, deepest first (ties: candidate order, which is ascending triangle index).
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) {
-    return cand[p].touch.distance < cand[q].touch.distance;
-  });
+  // Rule 3, deepest first (ties: candidate order, which is ascending triangle index). An
+  // insertion sort: a grain has a handful of touches, and it allocates nothing.
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const std::uint32_t moving = order[k];
+    std::size_t j = k;
+    for (; j > 0 && cand[order[j - 1]].touch.distance > cand[moving].touch.distance; --j)
+      order[j] = order[j - 1];
+    order[j] = moving;
+  }
   out.n = 0;
   out.dropped = 0;
   for (const std::uint32_t k : order) out.keep_unless_merged(cand[k].touch, cos_merge);

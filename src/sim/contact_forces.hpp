@@ -86,11 +86,13 @@ public:
   // candidate's touches (scene/wall_touch.hpp) pick up the states of its previous contacts
   // whose normals are nearest theirs (within 60 degrees), so a contact's history carries over
   // when its point moves onto another triangle; a previous contact that nothing picks up has
-  // opened. `loads` (one per wall) gets what the grains do to each wall.
+  // opened. `loads` (one per wall) gets what the grains do to each wall, `elements` the force
+  // of each contact on its triangle or patch.
   void compute_walls(ParticleStore& s, const NeighborList& list,
                      const std::vector<ShapedWall>& walls, double t, double dt, ContactTally& tally,
-                     std::vector<WallLoad>& loads) {
+                     std::vector<WallLoad>& loads, std::vector<ElementForce>& elements) {
     loads.assign(walls.size(), WallLoad{});
+    elements.clear();
     if (list.walls.empty()) return;
     std::vector<Vec3> torque_points(walls.size());
     std::vector<std::uint8_t> active(walls.size());
@@ -113,19 +115,40 @@ public:
         else
           std::get<CylinderWall>(wall).touches(s.x[i], ai, touches);
       }
-      WallContactSet<State>& before = history.wall[k];
-      if (touches.n == 0 && before.n == 0) continue;
-      WallContactSet<State> now;
-      std::array<bool, max_wall_contacts> taken{};
-      for (std::size_t c = 0; c < touches.n && c < max_wall_contacts; ++c) {
-        const WallTouch& touch = touches.at[c];
-        int match = -1;
+      WallContactSet<State>& set = history.wall[k];
+      if (touches.n == 0 && set.n == 0) continue;
+      // Each new contact (deepest first) takes the free previous state of nearest normal.
+      const std::size_t n = std::min(touches.n, max_wall_contacts);
+      int match[max_wall_contacts];
+      bool taken[max_wall_contacts] = {};
+      for (std::size_t c = 0; c < n; ++c) {
+        match[c] = -1;
         double best = 0.5; // cos 60 degrees
-        for (std::size_t m = 0; m < before.n; ++m)
-          if (!taken[m] && dot(before.at[m].normal, touch.normal) > best)
-            best = dot(before.at[m].normal, touch.normal), match = static_cast<int>(m);
-        State state = match >= 0 ? before.at[static_cast<std::size_t>(match)].state : State{};
-        if (match >= 0) taken[static_cast<std::size_t>(match)] = true;
+        for (std::size_t m = 0; m < set.n; ++m) {
+          const double d = dot(set.at[m].normal, touches.at[c].normal);
+          if (!taken[m] && d > best) best = d, match[c] = static_cast<int>(m);
+        }
+        if (match[c] >= 0) taken[match[c]] = true;
+      }
+      for (std::size_t m = 0; m < set.n; ++m)
+        if (!taken[m]) tally.dissipated += Model::release(coeffs, set.at[m].state);
+      // Contact c's state to slot c, by swaps (no copy of the whole set).
+      int slot_of[max_wall_contacts], held_by[max_wall_contacts];
+      for (int m = 0; m < static_cast<int>(max_wall_contacts); ++m) slot_of[m] = held_by[m] = m;
+      for (std::size_t c = 0; c < n; ++c) {
+        if (match[c] < 0) continue;
+        const int from = slot_of[match[c]], here = static_cast<int>(c);
+        if (from == here) continue;
+        std::swap(set.at[c], set.at[from]);
+        const int displaced = held_by[here];
+        held_by[here] = match[c], held_by[from] = displaced;
+        slot_of[match[c]] = here, slot_of[displaced] = from;
+      }
+      for (std::size_t c = 0; c < n; ++c) {
+        const WallTouch& touch = touches.at[c];
+        State& state = set.at[c].state;
+        if (match[c] < 0) state = State{};
+        set.at[c].normal = touch.normal;
         ContactGeometry g;
         g.n = touch.normal;
         g.overlap = ai - touch.distance;
@@ -149,12 +172,10 @@ public:
         load.torque -= cross(touch.point - torque_points[ref.wall], r.force);
         load.work += work;
         ++load.contacts;
+        elements.push_back({ref.wall, touch.element, -r.force});
         track_overlap(g.overlap, ai, i, tally);
-        now.at[now.n++] = {touch.normal, state};
       }
-      for (std::size_t m = 0; m < before.n; ++m)
-        if (!taken[m]) tally.dissipated += Model::release(coeffs, before.at[m].state);
-      before = now;
+      set.n = static_cast<std::uint8_t>(n);
     }
   }
 

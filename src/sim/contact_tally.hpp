@@ -4,6 +4,7 @@
 #include "core/vec3.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace yuxi {
@@ -24,6 +25,14 @@ struct WallLoad {
   Vec3 torque;     // on the wall about its torque point [force length]
   double work = 0; // the wall's work on the grains this step: sum F_wall->grain . v_wall dt
   std::size_t contacts = 0;
+};
+
+// The force of one grain-wall contact on its wall's element (a mesh's triangle, a cylinder's
+// patch), for the meshes' loads in snapshots.
+struct ElementForce {
+  std::uint32_t wall;
+  std::uint32_t element;
+  Vec3 force; // on the wall [force]
 };
 
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain

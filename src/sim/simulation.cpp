@@ -145,6 +145,7 @@ void Simulation::step() {
   books_.dissipated += tally_.dissipated;
   books_.wall_work += tally_.wall_work;
   for (std::size_t w = 0; w < wall_loads_.size(); ++w) wall_work_[w] += wall_loads_[w].work;
+  steer_servo_walls();
 }
 
 bool Simulation::kick_drift() {
@@ -341,7 +342,9 @@ void Simulation::compute_forces(bool advance_history) {
   if (!walls_.empty()) {
     timer.switch_to(timers_.pair);
     std::visit(
-        [&](auto& f) { f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_); },
+        [&](auto& f) {
+          f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_, element_forces_);
+        },
         forces_);
   }
   check_health();

@@ -115,6 +115,9 @@ public:
   // cumulative work on the grains (in `work`), summed over the ranks onto every rank.
   // Collective.
   std::vector<WallLoad> wall_loads() const;
+  // The force on each triangle of mesh `wall` at the last force evaluation, summed over the
+  // ranks onto every rank (zero where nothing touches). Collective.
+  std::vector<Vec3> triangle_forces(std::size_t wall) const;
   const NeighborList& neighbor_list() const { return list_; }
   const Halo& halo() const { return halo_; }
   // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
@@ -218,6 +221,10 @@ private:
   bool place_meshes(double t, bool every_one);
   // The grain-wall candidates of a list build, from the triangles binned on the cells.
   void list_wall_candidates();
+  // Servo-controlled meshes: each controller is told the grains' force on its wall (summed
+  // over the ranks: one reduction per step, only where such walls are) and sets the wall's
+  // speed for the next step; the wall moves by it over that step.
+  void steer_servo_walls();
   // The walls' part of a checkpoint: each mesh file's CRC-32 (a resume with another file is
   // refused), the time of the last list build (where the meshes stood), the work of each wall.
   template <class Archive> void checkpoint_walls(Archive& ar) {
@@ -229,6 +236,21 @@ private:
     if constexpr (Archive::loading) check_wall_files(saved);
     ar.value(walls_built_at_);
     ar.vector(wall_work_);
+    std::vector<double> servo;
+    for (const ShapedWall& w : walls_)
+      if (const auto* m = std::get_if<MeshWall>(&w))
+        servo.insert(servo.end(), {m->servo_offset, m->servo_speed});
+    ar.vector(servo);
+    if constexpr (Archive::loading) {
+      std::size_t k = 0;
+      for (ShapedWall& w : walls_)
+        if (auto* m = std::get_if<MeshWall>(&w)) {
+          if (k + 2 > servo.size())
+            throw std::invalid_argument("the checkpoint's walls are not this scene's");
+          m->servo_offset = servo[k], m->servo_speed = servo[k + 1];
+          k += 2;
+        }
+    }
     if constexpr (Archive::loading)
       if (wall_work_.size() != walls_.size())
         throw std::invalid_argument("the checkpoint's walls are not this scene's");
@@ -289,8 +311,9 @@ private:
   std::vector<PlaneWall> planes_;
   std::vector<WallMotion> motions_;
   std::vector<ShapedWall> walls_;
-  std::vector<WallLoad> wall_loads_; // this rank's, of the last force evaluation
-  std::vector<double> wall_work_;    // this rank's part of each shaped wall's cumulative work
+  std::vector<WallLoad> wall_loads_;         // this rank's, of the last force evaluation
+  std::vector<ElementForce> element_forces_; // this rank's wall contacts, of the same
+  std::vector<double> wall_work_; // this rank's part of each shaped wall's cumulative work
   // Each mesh's triangles binned on the cells (CSR by cell), reused while a still mesh and the
   // cells stay as they were.
   struct MeshBins {

@@ -152,4 +152,36 @@ std::vector<WallLoad> Simulation::wall_loads() const {
   return out;
 }
 
+void Simulation::steer_servo_walls() {
+  std::vector<double> along;
+  std::vector<MeshWall*> servos;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    auto* mesh = std::get_if<MeshWall>(&walls_[w]);
+    if (!mesh || !mesh->controller) continue;
+    servos.push_back(mesh);
+    along.push_back(w < wall_loads_.size() ? -dot(wall_loads_[w].force, mesh->servo_axis) : 0.0);
+  }
+  if (servos.empty()) return;
+  comm_.sum(along.data(), static_cast<int>(along.size()));
+  for (std::size_t k = 0; k < servos.size(); ++k) {
+    MeshWall& m = *servos[k];
+    const double speed = m.controller->speed(along[k], time_);
+    if (!std::isfinite(speed))
+      throw SimulationError(fmt::format("step {}, t = {}: the controller of wall '{}' gave the "
+                                        "speed {}",
+                                        step_, time_, m.name, speed));
+    m.servo_speed = speed;
+    m.servo_offset += speed * config_.dt;
+  }
+}
+
+std::vector<Vec3> Simulation::triangle_forces(std::size_t wall) const {
+  const auto* mesh = std::get_if<MeshWall>(&walls_.at(wall));
+  std::vector<Vec3> f(mesh ? mesh->mesh.n_triangles() : 0);
+  for (const ElementForce& e : element_forces_)
+    if (e.wall == wall && e.element < f.size()) f[e.element] += e.force;
+  if (!f.empty()) comm_.sum(&f[0].x, static_cast<int>(3 * f.size()));
+  return f;
+}
+
 } // namespace yuxi

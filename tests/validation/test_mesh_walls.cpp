@@ -8,7 +8,9 @@
 //  - a sphere at rest in a symmetric 90 degree groove loads each face with m g / sqrt(2) along
 //    its normal (statics: two forces at 45 degrees balance m g); with friction each face
 //    carries m g / 2 of the weight;
-//  - passive meshes and cylinders never add energy, over a sweep of angles, spins and models.
+//  - passive meshes and cylinders never add energy, over a sweep of angles, spins and models;
+//  - a servo piston compresses a bed to its target force and holds it there (to 1 %), with the
+//    energy books closing.
 #include "core/random.hpp"
 #include "core/units.hpp"
 #include "validation/impact_probe.hpp"
@@ -237,6 +239,46 @@ TEST(MeshWalls, PassiveMeshesAndCylindersNeverAddEnergy) {
             ++impacts;
           }
   EXPECT_EQ(impacts, 2 * 4 * 3 * 2 * static_cast<int>(ContactModels::names.size()));
+}
+
+TEST(MeshWalls, AServoPistonHoldsItsTargetForce) {
+  // 64 grains in a 4.2 x 4.2 box with walls; a square lid comes down on them until they push
+  // back with 300 (the weight of the bed is 628, carried by the floor).
+  LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 50.0, 20.0, 0.3, 0.3};
+  SimulationConfig cfg;
+  cfg.box = {{0, 0, 0}, {4.2, 4.2, 8}};
+  cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
+  cfg.gravity = {0, 0, -9.81};
+  cfg.dt = 1e-4;
+  cfg.skin = 0.05;
+  ParticleStore store;
+  GlobalId id = 0;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        ParticleSpec sp;
+        sp.position = {0.55 + 1.03 * i, 0.55 + 1.03 * j, 0.55 + 1.1 * k};
+        sp.radius = 0.5;
+        sp.mass = 1.0;
+        store.add(sp, id++);
+      }
+  MeshWall lid = square({2.1, 2.1, 6.0}, {0, 0, 1}, 3.0);
+  lid.name = "lid";
+  const double target = 300.0;
+  lid.controller = std::make_shared<ForceServo>(target, 1e-3, 0.5);
+  Simulation sim(cfg, std::move(store), {}, {}, validation::linear_law(c, 1), Comm::self(), {lid});
+  const double start = sim.energies().balance();
+  sim.run(100000);
+  double pushed = 0;
+  const int samples = 5000;
+  for (int k = 0; k < samples; ++k) {
+    sim.step();
+    pushed += sim.wall_loads()[0].force.z / samples; // the grains push the lid up
+  }
+  EXPECT_NEAR(pushed, target, 0.01 * target);
+  const auto books = sim.energies();
+  EXPECT_GT(books.wall_work, 0.0); // the lid did work on the bed
+  EXPECT_LT(std::abs(books.balance() - start), 0.02 * (books.dissipated + books.wall_work));
 }
 
 } // namespace
