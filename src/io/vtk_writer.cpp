@@ -152,28 +152,45 @@ VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem,
                      std::optional<std::int64_t> resume_after, const Comm& comm)
     : comm_(comm), folder_(std::move(folder)), stem_(std::move(stem)) {
   if (!resume_after || !comm_.root()) return; // (rank 0 keeps the collection)
-  // Frames are <stem>_<step>.vtu; the .pvd lists them with their times.
+  // Frames are <stem>_<step>.vtu and walls_<step>.vtp; the .pvd lists them with their times
+  // and parts.
   std::ifstream in(folder_ / (stem_ + ".pvd"));
   std::string line;
-  const std::string prefix = stem_ + "_";
   while (std::getline(in, line)) {
-    const auto t = line.find("timestep=\""), f = line.find("file=\"");
+    const auto t = line.find("timestep=\""), p = line.find("part=\""), f = line.find("file=\"");
     if (t == std::string::npos || f == std::string::npos) continue;
     const double time = std::stod(line.substr(t + 10));
+    const int part = p == std::string::npos ? 0 : std::stoi(line.substr(p + 6));
     const std::string file = line.substr(f + 6, line.find('"', f + 6) - f - 6);
-    const std::int64_t step = std::stoll(file.substr(prefix.size()));
+    const std::int64_t step = std::stoll(file.substr(file.rfind('_') + 1));
     if (step <= *resume_after)
-      frames_.emplace_back(time, file);
+      frames_.push_back({time, part, file});
     else
       std::filesystem::remove(folder_ / file);
   }
   write_collection();
 }
 
-void VtkSeries::write(const ParticleStore& s, std::int64_t step, double time) {
+void VtkSeries::write(const ParticleStore& s, std::int64_t step, double time,
+                      const WallSurface* walls) {
   const std::string name = fmt::format("{}_{:09d}.vtu", stem_, step);
   write_vtu(folder_ / name, s, comm_);
-  frames_.emplace_back(time, name);
+  frames_.push_back({time, 0, name});
+  if (walls) {
+    // Rank 0 writes them; a failure there stops every rank.
+    const std::string walls_name = fmt::format("walls_{:09d}.vtp", step);
+    std::string error;
+    if (comm_.root()) {
+      try {
+        write_vtp(folder_ / walls_name, *walls);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+    error = comm_.first_error(error);
+    if (!error.empty()) throw std::runtime_error(error);
+    frames_.push_back({time, 1, walls_name});
+  }
   write_collection();
 }
 
@@ -185,8 +202,9 @@ void VtkSeries::write_collection() {
     std::ofstream out(tmp);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
            "  <Collection>\n";
-    for (const auto& [t, file] : frames_)
-      out << fmt::format("    <DataSet timestep=\"{:.10g}\" part=\"0\" file=\"{}\"/>\n", t, file);
+    for (const auto& [t, part, file] : frames_)
+      out << fmt::format("    <DataSet timestep=\"{:.10g}\" part=\"{}\" file=\"{}\"/>\n", t, part,
+                         file);
     out << "  </Collection>\n</VTKFile>\n";
   }
   std::filesystem::rename(tmp, pvd);

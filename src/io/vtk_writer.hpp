@@ -1,11 +1,14 @@
 // VTK XML output that ParaView opens: one .vtu (unstructured grid of vertex cells, appended raw
-// binary data) per snapshot, and a .pvd collection naming them with their times. The .pvd is
-// rewritten after each frame, so it is valid whenever the run stops. On several MPI ranks every
-// rank writes its own particles into the one .vtu (no rank gathers the others').
+// binary data) per snapshot, with the scene's shaped walls, if it has any, beside it in a .vtp
+// (vtk_walls.hpp), and a .pvd collection naming them with their times (the particles as part 0,
+// the walls as part 1). The .pvd is rewritten after each frame, so it is valid whenever the run
+// stops. On several MPI ranks every rank writes its own particles into the one .vtu (no rank
+// gathers the others'); rank 0 writes the walls.
 #pragma once
 
 #include "core/particle_store.hpp"
 #include "domain/comm.hpp"
+#include "io/vtk_walls.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -27,16 +30,24 @@ public:
   explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles",
                      std::optional<std::int64_t> resume_after = std::nullopt,
                      const Comm& comm = Comm::self());
-  // Writes frame `<stem>_<step>.vtu` from every rank's owned particles and updates `<stem>.pvd`
+  // Writes frame `<stem>_<step>.vtu` from every rank's owned particles, and, given `walls`,
+  // `walls_<step>.vtp` from rank 0's (the same on every rank), and updates `<stem>.pvd`
   // (collective).
-  void write(const ParticleStore& s, std::int64_t step, double time);
+  void write(const ParticleStore& s, std::int64_t step, double time,
+             const WallSurface* walls = nullptr);
 
 private:
+  // One file of the collection: a part (0 the particles, 1 the walls) at a time.
+  struct DataSet {
+    double time;
+    int part;
+    std::string file;
+  };
   Comm comm_;
   std::filesystem::path folder_;
   std::string stem_;
   void write_collection();
-  std::vector<std::pair<double, std::string>> frames_;
+  std::vector<DataSet> frames_;
 };
 
 } // namespace yuxi

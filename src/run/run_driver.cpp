@@ -3,6 +3,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
+#include "io/vtk_walls.hpp"
 #include "io/vtk_writer.hpp"
 #include "run/progress.hpp"
 #include "run/run_analysis.hpp"
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 namespace yuxi {
 namespace {
@@ -98,7 +100,13 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   RunSummary summary;
   auto snapshot = [&] {
     const auto t0 = std::chrono::steady_clock::now();
-    if (vtk) vtk->write(sim.particles(), sim.step_count(), sim.time()); // collective
+    if (vtk) {
+      // The shaped walls beside the particles, in the same frame (none: no walls file).
+      std::optional<WallSurface> surface;
+      if (!sim.walls().empty()) surface = wall_surface(sim); // collective
+      vtk->write(sim.particles(), sim.step_count(), sim.time(),
+                 surface ? &*surface : nullptr); // collective
+    }
     if (dump) dump->write(sim.particles(), sim.step_count());
     summary.snapshot_seconds += seconds_since(t0);
   };

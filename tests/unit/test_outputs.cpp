@@ -107,5 +107,179 @@ TEST(EnergyCsv, RowsMatchTheHeader) {
   fs::remove_all(dir);
 }
 
+// The shaped walls in the snapshots: a grain at rest on a meshed square loads it with its
+// weight in walls_<step>.vtp (ASCII PolyData), which the .pvd lists as part 1 of the frame; a
+// resumed series drops the later wall frames with the particle frames; without walls no .vtp
+// is written and the .pvd is as before.
+namespace walls_in_snapshots {
+
+// The values of the ASCII DataArray `name` of a .vtp.
+std::vector<double> ascii_array(const std::string& xml, const std::string& name) {
+  const auto at = xml.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) return {};
+  const auto from = xml.find('>', at) + 1, to = xml.find("</DataArray>", from);
+  std::istringstream in(xml.substr(from, to - from));
+  std::vector<double> out;
+  for (double v; in >> v;) out.push_back(v);
+  return out;
+}
+
+std::int64_t attribute(const std::string& xml, const std::string& name) {
+  const auto at = xml.find(name + "=\"");
+  return at == std::string::npos ? -1 : std::stoll(xml.substr(at + name.size() + 2));
+}
+
+bool has_vtp(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".vtp") return true;
+  return false;
+}
+
+} // namespace walls_in_snapshots
+
+TEST(VtkWalls, AMeshCarriesTheWeightOfTheGrainOnIt) {
+  using namespace walls_in_snapshots;
+  const double r = 0.5, m = 1.0, g = 9.81, k_n = 1e5;
+  // The square [-2, 2]^2 at z = 0 cut into 2 x 2 cells of two triangles (area 2 each).
+  std::vector<std::array<Vec3, 3>> soup;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const double x = -2.0 + 2 * i, y = -2.0 + 2 * j;
+      const Vec3 a{x, y, 0}, b{x + 2, y, 0}, c{x + 2, y + 2, 0}, d{x, y + 2, 0};
+      soup.push_back({a, b, c});
+      soup.push_back({a, c, d});
+    }
+  MeshWall floor;
+  floor.name = "floor";
+  floor.mesh = TriangleMesh::weld(soup);
+  // One grain at its resting overlap on a face, settled by a damped linear law.
+  auto cfg = test::open_box(3.0, {0, 0, -g}, 1e-4);
+  const ParticleStore store = test::store_of({test::sphere({0.7, -0.4, r - m * g / k_n}, r, m)});
+  Simulation sim(cfg, store, {}, {},
+                 test::linear_law({k_n, 2.0 / 7.0 * k_n, 200.0, 100.0, 0.5, 0.5}), Comm::self(),
+                 {floor});
+
+  const auto dir = temp_dir("vtk_walls");
+  VtkSeries series(dir);
+  const WallSurface first = wall_surface(sim);
+  series.write(sim.particles(), sim.step_count(), sim.time(), &first);
+  sim.run(5000);
+  const WallSurface surface = wall_surface(sim);
+  series.write(sim.particles(), sim.step_count(), sim.time(), &surface);
+
+  const std::string vtp = slurp(dir / "walls_000005000.vtp");
+  ASSERT_NE(vtp.rfind("</VTKFile>"), std::string::npos);
+  EXPECT_EQ(attribute(vtp, "NumberOfPolys"), 8);
+  EXPECT_EQ(attribute(vtp, "NumberOfPoints"), 9);
+  const std::vector<double> force = ascii_array(vtp, "force"),
+                            pressure = ascii_array(vtp, "pressure"),
+                            wall = ascii_array(vtp, "wall"), points = ascii_array(vtp, "Points"),
+                            connectivity = ascii_array(vtp, "connectivity"),
+                            offsets = ascii_array(vtp, "offsets");
+  ASSERT_EQ(force.size(), 3u * 8);
+  ASSERT_EQ(pressure.size(), 8u);
+  EXPECT_EQ(wall, std::vector<double>(8, 0.0));
+  EXPECT_EQ(points.size(), 3u * 9);
+  EXPECT_EQ(connectivity.size(), 3u * 8);
+  EXPECT_EQ(offsets.back(), 24.0);
+  Vec3 total;
+  int loaded = 0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    const Vec3 f{force[3 * k], force[3 * k + 1], force[3 * k + 2]};
+    total += f;
+    if (f == Vec3{}) {
+      EXPECT_EQ(pressure[k], 0.0);
+      continue;
+    }
+    ++loaded;
+    EXPECT_NEAR(pressure[k], std::abs(f.z) / 2.0, 1e-12 * m * g); // normal z, area 2
+  }
+  EXPECT_GE(loaded, 1);
+  // The grain's weight, on the wall, downwards; as walls.csv has it.
+  EXPECT_NEAR(total.x, 0.0, 1e-9 * m * g);
+  EXPECT_NEAR(total.y, 0.0, 1e-9 * m * g);
+  EXPECT_NEAR(total.z, -m * g, 1e-9 * m * g);
+  EXPECT_LT(norm(total - sim.wall_loads()[0].force), 1e-12 * m * g);
+
+  // Both parts of each frame in the collection.
+  const std::string pvd = slurp(dir / "particles.pvd");
+  EXPECT_NE(pvd.find("part=\"0\" file=\"particles_000005000.vtu\""), std::string::npos);
+  EXPECT_NE(pvd.find("part=\"1\" file=\"walls_000005000.vtp\""), std::string::npos);
+  EXPECT_NE(pvd.find("timestep=\"0\" part=\"1\" file=\"walls_000000000.vtp\""), std::string::npos);
+
+  // Resumed after step 0: the later frame's files go, the first frame's stay.
+  VtkSeries resumed(dir, "particles", 0);
+  EXPECT_FALSE(fs::exists(dir / "walls_000005000.vtp"));
+  EXPECT_FALSE(fs::exists(dir / "particles_000005000.vtu"));
+  EXPECT_TRUE(fs::exists(dir / "walls_000000000.vtp"));
+  const std::string kept = slurp(dir / "particles.pvd");
+  EXPECT_NE(kept.find("part=\"1\" file=\"walls_000000000.vtp\""), std::string::npos);
+  EXPECT_EQ(kept.find("000005000"), std::string::npos);
+  resumed.write(sim.particles(), sim.step_count(), sim.time(), &surface);
+  EXPECT_EQ(slurp(dir / "particles.pvd"), pvd);
+  fs::remove_all(dir);
+}
+
+TEST(VtkWalls, NoWallsNoWallFiles) {
+  using namespace walls_in_snapshots;
+  const auto dir = temp_dir("vtk_no_walls");
+  VtkSeries series(dir);
+  series.write(three_particles(), 0, 0.0);
+  series.write(three_particles(), 10, 0.5);
+  EXPECT_FALSE(has_vtp(dir));
+  EXPECT_EQ(slurp(dir / "particles.pvd"),
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+            "  <Collection>\n"
+            "    <DataSet timestep=\"0\" part=\"0\" file=\"particles_000000000.vtu\"/>\n"
+            "    <DataSet timestep=\"0.5\" part=\"0\" file=\"particles_000000010.vtu\"/>\n"
+            "  </Collection>\n</VTKFile>\n");
+  fs::remove_all(dir);
+}
+
+TEST(VtkWalls, CylindersAreCutIntoTriangles) {
+  const Box box{{-2, -2, -3}, {2, 2, 5}};
+  CylinderWall endless; // about z, infinite: cut at the box's ends
+  endless.center = {0, 0, 1};
+  endless.radius = 1.5;
+  CylinderWall drum; // about y, capped between -1 and 2, turned by omega t
+  drum.axis = {0, 1, 0};
+  drum.radius = 1.0;
+  drum.lo = -1;
+  drum.hi = 2;
+  drum.capped = true;
+  drum.omega = 0.5;
+  WallSurface s;
+  s.add_cylinder(endless, box, 0.0, 0);
+  ASSERT_EQ(s.triangles.size(), 2u * 64);
+  ASSERT_EQ(s.points.size(), 2u * 64);
+  for (const Vec3& p : s.points) {
+    EXPECT_NEAR(std::hypot(p.x, p.y), 1.5, 1e-12);
+    EXPECT_TRUE(p.z == -3.0 || p.z == 5.0) << p.z;
+  }
+  s.add_cylinder(drum, box, 1.0, 1);
+  ASSERT_EQ(s.triangles.size(), 2u * 64 + 4u * 64);
+  ASSERT_EQ(s.points.size(), 4u * 64 + 2);
+  for (std::size_t k = 2 * 64; k < s.points.size(); ++k) {
+    const Vec3& p = s.points[k];
+    EXPECT_TRUE(p.y == -1.0 || p.y == 2.0) << p.y;
+    if (std::hypot(p.x, p.z) > 1e-12) {
+      EXPECT_NEAR(std::hypot(p.x, p.z), 1.0, 1e-12);
+    }
+  }
+  EXPECT_EQ(std::count(s.wall.begin(), s.wall.end(), 1), 4 * 64);
+  // The seam turned by omega t = 0.5 rad about y (from e1 = -z towards e2 = -x).
+  EXPECT_LT(norm(s.points[2 * 64] - Vec3{-std::sin(0.5), -1, -std::cos(0.5)}), 1e-12);
+  double area = 0.0;
+  for (std::size_t k = 0; k < s.triangles.size(); ++k) {
+    const auto& t = s.triangles[k];
+    area += 0.5 * norm(cross(s.points[t[1]] - s.points[t[0]], s.points[t[2]] - s.points[t[0]]));
+    EXPECT_EQ(s.pressure(k), 0.0);
+  }
+  const double polygon =
+      0.5 * 64 * std::sin(2 * std::numbers::pi / 64); // area of the 64-gon of radius 1
+  EXPECT_NEAR(area, 2 * 64 * std::sin(std::numbers::pi / 64) * (1.5 * 8 + 1.0 * 3) + 2 * polygon,
+              1e-9);
+}
+
 } // namespace
 } // namespace yuxi
