@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes the inputs of the rotating-drum scenes: the drum as a binary STL (a closed cylinder of
 `segments` facets about the y axis, with flat end caps) and its fill of grains as a LAMMPS data
-file (atom style sphere: id type diameter density x y z), on a jittered lattice in the lower part
-of the drum. Reduced units: grain diameter d = 1, mass 1 (density 6/pi), g = 1.
+file (atom style sphere: id type diameter density x y z), on a lattice in the lower part of the
+drum, jittered in all three directions (unjittered along the axis, the layers never touch: the
+bed would move as independent flat layers). Reduced units: grain diameter d = 1, mass 1 (density 6/pi), g = 1.
 
 usage: make_drum.py [--radius R] [--length L] [--segments N] [--fill F] [--seed S] OUTDIR
 """
@@ -50,7 +51,8 @@ def grains(radius, length, fill, seed):
                 if y > length - 0.6 or z > top or math.hypot(x, z) > radius - 0.7:
                     continue
                 d = rng.uniform(0.9, 1.0)
-                out.append((d, x + rng.uniform(-0.05, 0.05), y, z + rng.uniform(-0.05, 0.05)))
+                out.append((d, x + rng.uniform(-0.05, 0.05), y + rng.uniform(-0.05, 0.05),
+                            z + rng.uniform(-0.05, 0.05)))
     return out
 
 
