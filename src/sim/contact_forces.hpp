@@ -149,18 +149,8 @@ public:
         State& state = set.at[c].state;
         if (match[c] < 0) state = State{};
         set.at[c].normal = touch.normal;
-        ContactGeometry g;
-        g.n = touch.normal;
-        g.overlap = ai - touch.distance;
-        g.distance = touch.distance;
-        g.v_rel = s.v[i] - touch.velocity;
-        g.w_i = s.w[i];
-        g.w_j = Vec3{};
-        g.a_i = ai;
-        g.a_j = 0.0;
-        g.m_eff = 1.0 / s.inv_mass[i];
-        g.r_eff = ai;
-        g.dt = dt;
+        const ContactGeometry g =
+            against_wall(s, i, touch.normal, touch.distance, touch.velocity, dt);
         const ContactResult r = Model::evaluate(g, coeffs, state);
         s.f[i] += r.force;
         s.torque[i] += r.torque_i;
@@ -180,6 +170,26 @@ public:
   }
 
 private:
+  // The geometry of grain i against a wall (a plane, a triangle, a cylinder's patch) of zero
+  // radius and infinite mass: unit normal n from the wall to the centre, the centre at
+  // `distance` from the wall's point, which moves with `v_wall`.
+  static ContactGeometry against_wall(const ParticleStore& s, std::uint32_t i, const Vec3& n,
+                                      double distance, const Vec3& v_wall, double dt) {
+    ContactGeometry g;
+    g.n = n;
+    g.overlap = s.radius[i] - distance;
+    g.distance = distance;
+    g.v_rel = s.v[i] - v_wall;
+    g.w_i = s.w[i];
+    g.w_j = Vec3{};
+    g.a_i = s.radius[i];
+    g.a_j = 0.0;
+    g.m_eff = 1.0 / s.inv_mass[i];
+    g.r_eff = s.radius[i];
+    g.dt = dt;
+    return g;
+  }
+
   static void track_overlap(double overlap, double smaller_radius, std::size_t i,
                             ContactTally& tally) {
     if (overlap > tally.max_overlap_ratio * smaller_radius) { // divides only on a new maximum
@@ -382,18 +392,7 @@ private:
       }
       history.plane_live[k] = 1;
       const Vec3 v_wall = wall.velocity(t);
-      ContactGeometry g;
-      g.n = wall.normal;
-      g.overlap = ai - dist;
-      g.distance = dist;
-      g.v_rel = s.v[i] - v_wall;
-      g.w_i = s.w[i];
-      g.w_j = Vec3{};
-      g.a_i = ai;
-      g.a_j = 0.0;
-      g.m_eff = 1.0 / s.inv_mass[i];
-      g.r_eff = ai;
-      g.dt = dt;
+      const ContactGeometry g = against_wall(s, i, wall.normal, dist, v_wall, dt);
       const ContactResult r = Model::evaluate(g, law_.coeffs(s.material[i], wall.material), state);
       s.f[i] += r.force;
       s.torque[i] += r.torque_i;
