@@ -6,7 +6,11 @@ usage: make_side_wall.py [--radius R] [--center X Y] [--z0 Z] [--height H] [--se
 """
 import argparse
 import math
-import struct
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from binary_stl import write_binary_stl  # noqa: E402
 
 
 def main():
@@ -27,14 +31,7 @@ def main():
         lo0, lo1 = (x0, y0, a.z0), (x1, y1, a.z0)
         hi0, hi1 = (x0, y0, a.z0 + a.height), (x1, y1, a.z0 + a.height)
         tris += [(lo0, lo1, hi1), (lo0, hi1, hi0)]
-    with open(a.out, "wb") as f:
-        f.write(b"yuxi basin side wall".ljust(80, b" "))
-        f.write(struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-            for v in t:
-                f.write(struct.pack("<3f", *v))
-            f.write(struct.pack("<H", 0))
+    write_binary_stl(a.out, tris, "yuxi basin side wall")
     print(f"{a.out}: {len(tris)} triangles")
 
 

@@ -10,8 +10,11 @@ usage: make_drum.py [--radius R] [--length L] [--segments N] [--fill F] [--seed 
 import argparse
 import math
 import random
-import struct
+import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from binary_stl import write_binary_stl  # noqa: E402
 
 
 def drum_triangles(radius, length, segments):
@@ -25,17 +28,6 @@ def drum_triangles(radius, length, segments):
         tris.append(((0.0, 0.0, 0.0), b, a))                 # the cap at y = 0
         tris.append(((0.0, length, 0.0), d, c))              # the cap at y = length
     return tris
-
-
-def write_binary_stl(path, tris):
-    with open(path, "wb") as f:
-        f.write(b"yuxi rotating drum".ljust(80, b" "))
-        f.write(struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
-            for v in t:
-                f.write(struct.pack("<3f", *v))
-            f.write(struct.pack("<H", 0))
 
 
 def grains(radius, length, fill, seed):
@@ -66,7 +58,8 @@ def main():
     p.add_argument("outdir", type=Path)
     a = p.parse_args()
     a.outdir.mkdir(parents=True, exist_ok=True)
-    write_binary_stl(a.outdir / "drum.stl", drum_triangles(a.radius, a.length, a.segments))
+    write_binary_stl(a.outdir / "drum.stl", drum_triangles(a.radius, a.length, a.segments),
+                     "yuxi rotating drum")
     g = grains(a.radius, a.length, a.fill, a.seed)
     density = 6 / math.pi
     with open(a.outdir / "grains.data", "w") as f:

@@ -60,6 +60,11 @@ inline double norm(const Vec3& a) {
 inline Vec3 normalized(const Vec3& a) {
   return a / norm(a);
 }
+// A unit vector perpendicular to the unit vector a (crossed with whichever of x and y lies
+// farther from it).
+inline Vec3 perpendicular(const Vec3& a) {
+  return normalized(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+}
 inline bool is_finite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }

@@ -10,16 +10,20 @@
 namespace yuxi {
 namespace {
 
+toml::array vec(const Vec3& v) {
+  return toml::array{v.x, v.y, v.z};
+}
+
 // The motion of a mesh as the keys of its [[mesh]] table.
 void write_motion(const WallMotion& motion, toml::table& t) {
   if (const auto* r = std::get_if<RigidMotion>(&motion)) {
     t.insert("omega", r->omega);
-    t.insert("axis", toml::array{r->axis.x, r->axis.y, r->axis.z});
-    t.insert("axis_point", toml::array{r->center.x, r->center.y, r->center.z});
-    t.insert("velocity", toml::array{r->drift.x, r->drift.y, r->drift.z});
+    t.insert("axis", vec(r->axis));
+    t.insert("axis_point", vec(r->center));
+    t.insert("velocity", vec(r->drift));
     if (r->amplitude != 0.0) {
       t.insert("oscillate_amplitude", r->amplitude);
-      t.insert("oscillate_direction", toml::array{r->direction.x, r->direction.y, r->direction.z});
+      t.insert("oscillate_direction", vec(r->direction));
       t.insert("oscillate_omega", r->frequency);
     }
     t.insert("t0", r->t0);
@@ -27,7 +31,7 @@ void write_motion(const WallMotion& motion, toml::table& t) {
     t.insert("radial_mode", m->mode);
     t.insert("radial_amplitude", m->amplitude);
     t.insert("radial_omega", m->omega);
-    t.insert("radial_center", toml::array{m->center.x, m->center.y, m->center.z});
+    t.insert("radial_center", vec(m->center));
     t.insert("t0", m->t0);
   }
 }
@@ -35,10 +39,6 @@ void write_motion(const WallMotion& motion, toml::table& t) {
 void write_window(const ActiveWindow& w, toml::table& t) {
   if (std::isfinite(w.from)) t.insert("active_from", w.from);
   if (std::isfinite(w.until)) t.insert("active_until", w.until);
-}
-
-toml::array vec(const Vec3& v) {
-  return toml::array{v.x, v.y, v.z};
 }
 
 // Writes one model's pair keys (Model::fields, scene_fields.hpp) into a table.

@@ -45,8 +45,7 @@ void WallSurface::add_cylinder(const CylinderWall& c, const Box& box, double t,
   if (!(hi > lo) || segments < 3) return;
   // (e1, e2, axis) right-handed: the side's triangles face away from the axis, the caps'
   // outwards along it.
-  const Vec3 e1 =
-      normalized(cross(c.axis, std::abs(c.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 e1 = perpendicular(c.axis);
   const Vec3 e2 = cross(c.axis, e1);
   const auto n = static_cast<std::uint32_t>(segments);
   const auto ring_lo = static_cast<std::uint32_t>(points.size()), ring_hi = ring_lo + n;

@@ -13,11 +13,7 @@ void CylinderWall::touches(const Vec3& x, double r, WallTouches& out) const {
   const double rho = norm(radial);
   // The unit radial direction (any, on the axis itself: no side or rim contact is possible
   // there unless the radius is below the grain's).
-  Vec3 e = rho > 0.0 ? radial * (1.0 / rho) : Vec3{};
-  if (rho == 0.0) {
-    e = std::abs(axis.x) < 0.9 ? cross(axis, Vec3{1, 0, 0}) : cross(axis, Vec3{0, 1, 0});
-    e = normalized(e);
-  }
+  const Vec3 e = rho > 0.0 ? radial * (1.0 / rho) : perpendicular(axis);
   const auto add = [&](double distance, const Vec3& normal, const Vec3& point,
                        std::uint32_t element) {
     if (!(distance < r)) return;

@@ -228,12 +228,11 @@ private:
   // The walls' part of a checkpoint: each mesh file's CRC-32 (a resume with another file is
   // refused), the time of the last list build (where the meshes stood), the work of each wall.
   template <class Archive> void checkpoint_walls(Archive& ar) {
-    std::vector<std::uint32_t> crcs;
+    std::vector<std::uint32_t> crcs; // this scene's, replaced by the saved ones on loading
     for (const ShapedWall& w : walls_)
       crcs.push_back(std::holds_alternative<MeshWall>(w) ? std::get<MeshWall>(w).file_crc32 : 0);
-    std::vector<std::uint32_t> saved = crcs;
-    ar.vector(saved);
-    if constexpr (Archive::loading) check_wall_files(saved);
+    ar.vector(crcs);
+    if constexpr (Archive::loading) check_wall_files(crcs);
     ar.value(walls_built_at_);
     ar.vector(wall_work_);
     std::vector<double> servo;
@@ -324,7 +323,7 @@ private:
     std::array<int, 3> dims{};
   };
   std::vector<MeshBins> mesh_bins_;
-  std::vector<std::vector<Vec3>> mesh_x_build_; // each mesh's vertices at the last list build
+  std::vector<std::vector<Vec3>> mesh_x_build_; // each moving mesh's vertices at the last build
   double walls_built_at_ = 0.0;                 // time of the last list build
   AnyContactLaw law_;
   Forces forces_;

@@ -54,7 +54,7 @@ void Simulation::list_wall_candidates() {
     }
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
-    mesh_x_build_[w] = mesh.x;
+    if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves away from it)
     // Each triangle's box, as placed now.
     const auto box_of = [&](std::uint32_t t) {
       const auto& tri = mesh.mesh.triangles[t];

@@ -38,7 +38,7 @@ std::vector<AnyContactLaw> example_laws() {
 
 // A square of side 2 h in the plane through p with unit normal n, cut into two triangles.
 MeshWall square(const Vec3& p, const Vec3& n, double h) {
-  const Vec3 e1 = normalized(cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 e1 = perpendicular(n);
   const Vec3 e2 = cross(n, e1);
   const Vec3 a = p - h * e1 - h * e2, b = p + h * e1 - h * e2, c = p + h * e1 + h * e2,
              d = p - h * e1 + h * e2;
