@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
-# errors), checks formatting, runs the unit, validation, CLI, crash and MPI tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer (but those labelled heavy, minutes each there),
-# then each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every
-# test in Release. Long validation cases: ctest --preset long.
+# errors), checks formatting, builds the sanitizer tier (clang, AddressSanitizer +
+# UndefinedBehaviorSanitizer, with the libFuzzer targets in the same build), runs the unit,
+# validation, CLI, crash and MPI tests there (but those labelled heavy, minutes each there), then
+# each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every test
+# in Release. Long validation cases: ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer) and runs
-# each for a bounded time on its kept corpus (tests/fuzz/corpus/<target>). A crash, leak or
-# sanitizer report fails the script and leaves the reproducer in build/fuzz/artifacts/; fixed
+# Builds the libFuzzer targets (the `asan` preset: clang, AddressSanitizer +
+# UndefinedBehaviorSanitizer, the sanitizer tier's build) and runs each for a bounded time on its
+# kept corpus (tests/fuzz/corpus/<target>). A crash, leak or sanitizer report fails the script
+# and leaves the reproducer in build/asan/fuzz-artifacts/; fixed
 # findings are kept in the corpus as regression-* inputs.
 # usage: tests/fuzz/run.sh [SECONDS_PER_TARGET]   (default 60: explore, corpus grows)
 #        tests/fuzz/run.sh --runs N                 (N inputs per target from a fixed seed:
@@ -17,24 +18,25 @@ elif [[ -n "${1:-}" ]]; then
   seconds=$1
 fi
 if ((seconds > 0)); then limit=(-max_total_time="$seconds"); fi
-cmake --preset fuzz > /dev/null
-cmake --build --preset fuzz --target fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl
-mkdir -p build/fuzz/artifacts
+build=build/asan
+cmake --preset asan > /dev/null
+cmake --build --preset asan --target fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl
+mkdir -p $build/fuzz-artifacts
 status=0
 for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl; do
   corpus=tests/fuzz/corpus/${target#fuzz_}
   echo "== $target: ${limit[*]} on $(ls "$corpus" | wc -l) corpus files"
   # New inputs go to a scratch folder; the kept corpus is only read. To keep what a run found:
-  # build/fuzz/tests/fuzz/<target> -merge=1 tests/fuzz/corpus/<name> build/fuzz/new/<target>
-  mkdir -p "build/fuzz/new/$target"
-  if ! build/fuzz/tests/fuzz/$target "build/fuzz/new/$target" "$corpus" "${limit[@]}" -max_len=65536 \
-      -rss_limit_mb=4096 -timeout=20 -artifact_prefix=build/fuzz/artifacts/$target- \
-      -print_final_stats=1 > "build/fuzz/$target.log" 2>&1; then
+  # build/asan/tests/fuzz/<target> -merge=1 tests/fuzz/corpus/<name> build/asan/fuzz-new/<target>
+  mkdir -p "$build/fuzz-new/$target"
+  if ! $build/tests/fuzz/$target "$build/fuzz-new/$target" "$corpus" "${limit[@]}" -max_len=65536 \
+      -rss_limit_mb=4096 -timeout=20 -artifact_prefix=$build/fuzz-artifacts/$target- \
+      -print_final_stats=1 > "$build/fuzz-$target.log" 2>&1; then
     echo "FINDING in $target:"
-    tail -40 "build/fuzz/$target.log"
+    tail -40 "$build/fuzz-$target.log"
     status=1
   else
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build/fuzz/$target.log" || true
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$build/fuzz-$target.log" || true
   fi
 done
 exit $status

@@ -19,11 +19,12 @@ namespace yuxi {
 namespace {
 
 // 125 polydisperse grains with random velocities in a closed box (flat walls on every face).
-Simulation gas(const test::Coeffs& c, double dt, double floor_amplitude = 0.0) {
+Simulation gas(const test::Coeffs& c, double dt, double floor_amplitude = 0.0,
+               std::uint64_t seed = 42) {
   auto cfg = test::open_box(4.0, {0, 0, -1.0}, dt);
   cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
   cfg.skin = 0.2;
-  const auto specs = test::gas_grains(42);
+  const auto specs = test::gas_grains(seed);
   std::vector<PlaneWall> planes;
   if (floor_amplitude > 0) {
     cfg.box.boundary[2] = Boundary::open;
@@ -41,12 +42,21 @@ double contact_time(double k_n) {
   return pi / std::sqrt(k_n / (0.35 * 0.35 * 0.35));
 }
 
+// The gas is chaotic: at dt and dt/2 it follows different trajectories after a few collisions,
+// and the largest departure of one run is that of its hardest collision, so the ratio of one
+// pair of runs scatters from about 2 to 8 with the round-off of the compiler. Summed over
+// several gases, the departures average over many collisions and the ratio is the method's
+// (measured: 3.8 with GCC -O3, 3.5 with clang -O1 under the sanitizers).
 TEST(Energy, ConservedToSecondOrderWithoutDampingOrFriction) {
   const test::Coeffs c{1e4, 0, 0, 0, 0, 0};
   const double dt = contact_time(c.k_n) / 40;
-  Simulation a = gas(c, dt), b = gas(c, dt / 2);
-  const double e0 = a.energies().mechanical();
-  const double err_a = test::books_drift(a, 2.0), err_b = test::books_drift(b, 2.0);
+  double err_a = 0, err_b = 0, e0 = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    Simulation a = gas(c, dt, 0.0, seed), b = gas(c, dt / 2, 0.0, seed);
+    e0 += a.energies().mechanical();
+    const double da = test::books_drift(a, 1.0), db = test::books_drift(b, 1.0);
+    err_a += da, err_b += db;
+  }
   EXPECT_LT(err_a / e0, 2e-3);
   EXPECT_GT(err_a / err_b, 3.0) << "error must fall like dt^2";
   EXPECT_LT(err_a / err_b, 5.5);
