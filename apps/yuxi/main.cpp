@@ -25,6 +25,14 @@ int main(int argc, char** argv) {
                   "Continue the run in this folder from its newest valid checkpoint")
       ->check(CLI::ExistingDirectory)
       ->excludes(scene_opt);
+  auto* from_opt =
+      run->add_option("--from", opt.from,
+                      "Start from this checkpoint (a file, or a run folder's newest valid one): "
+                      "its particles, contact history, walls, time and energy books, under the "
+                      "given scene")
+          ->check(CLI::ExistingPath)
+          ->needs(scene_opt);
+  run->get_option("--resume")->excludes(from_opt);
   run->add_option("-o,--output", opt.output_dir, "Output folder (default: runs/<scene name>)");
   run->add_flag("--overwrite", opt.overwrite, "Replace an existing output folder");
   run->add_flag("--force", opt.force_dt, "Run even if dt exceeds t_c/10 of the stiffest contact");

@@ -142,6 +142,74 @@ bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
   }
 }
 
+// The checkpoint of --from: the file itself, or the newest valid one of a run folder.
+std::optional<CheckpointData> read_branch_point(const std::string& from, const Comm& comm) {
+  if (!fs::is_directory(from)) return read_checkpoint(from, comm);
+  std::vector<std::string> refused;
+  auto data = CheckpointSet(from).newest_valid(comm, &refused);
+  if (comm.root())
+    for (const auto& r : refused)
+      fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
+  if (!data)
+    throw CheckpointError(fmt::format("{}: no valid checkpoint to start from",
+                                      (fs::path(from) / "checkpoints").string()));
+  return data;
+}
+
+// Builds the scene of --from and continues the checkpoint's state under it (a branch). A scene
+// identical to the checkpoint's, but for its name and end time, continues as --resume does, bit
+// for bit; any other takes the state through Simulation::branch, which books the change of
+// energy the new scene gives it.
+bool branch(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim) {
+  try {
+    scene = load(o);
+    const Comm comm = Comm::world();
+    const auto data = read_branch_point(o.from, comm);
+    // (named as the scene of the run that wrote it, which resolves relative paths as resume)
+    const Scene saved =
+        read_scene_text(data->scene_text,
+                        (data->file.parent_path().parent_path() / "scene.resolved.toml").string());
+    if (saved.materials != scene.materials)
+      throw SceneError(fmt::format(
+          "{}: materials: [{}] are not the checkpoint's [{}] ({}): a branch keeps the materials "
+          "of the run it starts from, in their order",
+          scene.source, fmt::join(scene.materials, ", "), fmt::join(saved.materials, ", "),
+          data->file.string()));
+    if (!(scene.run.t_end > data->time))
+      throw SceneError(fmt::format("{}: run.t_end = {} is not after the checkpoint's time t = {}",
+                                   scene.source, scene.run.t_end, data->time));
+    BuildReport report;
+    sim = build_simulation(scene, o.force_dt, &report);
+    Scene same = scene;
+    same.run.name = saved.run.name;
+    same.run.t_end = saved.run.t_end;
+    if (resolved_scene_toml(same) == data->scene_text) {
+      apply_checkpoint(*data, *sim);
+      spdlog::info("the scene is the checkpoint's: the run continues as --resume would");
+    } else {
+      const bool keep = saved.contact_model == scene.contact_model;
+      if (!keep && comm.root())
+        fmt::print(stderr,
+                   "warning: the contact model changes from {} to {}: every contact's history "
+                   "(tangential springs and model state) is dropped, and contacts open afresh "
+                   "under the new law\n",
+                   saved.contact_model, scene.contact_model);
+      try {
+        sim->branch(data->sections, data->n_sections, {report.walls, report.grains, keep});
+      } catch (const std::invalid_argument& e) {
+        throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
+      }
+    }
+    describe(scene, *sim, report);
+    spdlog::info("branching from {} at step {}, t = {}", data->file.string(), data->step,
+                 data->time);
+    return true;
+  } catch (const std::exception& e) { // SceneError, CheckpointError, invalid_argument
+    print_error(e.what());
+    return false;
+  }
+}
+
 int run_command(const RunCommandOptions& o) {
   Scene scene;
   std::unique_ptr<Simulation> sim;
@@ -151,7 +219,7 @@ int run_command(const RunCommandOptions& o) {
     if (!resume(o, scene, sim, scene_text)) return 2;
     dir = o.resume;
   } else {
-    if (!prepare(o, scene, sim)) return 2;
+    if (!(o.from.empty() ? prepare(o, scene, sim) : branch(o, scene, sim))) return 2;
     // Rank 0 checks and creates the folder (only once the scene is known to be good); every
     // rank learns the outcome.
     std::string error;

@@ -10,6 +10,10 @@ struct RunCommandOptions {
   std::string scene_path; // empty: the built-in default basin
   std::string output_dir; // empty: runs/<scene name>
   std::string resume;     // a run folder to continue from its newest valid checkpoint
+  // A checkpoint file, or a run folder's newest valid checkpoint, whose state the scene
+  // continues (a branch: the particles, history, walls, time and books from it, the rest from
+  // the scene).
+  std::string from;
   bool overwrite = false;
   bool force_dt = false;
   std::optional<double> t_end;

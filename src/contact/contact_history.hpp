@@ -113,6 +113,9 @@ public:
   // Checkpoints: the states of the current list saved, or loaded into the stash.
   virtual void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) = 0;
   virtual void load(ArchiveReader& ar) = 0;
+  // Drops every stashed state: the next list build opens every contact fresh (a run that
+  // branches from another's state under another contact law).
+  virtual void forget() = 0;
   virtual std::size_t memory_bytes() const = 0;
   // The slot of each listed pair (aligned with NeighborList::partners; none: no state).
   virtual const std::uint32_t* pair_slots() const = 0;
@@ -220,6 +223,11 @@ public:
     std::vector<WallEntry> walls;
     ar.vector(walls);
     wall_stash_ = std::move(walls);
+  }
+
+  void forget() override {
+    forget_copies();
+    wall_stash_ = std::vector<WallEntry>();
   }
 
   // Gives each entry of the new list its stashed state (or a fresh one).

@@ -85,6 +85,8 @@ public:
       throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
   }
   bool at_end() const { return pos_ == data_.size(); }
+  // Passes over whatever is left (a part of the state the reader does not take).
+  void skip_to_end() { pos_ = data_.size(); }
 
 private:
   void take(void* p, std::size_t n) {

@@ -23,7 +23,7 @@
 
 namespace yuxi {
 
-inline constexpr std::uint32_t checkpoint_format_version = 4;
+inline constexpr std::uint32_t checkpoint_format_version = 5;
 
 class CheckpointError : public std::runtime_error {
 public:

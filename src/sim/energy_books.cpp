@@ -25,6 +25,7 @@ constexpr EnergyColumn energy_columns[] = {
     {"wall_work", [](const EnergyBooks& e) { return e.wall_work; }},
     {"gravity_work", [](const EnergyBooks& e) { return e.gravity_work; }},
     {"removed", [](const EnergyBooks& e) { return e.removed; }},
+    {"inserted", [](const EnergyBooks& e) { return e.inserted; }},
     {"balance", [](const EnergyBooks& e) { return e.balance(); }},
 };
 struct CountColumn {

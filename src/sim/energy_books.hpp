@@ -1,10 +1,11 @@
 // The energy books of a simulation at one instant: every joule booked (docs/models/fish-basin.md
 // section 8).
 //
-// balance() = mechanical + relaxation + dissipated + removed - wall_work - gravity_work is
-// conserved by the exact dynamics: what moving walls and gravity put in is still mechanical
-// energy, waits in a relaxation buffer (thermodynamic model), has been dissipated, or left with
-// grains removed from the domain.
+// balance() = mechanical + relaxation + dissipated + removed - wall_work - gravity_work - inserted
+// is conserved by the exact dynamics: what moving walls and gravity put in, and what came in
+// from outside the equations of motion (inserted), is still mechanical energy, waits in a
+// relaxation buffer (thermodynamic model), has been dissipated, or left with grains removed from
+// the domain.
 //
 // Along periodic axes gravity has no potential (a grain that wraps around would jump in height),
 // so the gravitational energy counts only the components of g along non-periodic axes, and the
@@ -36,6 +37,10 @@ struct EnergyBooks {
   double wall_work = 0.0;     // cumulative work done by moving walls on grains
   double removed = 0.0;       // cumulative mechanical energy of grains removed on escape
   double gravity_work = 0.0;  // cumulative work of gravity along periodic axes
+  // Cumulative energy put in from outside the equations of motion: the mechanical energy of
+  // grains inserted during the run, and the change of the mechanical energy where a run branches
+  // from another's state under a different scene (another contact law, gravity or coefficients).
+  double inserted = 0.0;
   std::size_t grains = 0;
   std::size_t contacts = 0;
   std::size_t escaped = 0; // grains removed after leaving the domain
@@ -45,7 +50,7 @@ struct EnergyBooks {
       &EnergyBooks::translational, &EnergyBooks::rotational, &EnergyBooks::elastic,
       &EnergyBooks::gravitational, &EnergyBooks::relaxation, &EnergyBooks::dissipated,
       &EnergyBooks::wall_work, &EnergyBooks::removed, &EnergyBooks::gravity_work,
-      &EnergyBooks::grains, &EnergyBooks::contacts, &EnergyBooks::escaped);
+      &EnergyBooks::inserted, &EnergyBooks::grains, &EnergyBooks::contacts, &EnergyBooks::escaped);
   static constexpr int n_totals = std::tuple_size_v<decltype(totals)>;
   template <class F> void for_each_total(F&& fn) {
     std::apply([&](auto... member) { (fn(this->*member), ...); }, totals);
@@ -57,7 +62,7 @@ struct EnergyBooks {
   double kinetic() const { return translational + rotational; }
   double mechanical() const { return translational + rotational + elastic + gravitational; }
   double balance() const {
-    return mechanical() + relaxation + dissipated + removed - wall_work - gravity_work;
+    return mechanical() + relaxation + dissipated + removed - wall_work - gravity_work - inserted;
   }
   // Adds another part's totals to these.
   void add(const EnergyBooks& other);

@@ -164,10 +164,16 @@ public:
       if (loading_ != Loading::merged) grid_ = CellGrid(decomp_.local_box(), cell_edge_);
     if constexpr (Archive::loading) store_.clear_ghosts();
     store_.checkpoint(ar);
-    if constexpr (Archive::loading)
-      history_->load(ar);
-    else
+    if constexpr (Archive::loading) {
+      if (!branch_ || branch_->keep_history) {
+        history_->load(ar);
+      } else {
+        history_->forget();
+        ar.skip_to_end();
+      }
+    } else {
       history_->save(ar, store_, list_);
+    }
     if constexpr (Archive::loading)
       if (loading_ == Loading::whole) {
         validate_loaded_particles();
@@ -185,6 +191,25 @@ public:
   // summation order changes with the decomposition). A section that does not load or does not
   // fit the scene throws std::invalid_argument on every rank.
   void load(const std::vector<std::string>& share, std::uint64_t written_on);
+
+  // Collective: continues another run's saved state under this simulation's scene (a branch:
+  // `yuxi run SCENE --from CHECKPOINT`). The particles, their contacts' history, the walls'
+  // state, the time and the energy books come from the checkpoint; everything else (the contact
+  // law, the motions, gravity, the time step, the outputs) is this scene's. The shares load as
+  // on another number of ranks (cut planes by particle count, a new list from the current
+  // positions), the walls are placed at the saved time by this scene's motions, and the forces
+  // are evaluated afresh without advancing any spring; the change of mechanical energy that the
+  // new scene gives the same state is booked as `inserted`, so the books carry on closed.
+  // `keep_history` false drops every contact's state (another contact model). Throws
+  // std::invalid_argument on every rank where the saved particles are not the ones this scene
+  // builds (`walls` wall particles, at most `grains` grains, ids below their sum) or stand
+  // outside the domain.
+  struct BranchCheck {
+    std::size_t walls = 0, grains = 0; // the particles this scene builds
+    bool keep_history = true;
+  };
+  void branch(const std::vector<std::string>& share, std::uint64_t written_on,
+              const BranchCheck& check);
 
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
@@ -272,6 +297,8 @@ private:
   void load_own_section(const std::string& section);
   void merge_sections(const std::vector<std::string>& share);
   void validate_loaded_particles() const;
+  // A branch's checks of the loaded particles against its scene (branch()).
+  void check_branched_particles(const BranchCheck& check) const;
   void handle_escapes();
   void handle_escapes_here();
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
@@ -361,6 +388,8 @@ private:
   // planes are set afresh).
   enum class Loading { whole, deferred, merged };
   Loading loading_ = Loading::whole;
+  // While branch() loads: the state continues under another scene (what it must hold).
+  std::optional<BranchCheck> branch_;
   PhaseTimes timers_;
 };
 

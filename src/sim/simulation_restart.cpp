@@ -39,7 +39,8 @@ void Simulation::validate_loaded_particles() const {
 }
 
 void Simulation::load(const std::vector<std::string>& share, std::uint64_t written_on) {
-  const bool own = written_on == static_cast<std::uint64_t>(comm_.size());
+  // (a branch takes its shares as on another number of ranks: merged, cut afresh)
+  const bool own = !branch_ && written_on == static_cast<std::uint64_t>(comm_.size());
   // Every rank learns whether every other loaded its share before any takes a collective step.
   std::string error;
   try {
@@ -98,7 +99,70 @@ void Simulation::load(const std::vector<std::string>& share, std::uint64_t writt
                           store_.x.begin() + static_cast<std::ptrdiff_t>(store_.n_owned())),
         std::vector<double>(store_.n_owned(), 1.0), comm_);
   grid_ = CellGrid(decomp_.local_box(), cell_edge_);
+  if (branch_) {
+    check_branched_particles(*branch_);
+    // The step count of this scene's time step; the walls where its motions put them.
+    step_ = std::llround(time_ / config_.dt);
+    place_walls(time_, true);
+  }
   rebuild_after_load(false);
+}
+
+void Simulation::check_branched_particles(const BranchCheck& check) const {
+  std::size_t counts[2] = {0, 0}; // grains, walls
+  GlobalId top = -1;
+  std::string outside;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    ++counts[store_.is_grain(i) ? 0 : 1];
+    top = std::max(top, store_.gid[i]);
+    const Vec3 x = config_.box.wrap(store_.x[i]);
+    if (outside.empty() && store_.is_grain(i) && !config_.box.contains(x))
+      outside = fmt::format("grain {} of the checkpoint stands at ({:.6g}, {:.6g}, {:.6g}), "
+                            "outside this scene's domain",
+                            store_.gid[i], x.x, x.y, x.z);
+  }
+  double totals[2] = {static_cast<double>(counts[0]), static_cast<double>(counts[1])};
+  comm_.sum(totals, 2);
+  const auto grains = static_cast<std::size_t>(totals[0]);
+  const auto walls = static_cast<std::size_t>(totals[1]);
+  const double highest = comm_.max(static_cast<double>(top));
+  std::string error = comm_.first_error(outside);
+  if (error.empty() && walls != check.walls)
+    error = fmt::format("the checkpoint holds {} wall particles, this scene builds {}: the "
+                        "branch must keep the walls of the run it starts from",
+                        walls, check.walls);
+  if (error.empty() && grains > check.grains)
+    error = fmt::format("the checkpoint holds {} grains, this scene builds {}: the branch must "
+                        "have the particles of the run it starts from",
+                        grains, check.grains);
+  if (error.empty() && highest >= static_cast<double>(check.walls + check.grains))
+    error = fmt::format("the checkpoint's particle ids reach {}, beyond the {} particles this "
+                        "scene builds: the branch must have the particles of the run it starts "
+                        "from",
+                        static_cast<std::int64_t>(highest), check.walls + check.grains);
+  if (!error.empty()) throw std::invalid_argument(error);
+}
+
+void Simulation::branch(const std::vector<std::string>& share, std::uint64_t written_on,
+                        const BranchCheck& check) {
+  branch_ = check;
+  try {
+    load(share, written_on);
+  } catch (...) {
+    branch_.reset();
+    throw;
+  }
+  branch_.reset();
+  // The saved state's books (the saved contact law's stored energy), then the same state's
+  // under this scene: the difference comes from outside the equations of motion.
+  const EnergyBooks before = energies();
+  start_forces_from_gravity();
+  compute_forces(false);
+  stop_if_unhealthy();
+  const EnergyBooks after = energies();
+  if (comm_.root())
+    books_.inserted +=
+        (after.mechanical() + after.relaxation) - (before.mechanical() + before.relaxation);
 }
 
 void Simulation::load_own_section(const std::string& section) {
