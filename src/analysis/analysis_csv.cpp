@@ -16,11 +16,12 @@ std::string csv_number(double value) {
   return std::string(buffer, result.ptr);
 }
 
-std::string timed_file_name(std::string_view stem, double time, int decimals) {
+std::string timed_file_name(std::string_view stem, double time, int decimals,
+                            std::string_view extension) {
   if (decimals < 0 || decimals > 12) throw std::invalid_argument("timed_file_name: bad decimals");
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, time);
-  return std::string(stem) + "_t" + buffer + ".csv";
+  return std::string(stem) + "_t" + buffer + std::string(extension);
 }
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns)

@@ -19,8 +19,10 @@ namespace yuxi::analysis {
 // A number as CSV text: shortest round-trip form; "nan", "inf", "-inf" for the others.
 std::string csv_number(double value);
 
-// "<stem>_t<time with `decimals` digits>.csv", e.g. ("velocity", 10.5) -> "velocity_t10.50.csv".
-std::string timed_file_name(std::string_view stem, double time, int decimals = 2);
+// "<stem>_t<time with `decimals` digits><extension>", e.g. ("velocity", 10.5) ->
+// "velocity_t10.50.csv".
+std::string timed_file_name(std::string_view stem, double time, int decimals = 2,
+                            std::string_view extension = ".csv");
 
 class CsvWriter {
 public:

@@ -11,6 +11,8 @@ namespace yuxi {
 EnergyCsv::EnergyCsv(const std::filesystem::path& path, std::optional<std::int64_t> resume_after,
                      const std::string& header_line)
     : file_(nullptr) {
+  // (a table the saved run had not begun yet starts afresh)
+  if (resume_after && !std::filesystem::exists(path)) resume_after.reset();
   if (resume_after) {
     // Keep the header and the complete rows up to the checkpoint; later ones (and a row cut
     // short by a crash) belong to the lost run.

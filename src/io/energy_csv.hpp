@@ -16,7 +16,7 @@ namespace yuxi {
 class EnergyCsv {
 public:
   // A new file; or, with `resume_after`, the existing one cut back to the rows of steps up to
-  // it and continued.
+  // it and continued (a new one if there is none).
   // `header`: the column names (EnergyBooks' by default); the first column is the step.
   explicit EnergyCsv(const std::filesystem::path& path,
                      std::optional<std::int64_t> resume_after = std::nullopt,

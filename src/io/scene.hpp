@@ -68,6 +68,27 @@ struct AnalysisSettings {
   int bins_per_decade = 10;
   std::array<double, 2> fit_a{0.2, 2.0}; // the paper's two power-law ranges
   std::array<double, 2> fit_b{10.0, 1e4};
+  // The excitation's sectors (analysis/sector_profile.hpp): the mode m, the container's inner
+  // radius and each wedge's half-width. m and the radius come from [basin].
+  int mode = 2;
+  double r_max = 0;             // [length]; 0: the domain's half-width in x
+  double sector_half_width = 0; // [degrees]; 0: 45 / m (antinode and node wedges meet)
+  double profile_bin = 0;       // radial bin [length]; 0: the grid's column width
+  // Fig. 6, peaks that travel: every track_interval from period_start to track_until, the free
+  // surface's highest column in each antinode sector (peaks.csv) and its radial profiles along
+  // the antinodes and the nodes (surface_profile.csv).
+  double track_interval = 0; // [time]; 0: none
+  double track_until = -1;   // [time]; < 0: the run's end
+  // Fig. 8, elastic waves: every wave_interval from period_start to wave_until, radial profiles
+  // of the column-summed elastic energy along the antinodes and the nodes (elastic_profile.csv).
+  double wave_interval = 0; // [time]; 0: none
+  double wave_until = -1;   // [time]; < 0: period_start + 8 periods
+  // Fig. 10, the saved samples: every grain_sample_interval between grain_samples_from and
+  // grain_samples_until, every grain's position, radius, mass, kinetic and elastic energy in
+  // analysis/grains/grains_t<time>.npy (numpy.load).
+  double grain_sample_interval = 0; // [time]; 0: none
+  double grain_samples_from = -1;   // [time]; < 0: period_start
+  double grain_samples_until = -1;  // [time]; < 0: the end of the averaging window
 };
 
 struct Scene {

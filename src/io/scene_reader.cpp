@@ -76,6 +76,36 @@ std::array<double, 2> read_range(TomlReader& t, std::string_view key, std::array
   return {v[0], v[1]};
 }
 
+// The analyses by sector of the excitation mode (peaks, profiles) and the per-grain samples.
+void read_sector_analyses(const Scene& scene, TomlReader& a, AnalysisSettings& s) {
+  const Box& box = scene.sim.box;
+  if (scene.basin) {
+    s.mode = std::max(1, scene.basin->excitation.mode);
+    s.r_max = scene.basin->radius * scene.basin->spacing;
+  } else {
+    s.r_max = 0.5 * box.length(0);
+  }
+  s.mode = static_cast<int>(a.integer("mode", s.mode, 1, 1000));
+  s.r_max = a.positive("r_max", s.r_max);
+  s.sector_half_width = a.positive("sector_half_width", 45.0 / s.mode);
+  if (s.sector_half_width > 90.0 / s.mode)
+    a.fail("sector_half_width",
+           fmt::format("{} degrees: at most 90 / m = {} (the wedges of neighbouring antinodes "
+                       "would overlap)",
+                       s.sector_half_width, 90.0 / s.mode));
+  s.profile_bin = a.positive("profile_bin", box.length(0) / s.grid[0]);
+  const auto interval = [&](std::string_view key) { return a.non_negative(key, 0.0); };
+  s.track_interval = interval("track_interval");
+  s.track_until = a.number("track_until", -1.0);
+  s.wave_interval = interval("wave_interval");
+  s.wave_until = a.number("wave_until", s.period_start + 8.0 * s.period_length);
+  s.grain_sample_interval = interval("grain_sample_interval");
+  s.grain_samples_from = a.number("grain_samples_from", s.period_start);
+  s.grain_samples_until = a.number("grain_samples_until", s.period_start + s.period_length);
+  if (s.grain_sample_interval > 0 && !(s.grain_samples_until >= s.grain_samples_from))
+    a.fail("grain_samples_until", "must not come before grain_samples_from");
+}
+
 void read_analysis(Scene& scene, TomlReader& root) {
   auto a = root.table("analysis");
   if (!a) return;
@@ -119,6 +149,7 @@ void read_analysis(Scene& scene, TomlReader& root) {
   s.bins_per_decade = static_cast<int>(a->integer("bins_per_decade", s.bins_per_decade, 1, 1000));
   s.fit_a = read_range(*a, "fit_a", s.fit_a, true);
   s.fit_b = read_range(*a, "fit_b", s.fit_b, true);
+  read_sector_analyses(scene, *a, s);
   a->finish();
   scene.analysis = s;
 }

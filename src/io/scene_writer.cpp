@@ -221,7 +221,18 @@ std::string resolved_scene_toml(const Scene& s) {
                                        {"pdf_range", toml::array{a.pdf_range[0], a.pdf_range[1]}},
                                        {"bins_per_decade", a.bins_per_decade},
                                        {"fit_a", toml::array{a.fit_a[0], a.fit_a[1]}},
-                                       {"fit_b", toml::array{a.fit_b[0], a.fit_b[1]}}});
+                                       {"fit_b", toml::array{a.fit_b[0], a.fit_b[1]}},
+                                       {"mode", a.mode},
+                                       {"r_max", a.r_max},
+                                       {"sector_half_width", a.sector_half_width},
+                                       {"profile_bin", a.profile_bin},
+                                       {"track_interval", a.track_interval},
+                                       {"track_until", a.track_until},
+                                       {"wave_interval", a.wave_interval},
+                                       {"wave_until", a.wave_until},
+                                       {"grain_sample_interval", a.grain_sample_interval},
+                                       {"grain_samples_from", a.grain_samples_from},
+                                       {"grain_samples_until", a.grain_samples_until}});
   }
   if (s.lammps_data) {
     toml::array types, frozen;

@@ -5,8 +5,11 @@
 #include "analysis/grain_energy.hpp"
 #include "analysis/velocity_section.hpp"
 #include "core/archive.hpp"
+#include "core/units.hpp"
+#include "io/npy_records.hpp"
 #include "run/particle_elastic_energy.hpp"
 
+#include <bit>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -27,7 +30,8 @@ std::set<std::int64_t> steps_of(const std::vector<double>& times, double dt) {
 
 } // namespace
 
-RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double dt)
+RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double dt,
+                         std::optional<std::int64_t> resume_after)
     : settings_(*scene.analysis), dir_(std::move(dir)),
       grid_(scene.sim.box.lo, scene.sim.box.hi, static_cast<std::size_t>(settings_.grid[0]),
             static_cast<std::size_t>(settings_.grid[1])),
@@ -51,7 +55,18 @@ RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double d
     section_elastic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
     section_kinetic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
   }
+  sectors_ = {axis_, s.mode, s.sector_half_width * pi / 180.0, s.r_max};
+  const auto every = [&](double from, double until, double interval) {
+    return Every{step_of(from, dt), step_of(until, dt),
+                 interval > 0 ? std::max<std::int64_t>(1, step_of(interval, dt)) : 0};
+  };
+  track_ =
+      every(s.period_start, s.track_until < 0 ? scene.run.t_end : s.track_until, s.track_interval);
+  wave_ = every(s.period_start, s.wave_until, s.wave_interval);
+  sample_ = every(s.grain_samples_from, s.grain_samples_until, s.grain_sample_interval);
+  resume_after_ = resume_after;
   std::filesystem::create_directories(dir_ / "analysis");
+  if (sample_.every > 0) std::filesystem::create_directories(dir_ / "analysis" / "grains");
 }
 
 bool RunAnalysis::period_sample(std::int64_t step) const {
@@ -60,7 +75,8 @@ bool RunAnalysis::period_sample(std::int64_t step) const {
 }
 
 bool RunAnalysis::needs_energies(std::int64_t step) const {
-  return period_sample(step) || elastic_steps_.count(step) > 0;
+  return period_sample(step) || elastic_steps_.count(step) > 0 || wave_.due(step) ||
+         sample_.due(step);
 }
 
 void RunAnalysis::before_step(Simulation& sim) const {
@@ -77,6 +93,8 @@ RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
     g.x.push_back(p.x[i]);
     g.v.push_back(p.v[i]);
     g.radius.push_back(p.radius[i]);
+    g.mass.push_back(p.mass[i]);
+    g.id.push_back(p.gid[i]);
     if (energies) {
       g.kinetic.push_back(0.5 * p.mass[i] * norm2(p.v[i]) + sim.rotational_energy(i));
       g.elastic.push_back(elastic[i]);
@@ -85,7 +103,7 @@ RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
   return g;
 }
 
-void RunAnalysis::write_surface(Simulation& sim, const Grains& g) const {
+analysis::GridField RunAnalysis::surface(Simulation& sim, const Grains& g) const {
   analysis::GridField f = analysis::free_surface(grid_, g.x, g.radius);
   constexpr double none = -std::numeric_limits<double>::infinity();
   for (double& h : f.values)
@@ -93,9 +111,82 @@ void RunAnalysis::write_surface(Simulation& sim, const Grains& g) const {
   sim.comm().max(f.values.data(), static_cast<int>(f.values.size()));
   for (double& h : f.values)
     if (h == none) h = std::numeric_limits<double>::quiet_NaN();
+  return f;
+}
+
+analysis::GridField RunAnalysis::elastic_columns(Simulation& sim, const Grains& g) const {
+  analysis::GridField f = analysis::column_sum(grid_, g.x, g.elastic);
+  sim.comm().sum(f.values.data(), static_cast<int>(f.values.size()));
+  return f;
+}
+
+void RunAnalysis::write_surface(Simulation& sim, const Grains& g) const {
+  const analysis::GridField f = surface(sim, g);
   if (sim.comm().root())
     analysis::write_surface_csv(
         dir_ / "analysis" / analysis::timed_file_name("surface", sim.time()), f);
+}
+
+EnergyCsv& RunAnalysis::series(std::unique_ptr<EnergyCsv>& csv, const char* name,
+                               const char* header) {
+  if (!csv) csv = std::make_unique<EnergyCsv>(dir_ / "analysis" / name, resume_after_, header);
+  return *csv;
+}
+
+void RunAnalysis::write_profiles(EnergyCsv& csv, const Simulation& sim,
+                                 const analysis::GridField& f) const {
+  for (const auto kind : {analysis::SectorKind::antinode, analysis::SectorKind::node}) {
+    const auto p = analysis::radial_profile(f, sectors_, kind, settings_.profile_bin);
+    for (std::size_t k = 0; k < p.count.size(); ++k)
+      csv.write_row(fmt::format("{},{:.10g},{},{},{},{},{},{},{}", sim.step_count(), sim.time(),
+                                kind == analysis::SectorKind::antinode ? "antinode" : "node",
+                                analysis::csv_number(static_cast<double>(k) * p.dr),
+                                analysis::csv_number(static_cast<double>(k + 1) * p.dr), p.count[k],
+                                analysis::csv_number(p.mean[k]), analysis::csv_number(p.median[k]),
+                                analysis::csv_number(p.max[k])));
+  }
+}
+
+constexpr const char* profile_header = "step,time,direction,r_lo,r_hi,columns,mean,median,max";
+
+void RunAnalysis::write_tracks(Simulation& sim, const Grains& g) {
+  const analysis::GridField f = surface(sim, g);
+  if (!sim.comm().root()) return;
+  auto& peaks = series(peaks_, "peaks.csv", "step,time,sector,azimuth,r,height");
+  for (const auto& p : analysis::sector_peaks(f, sectors_))
+    peaks.write_row(fmt::format("{},{:.10g},{},{},{},{}", sim.step_count(), sim.time(), p.sector,
+                                analysis::csv_number(p.azimuth), analysis::csv_number(p.r),
+                                analysis::csv_number(p.value)));
+  write_profiles(series(surface_profile_, "surface_profile.csv", profile_header), sim, f);
+}
+
+void RunAnalysis::write_waves(Simulation& sim, const Grains& g) {
+  const analysis::GridField f = elastic_columns(sim, g);
+  if (sim.comm().root())
+    write_profiles(series(elastic_profile_, "elastic_profile.csv", profile_header), sim, f);
+}
+
+void RunAnalysis::write_grain_sample(Simulation& sim, const Grains& g) const {
+  static const std::vector<NpyField> fields = {
+      {"id", "<i8"},     {"x", "<f4"},    {"y", "<f4"},       {"z", "<f4"},
+      {"radius", "<f4"}, {"mass", "<f4"}, {"kinetic", "<f8"}, {"elastic", "<f8"}};
+  std::string records;
+  records.reserve(g.x.size() * 40);
+  const auto put = [&](auto value) {
+    records.append(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  static_assert(std::endian::native == std::endian::little, ".npy records are little-endian");
+  for (std::size_t k = 0; k < g.x.size(); ++k) {
+    put(static_cast<std::int64_t>(g.id[k]));
+    for (double v : {g.x[k].x, g.x[k].y, g.x[k].z, g.radius[k], g.mass[k]})
+      put(static_cast<float>(v));
+    put(g.kinetic[k]);
+    put(g.elastic[k]);
+  }
+  write_npy_records(sim.comm(),
+                    dir_ / "analysis" / "grains" /
+                        analysis::timed_file_name("grains", sim.time(), 4, ".npy"),
+                    fields, records);
 }
 
 void RunAnalysis::write_velocity_section(Simulation& sim, const Grains& g) const {
@@ -121,8 +212,7 @@ void RunAnalysis::write_velocity_section(Simulation& sim, const Grains& g) const
 }
 
 void RunAnalysis::write_elastic_map(Simulation& sim, const Grains& g) const {
-  analysis::GridField f = analysis::column_sum(grid_, g.x, g.elastic);
-  sim.comm().sum(f.values.data(), static_cast<int>(f.values.size()));
+  const analysis::GridField f = elastic_columns(sim, g);
   if (sim.comm().root())
     analysis::write_column_sum_csv(
         dir_ / "analysis" / analysis::timed_file_name("elastic_map", sim.time(), 4), f, "elastic");
@@ -140,16 +230,19 @@ void RunAnalysis::accumulate_period(const Grains& g) {
 
 void RunAnalysis::after_step(Simulation& sim) {
   const std::int64_t k = sim.step_count();
-  const bool surface = surface_steps_.count(k) > 0, velocity = velocity_steps_.count(k) > 0;
+  const bool surface_map = surface_steps_.count(k) > 0, velocity = velocity_steps_.count(k) > 0;
   const bool energies = needs_energies(k);
-  if (!surface && !velocity && !energies) {
+  if (!surface_map && !velocity && !energies && !track_.due(k)) {
     if (k == period_last_) finish(sim);
     return;
   }
   const Grains g = grains(sim, energies);
-  if (surface) write_surface(sim, g);
+  if (surface_map) write_surface(sim, g);
   if (velocity) write_velocity_section(sim, g);
   if (elastic_steps_.count(k) > 0) write_elastic_map(sim, g);
+  if (track_.due(k)) write_tracks(sim, g);
+  if (wave_.due(k)) write_waves(sim, g);
+  if (sample_.due(k)) write_grain_sample(sim, g);
   if (period_sample(k)) accumulate_period(g);
   if (k == period_last_) finish(sim);
 }

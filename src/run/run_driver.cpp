@@ -112,7 +112,9 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   };
 
   std::unique_ptr<RunAnalysis> analysis;
-  if (scene.analysis) analysis = std::make_unique<RunAnalysis>(scene, dir, dt);
+  if (scene.analysis)
+    analysis = std::make_unique<RunAnalysis>(scene, dir, dt,
+                                             options.resumed ? std::optional(first) : std::nullopt);
 
   Progress progress(first, last, options.show_progress && sim.comm().root());
   const double n_particles =
