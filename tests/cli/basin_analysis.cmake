@@ -8,13 +8,21 @@ if(NOT rc EQUAL 0)
 endif()
 foreach(f surface_t2.50.csv surface_t2.55.csv surface_t2.60.csv velocity_t2.55.csv
           elastic_map_t2.5050.csv elastic_map_t2.5100.csv period_sections.csv pdf_kinetic.csv
-          pdf_elastic.csv pdf_total.csv fits.csv)
+          pdf_elastic.csv pdf_total.csv fits.csv peaks.csv surface_profile.csv
+          elastic_profile.csv)
   if(NOT EXISTS ${WORK}/analysis/analysis/${f})
     message(FATAL_ERROR "missing analysis file ${f}")
   endif()
 endforeach()
-foreach(f fig4_energies.png fig5_surface.png fig6_contours.png fig7_velocity.png
-          fig8_elastic_maps.png fig9_sections.png fig10_pdf.png report.md)
+# Per-grain samples (grain_sample_interval): one .npy file per sample time.
+file(GLOB grain_samples ${WORK}/analysis/analysis/grains/grains_t*.npy)
+list(LENGTH grain_samples n_samples)
+if(n_samples LESS 1)
+  message(FATAL_ERROR "no analysis/grains/grains_t*.npy")
+endif()
+foreach(f fig4_energies.png fig5_surface.png fig6_contours.png fig6b_peaks.png
+          fig7_velocity.png fig8_elastic_maps.png fig8b_waves.png fig9_sections.png
+          fig10_pdf.png report.md)
   if(NOT EXISTS ${WORK}/analysis/${f})
     message(FATAL_ERROR "missing figure ${f}: ${err}")
   endif()
