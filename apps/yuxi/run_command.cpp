@@ -45,6 +45,7 @@ Scene load(const RunCommandOptions& o) {
 }
 
 void describe(const Scene& scene, const Simulation& sim, const BuildReport& r) {
+  for (const auto& w : r.warnings) spdlog::warn("{}", w);
   spdlog::info("scene {} from {}", scene.run.name, scene.source);
   spdlog::info("{} grains, {} wall particles, {} flat walls; domain [{}, {}] x [{}, {}] x [{}, {}]",
                r.grains, r.walls, sim.planes().size(), scene.sim.box.lo.x, scene.sim.box.hi.x,
@@ -195,7 +196,8 @@ bool branch(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
                    "under the new law\n",
                    saved.contact_model, scene.contact_model);
       try {
-        sim->branch(data->sections, data->n_sections, {report.walls, report.grains, keep});
+        sim->branch(data->sections, data->n_sections, {report.walls, report.grains, keep},
+                    data->format_version);
       } catch (const std::invalid_argument& e) {
         throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
       }
@@ -271,6 +273,8 @@ int run_command(const RunCommandOptions& o) {
   // Copies of other ranks' particles: each step brings their fields and sends their forces back.
   const double copies = static_cast<double>(sim->halo().n_ghosts_from_other_ranks());
   const double all_copies = sim->comm().sum(copies), most_copies = sim->comm().max(copies);
+  const auto inflow = sim->inflow();
+  const auto outflow = sim->outflow(); // collective
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -306,6 +310,13 @@ int run_command(const RunCommandOptions& o) {
                "{:.6g}, wall work {:.6g}; {} contacts, {} grains, {} escaped",
                e.time, e.kinetic(), e.elastic, e.gravitational, e.dissipated, e.wall_work,
                e.contacts, e.grains, e.escaped);
+  for (const auto& f : inflow)
+    spdlog::info("{}: {} grains inserted ({:.6g} of mass){}", f.name, f.grains, f.mass,
+                 f.owed > 0
+                     ? fmt::format("; {} due but found no free place in the last batch", f.owed)
+                     : std::string());
+  for (const auto& f : outflow)
+    spdlog::info("{}: {} grains left ({:.6g} of mass)", f.name, f.grains, f.mass);
   if (s.interrupted) {
     fmt::print(stderr,
                "stopped by signal {} at step {}; checkpoint written. Continue with: yuxi "

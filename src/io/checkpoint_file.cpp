@@ -182,6 +182,7 @@ struct CheckpointIndex {
   // The file offset of each section's length field, then the end of the payload.
   std::vector<std::uint64_t> starts;
   std::uint32_t crc = 0;
+  std::uint32_t version = checkpoint_format_version;
 
   template <class Archive> void serialize(Archive& ar) {
     ar.string(scene_text);
@@ -189,6 +190,7 @@ struct CheckpointIndex {
     ar.value(time);
     ar.vector(starts);
     ar.value(crc);
+    ar.value(version);
   }
 };
 
@@ -204,9 +206,9 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
   if (header.size() < header_size || std::memcmp(header.data(), magic, sizeof magic) != 0)
     fail("not a yuxi checkpoint (no YUXICKPT header)");
   const auto version = get<std::uint32_t>(header, 8);
-  if (version != checkpoint_format_version)
-    fail(fmt::format("checkpoint format version {}; this yuxi reads version {}", version,
-                     checkpoint_format_version));
+  if (version < Simulation::oldest_state_layout || version > checkpoint_format_version)
+    fail(fmt::format("checkpoint format version {}; this yuxi reads versions {} to {}", version,
+                     Simulation::oldest_state_layout, checkpoint_format_version));
   if (get<std::uint32_t>(header, 12) != byte_order_mark)
     fail("written on a machine of another byte order");
   const auto size = get<std::uint64_t>(header, 16);
@@ -217,6 +219,7 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
   if (after_header - size != 4) fail("trailing bytes after the checksum (corrupt)");
   const std::uint64_t end = header_size + size;
   CheckpointIndex index;
+  index.version = version;
   index.crc = get<std::uint32_t>(bytes.read(end, 4), 0);
   std::uint64_t at = header_size;
   // The archive's own complaint about a length beyond the data (ArchiveReader::check_room).
@@ -313,6 +316,7 @@ CheckpointData read_share(CheckpointBytes& bytes, const std::string& name, const
   d.time = index.time;
   d.first_section = first;
   d.n_sections = n;
+  d.format_version = index.version;
   for (std::uint64_t k = first; k < last; ++k) {
     const std::uint64_t at = index.starts[k] - begin + 8; // past the length field
     const std::uint64_t length = index.starts[k + 1] - index.starts[k] - 8;
@@ -348,7 +352,7 @@ CheckpointData read_checkpoint(const std::filesystem::path& file, const Comm& co
 
 void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
   try {
-    sim.load(data.sections, data.n_sections);
+    sim.load(data.sections, data.n_sections, data.format_version);
   } catch (const std::invalid_argument& e) { // the same on every rank (Simulation::load)
     throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
   }

@@ -23,7 +23,9 @@
 
 namespace yuxi {
 
-inline constexpr std::uint32_t checkpoint_format_version = 5;
+// The format version a checkpoint is written in: the layout of Simulation::checkpoint. Files
+// of older layouts down to Simulation::oldest_state_layout are read too.
+inline constexpr std::uint32_t checkpoint_format_version = Simulation::state_layout;
 
 class CheckpointError : public std::runtime_error {
 public:
@@ -47,6 +49,7 @@ struct CheckpointData {
   std::vector<std::string> sections;
   std::uint64_t first_section = 0;
   std::uint64_t n_sections = 0;
+  std::uint32_t format_version = checkpoint_format_version;
 };
 
 // Collective: reads and verifies a checkpoint, each rank its share of the sections; throws

@@ -4,6 +4,8 @@
 
 #include "contact/contact_model.hpp"
 #include "scene/fish_basin.hpp"
+#include "scene/particle_fill.hpp"
+#include "scene/particle_source.hpp"
 #include "scene/plane_wall.hpp"
 #include "sim/simulation.hpp"
 
@@ -108,6 +110,9 @@ struct Scene {
   std::vector<std::string> warnings; // for the user, once (e.g. mesh triangles left out)
   std::optional<FishBasinSpec> basin;
   std::optional<AnalysisSettings> analysis;
+  std::vector<FillSpec> fills;         // [[fill]]: grains placed at the start
+  std::vector<InsertSpec> inserts;     // [[insert]]: grains poured during the run
+  std::vector<OutletSpec> outlets;     // [[outlet]]: where grains leave
   std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms
   std::optional<LammpsDataSpec> lammps_data;
   std::size_t n_lammps_atoms = 0;

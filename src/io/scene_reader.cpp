@@ -3,6 +3,7 @@
 #include "contact/contact_model.hpp"
 #include "core/units.hpp"
 #include "io/lammps_data_reader.hpp"
+#include "io/source_scene_reader.hpp"
 #include "io/toml_reader.hpp"
 #include "io/wall_scene_reader.hpp"
 
@@ -349,6 +350,7 @@ void read_contact(Scene& scene, TomlReader& root) {
 void read_planes(Scene& scene, TomlReader& root) {
   for (auto& p : root.tables("plane")) {
     PlaneWall w;
+    w.name = p.string("name", fmt::format("plane {}", scene.planes.size() + 1));
     w.point = p.vec3("point");
     const Vec3 n = p.vec3("normal");
     if (norm(n) == 0.0) p.fail("normal", "must not be the zero vector");
@@ -512,7 +514,21 @@ void check_consistency(Scene& scene, TomlReader& root) {
     largest = std::max(largest, p.radius);
     (grain ? grain_mat : other_mat)[p.material] = true;
   }
-  if (rg == 0.0) root.fail("", "the scene has no grains: add a [basin] or [[particle]] entries");
+  for (const auto& f : scene.fills) {
+    rg = std::max(rg, f.grains.size.largest());
+    grain_mat[f.grains.material] = true;
+  }
+  // Grains poured later need cells as wide as their contacts from the start.
+  double poured = 0.0;
+  for (const auto& i : scene.inserts) {
+    poured = std::max(poured, i.grains.size.largest());
+    grain_mat[i.grains.material] = true;
+  }
+  rg = std::max(rg, poured);
+  if (poured > 0) scene.sim.min_contact_reach = std::max(2.0 * rg, rg + rw);
+  if (rg == 0.0)
+    root.fail("", "the scene has no grains: add a [basin], [[fill]], [[insert]] or [[particle]] "
+                  "entries");
   for (const auto& w : scene.planes) other_mat[w.material] = true;
   for (const auto& w : scene.walls) other_mat[wall_material(w)] = true;
   for (int a = 0; a < 3; ++a)
@@ -568,6 +584,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_analysis(scene, root);
   read_lammps_data_section(scene, root);
   read_particles(scene, root);
+  read_sources(scene, root);
   root.finish();
   check_consistency(scene, root);
   return scene;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 #include <toml++/toml.h>
+#include <type_traits>
 
 namespace yuxi {
 namespace {
@@ -33,6 +34,132 @@ void write_motion(const WallMotion& motion, toml::table& t) {
     t.insert("radial_omega", m->omega);
     t.insert("radial_center", vec(m->center));
     t.insert("t0", m->t0);
+  }
+}
+
+toml::table region_table(const Region& region) {
+  toml::table t;
+  std::visit(
+      [&](const auto& r) {
+        using R = std::decay_t<decltype(r)>;
+        if constexpr (std::is_same_v<R, BoxRegion>) {
+          t.insert("shape", "box");
+          t.insert("lo", vec(r.lo));
+          t.insert("hi", vec(r.hi));
+        } else if constexpr (std::is_same_v<R, CylinderRegion>) {
+          t.insert("shape", "cylinder");
+          t.insert("center", vec(r.center));
+          t.insert("axis", vec(r.axis));
+          t.insert("radius", r.radius);
+          t.insert("lo", r.lo);
+          t.insert("hi", r.hi);
+        } else if constexpr (std::is_same_v<R, SphereRegion>) {
+          t.insert("shape", "sphere");
+          t.insert("center", vec(r.center));
+          t.insert("radius", r.radius);
+        } else if constexpr (std::is_same_v<R, MeshRegion>) {
+          t.insert("shape", "mesh");
+          t.insert("file", r.file());
+          t.insert("scale", r.scale);
+          t.insert("rotate_axis", vec(r.rotate_axis));
+          t.insert("rotate_degrees", r.rotate_degrees);
+          t.insert("translate", vec(r.translate));
+        } else {
+          t.insert("shape", "half_space");
+          t.insert("point", vec(r.point));
+          t.insert("normal", vec(r.normal));
+        }
+      },
+      region.shape());
+  return t;
+}
+
+// The keys of a [[fill]] or [[insert]] table that describe its grains.
+void write_grains(const Scene& s, const GrainKind& g, toml::table& t) {
+  using Kind = SizeDistribution::Kind;
+  const SizeDistribution& d = g.size;
+  toml::table size;
+  switch (d.kind) {
+  case Kind::constant:
+    size.insert("distribution", "constant");
+    size.insert("radius", d.radius);
+    break;
+  case Kind::uniform:
+    size.insert("distribution", "uniform");
+    break;
+  case Kind::normal:
+  case Kind::lognormal:
+    size.insert("distribution", d.kind == Kind::normal ? "normal" : "lognormal");
+    size.insert("mean", d.mean);
+    size.insert("sd", d.sd);
+    break;
+  case Kind::discrete: {
+    size.insert("distribution", "discrete");
+    toml::array radii, weights;
+    for (double r : d.radii) radii.push_back(r);
+    for (double w : d.weights) weights.push_back(w);
+    size.insert("radii", radii);
+    size.insert("weights", weights);
+    size.insert("weights_by", d.by_mass ? "mass" : "number");
+    break;
+  }
+  }
+  if (d.kind == Kind::uniform || d.kind == Kind::normal || d.kind == Kind::lognormal) {
+    size.insert("min", d.min);
+    size.insert("max", d.max);
+  }
+  t.insert("size", size);
+  t.insert("material", s.materials[g.material]);
+  t.insert("density", g.density);
+  t.insert("velocity", vec(g.velocity));
+  t.insert("velocity_spread", g.velocity_spread);
+  t.insert("seed", static_cast<std::int64_t>(g.seed));
+}
+
+void write_sources(const Scene& s, toml::table& doc) {
+  if (!s.fills.empty()) {
+    toml::array fills;
+    for (const FillSpec& f : s.fills) {
+      toml::table t{{"region", region_table(f.region)}};
+      write_grains(s, f.grains, t);
+      switch (f.amount) {
+      case FillSpec::Amount::count:
+        t.insert("count", static_cast<std::int64_t>(std::llround(f.value)));
+        break;
+      case FillSpec::Amount::packing_fraction:
+        t.insert("packing_fraction", f.value);
+        break;
+      case FillSpec::Amount::mass:
+        t.insert("mass", f.value);
+        break;
+      }
+      const bool lattice = f.placement == FillSpec::Placement::lattice;
+      t.insert("placement", lattice ? "lattice" : "random");
+      if (lattice) t.insert("jitter", f.jitter);
+      fills.push_back(t);
+    }
+    doc.insert("fill", fills);
+  }
+  if (!s.inserts.empty()) {
+    toml::array inserts;
+    for (const InsertSpec& i : s.inserts) {
+      toml::table t{{"name", i.name}, {"region", region_table(i.region)}};
+      write_grains(s, i.grains, t);
+      t.insert(i.by_mass ? "mass_rate" : "rate", i.rate);
+      t.insert("start", i.start);
+      if (std::isfinite(i.end)) t.insert("end", i.end);
+      if (i.total >= 0) t.insert("total", i.total);
+      t.insert("interval", i.interval);
+      t.insert("attempts", i.attempts);
+      inserts.push_back(t);
+    }
+    doc.insert("insert", inserts);
+  }
+  if (!s.outlets.empty()) {
+    toml::array outlets;
+    for (const OutletSpec& o : s.outlets)
+      outlets.push_back(toml::table{{"name", o.name}, {"region", region_table(o.region)}});
+    doc.insert("outlet", outlets);
   }
 }
 
@@ -169,7 +296,8 @@ std::string resolved_scene_toml(const Scene& s) {
   if (!s.planes.empty()) {
     toml::array planes;
     for (const auto& p : s.planes)
-      planes.push_back(toml::table{{"point", vec(p.point)},
+      planes.push_back(toml::table{{"name", p.name},
+                                   {"point", vec(p.point)},
                                    {"normal", vec(p.normal)},
                                    {"material", s.materials[p.material]},
                                    {"amplitude", p.amplitude},
@@ -257,6 +385,7 @@ std::string resolved_scene_toml(const Scene& s) {
     }
     doc.insert("particle", parts);
   }
+  write_sources(s, doc);
   std::ostringstream out;
   out << "# Resolved scene: the input with every default filled in. Runs as it stands.\n\n"
       << doc << "\n";

@@ -52,7 +52,7 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume_after(energy_every));
   // walls.csv: per shaped wall, the force and torque the grains put on it and its cumulative
   // work on them (docs/scene-format.md, "walls.csv").
-  if (root && !sim.walls().empty())
+  if (root && !(sim.walls().empty() && sim.planes().empty()))
     walls = std::make_unique<EnergyCsv>(dir / "walls.csv", resume_after(energy_every),
                                         "step,time,wall,fx,fy,fz,torque_x,torque_y,torque_z,"
                                         "work,contacts");
@@ -61,18 +61,50 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   if (scene.output.lammps_dump && snapshot_every)
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box,
                                               resume_after(snapshot_every), sim.comm());
+  // inflow.csv and outflow.csv: each insert's and outlet's cumulative grains and mass.
+  std::unique_ptr<EnergyCsv> inflow, outflow;
+  if (root && !scene.inserts.empty())
+    inflow = std::make_unique<EnergyCsv>(dir / "inflow.csv", resume_after(energy_every),
+                                         "step,time,insert,grains,mass,owed");
+  if (root && !scene.outlets.empty())
+    outflow = std::make_unique<EnergyCsv>(dir / "outflow.csv", resume_after(energy_every),
+                                          "step,time,outlet,grains,mass");
+  const auto write_flows = [&] {
+    const auto row = [&](EnergyCsv& csv, const Simulation::SourceTally& f, bool owed) {
+      csv.write_row(fmt::format("{},{:.10g},{},{},{:.10g}{}", sim.step_count(), sim.time(), f.name,
+                                f.grains, f.mass,
+                                owed ? fmt::format(",{}", f.owed) : std::string()));
+    };
+    if (inflow)
+      for (const auto& f : sim.inflow()) row(*inflow, f, true);
+    if (!scene.outlets.empty()) {
+      const auto flows = sim.outflow(); // collective
+      for (std::size_t k = 0; outflow && k < flows.size(); ++k) row(*outflow, flows[k], false);
+    }
+  };
+  // Particles in the rate (grains and wall particles), counted again at each row of
+  // energies.csv: grains may come and go.
+  double n_particles = 0, n_walls = 0;
   const auto write_energies = [&] {
     const EnergyBooks e = sim.energies(); // collective
+    n_particles = n_walls + static_cast<double>(e.grains);
     if (energies) energies->write(e);
-    if (sim.walls().empty()) return;
-    const std::vector<WallLoad> loads = sim.wall_loads(); // collective
-    for (std::size_t w = 0; walls && w < loads.size(); ++w) {
-      const WallLoad& l = loads[w];
+    write_flows();
+    const auto row = [&](const std::string& name, const WallLoad& l) {
       walls->write_row(fmt::format("{},{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
                                    "{:.10g},{}",
-                                   sim.step_count(), sim.time(), wall_name(sim.walls()[w]),
-                                   l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y,
-                                   l.torque.z, l.work, l.contacts));
+                                   sim.step_count(), sim.time(), name, l.force.x, l.force.y,
+                                   l.force.z, l.torque.x, l.torque.y, l.torque.z, l.work,
+                                   l.contacts));
+    };
+    if (!sim.walls().empty()) {
+      const std::vector<WallLoad> loads = sim.wall_loads(); // collective
+      for (std::size_t w = 0; walls && w < loads.size(); ++w)
+        row(wall_name(sim.walls()[w]), loads[w]);
+    }
+    if (!sim.planes().empty()) {
+      const std::vector<WallLoad> loads = sim.plane_loads(); // collective
+      for (std::size_t p = 0; walls && p < loads.size(); ++p) row(sim.planes()[p].name, loads[p]);
     }
   };
   CheckpointSet checkpoints(dir, scene.checkpoint.keep);
@@ -117,8 +149,9 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
                                              options.resumed ? std::optional(first) : std::nullopt);
 
   Progress progress(first, last, options.show_progress && sim.comm().root());
-  const double n_particles =
+  n_particles =
       static_cast<double>(sim.comm().sum(static_cast<std::int64_t>(sim.particles().n_owned())));
+  n_walls = n_particles - static_cast<double>(sim.energies().grains);
   const auto start = std::chrono::steady_clock::now();
   double particle_steps = 0.0;
   if (!options.resumed) {

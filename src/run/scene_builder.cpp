@@ -4,6 +4,30 @@
 
 namespace yuxi {
 
+namespace {
+
+// An outlet that holds every grain the run starts with would empty the bed at the first list
+// build: refused. One that holds some of them takes those at once: a warning that counts them.
+void check_outlets(const Scene& scene, const ParticleStore& particles, BuildReport& r) {
+  std::size_t grains = 0;
+  for (std::size_t i = 0; i < particles.n_owned(); ++i) grains += particles.kind[i] == Kind::grain;
+  for (const OutletSpec& o : scene.outlets) {
+    std::size_t inside = 0;
+    for (std::size_t i = 0; i < particles.n_owned(); ++i)
+      inside += particles.kind[i] == Kind::grain && o.region.contains(particles.x[i]);
+    if (inside == 0) continue;
+    if (inside == grains)
+      throw SceneError(fmt::format("{}: outlet {}: its region ({}) holds all {} grains the run "
+                                   "starts with; they would all leave at the first step",
+                                   scene.source, o.name, o.region.describe(), grains));
+    r.warnings.push_back(fmt::format("outlet {} holds {} of the {} grains the run starts with; "
+                                     "they leave at the first step",
+                                     o.name, inside, grains));
+  }
+}
+
+} // namespace
+
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, BuildReport* report,
                                              Comm comm) {
   ParticleStore particles;
@@ -21,8 +45,34 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
     particles.add(p, next++);
     (p.kind == Kind::grain ? r.grains : r.walls) += 1;
   }
+  // The fills, in file order, each clear of every particle placed before it.
+  if (!scene.fills.empty()) {
+    std::vector<ParticleSpec> placed;
+    placed.reserve(particles.n_owned());
+    for (std::size_t i = 0; i < particles.n_owned(); ++i) {
+      ParticleSpec p;
+      p.position = particles.x[i];
+      p.radius = particles.radius[i];
+      placed.push_back(p);
+    }
+    for (const FillSpec& f : scene.fills) {
+      std::vector<ParticleSpec> grains;
+      try {
+        grains = fill_particles(f, scene.sim.box, placed);
+      } catch (const FillError& e) {
+        throw SceneError(e.what());
+      }
+      for (const auto& p : grains) particles.add(p, next++);
+      r.grains += grains.size();
+      r.filled += grains.size();
+      placed.insert(placed.end(), grains.begin(), grains.end());
+    }
+  }
+  check_outlets(scene, particles, r);
   auto sim = std::make_unique<Simulation>(scene.sim, std::move(particles), scene.planes,
                                           std::move(motions), scene.law, comm, scene.walls);
+  if (!scene.inserts.empty() || !scene.outlets.empty())
+    sim->set_sources(scene.inserts, scene.outlets);
   r.stiffest = sim->stiffest_contact();
   r.dt_over_tc = scene.sim.dt / r.stiffest.contact_time;
   if (r.dt_over_tc > 0.1 && !scene.run.allow_large_dt && !force_dt) {

@@ -7,13 +7,17 @@
 #include "sim/simulation.hpp"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace yuxi {
 
 struct BuildReport {
   std::size_t walls = 0, grains = 0;
+  std::size_t filled = 0; // of the grains, those the [[fill]] tables placed
   StiffestContact stiffest;
   double dt_over_tc = 0.0;
+  std::vector<std::string> warnings; // for the log: what the scene does that may be a mistake
 };
 
 // Throws SceneError if dt > t_c / 10 for the stiffest contact, unless the scene sets

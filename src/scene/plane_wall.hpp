@@ -7,10 +7,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace yuxi {
 
 struct PlaneWall {
+  std::string name; // for walls.csv ("plane 1", "box z lo", ...)
   Vec3 point;
   Vec3 normal{0, 0, 1};
   std::uint8_t material = 0;

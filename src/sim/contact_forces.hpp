@@ -54,6 +54,8 @@ public:
 
   const ContactLaw<Model>& law() const { return law_; }
   ContactHistory<State> history;
+  // What the grains did to each flat wall at the last evaluation (this rank's part).
+  std::vector<WallLoad> plane_loads;
 
   // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
   // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
@@ -377,6 +379,7 @@ private:
   void compute_planes(ParticleStore& s, const NeighborList& list,
                       const std::vector<PlaneWall>& planes, double t, double dt,
                       ContactTally& tally, ContactRecord& record) {
+    plane_loads.assign(planes.size(), WallLoad{});
     for (std::size_t k = 0; k < list.planes.size(); ++k) {
       const auto [i, plane_index] = list.planes[k];
       const PlaneWall& wall = planes[plane_index];
@@ -399,6 +402,10 @@ private:
       book(r, tally);
       record.keep_plane(k, r.force, r.elastic);
       tally.wall_work += dot(r.force, v_wall) * dt;
+      WallLoad& load = plane_loads[plane_index];
+      load.force -= r.force;
+      load.work += dot(r.force, v_wall) * dt;
+      ++load.contacts;
       track_overlap(g.overlap, ai, i, tally);
     }
   }

@@ -23,6 +23,8 @@ void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
     lo.normal[a] = 1.0;
     hi.normal[a] = -1.0;
     lo.material = hi.material = c.box_wall_material;
+    lo.name = fmt::format("box {} lo", "xyz"[a]);
+    hi.name = fmt::format("box {} hi", "xyz"[a]);
     planes.push_back(lo);
     planes.push_back(hi);
   }
@@ -32,7 +34,7 @@ void add_box_walls(const SimulationConfig& c, std::vector<PlaneWall>& planes) {
 // choice of the rank layout: a tall box over a shallow bed is cut across the bed, not through
 // it (every rank holds every particle when the simulation is built).
 Vec3 occupied_lengths(const Box& box, const ParticleStore& s) {
-  if (s.n_owned() == 0) return {};
+  if (s.n_owned() == 0) return {box.length(0), box.length(1), box.length(2)};
   Vec3 lo = s.x[0], hi = s.x[0];
   for (std::size_t i = 0; i < s.n_owned(); ++i)
     for (int a = 0; a < 3; ++a) {
@@ -46,7 +48,7 @@ Vec3 occupied_lengths(const Box& box, const ParticleStore& s) {
 }
 
 double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
-  const double reach = contact_reach(s);
+  const double reach = std::max(contact_reach(s), c.min_contact_reach);
   if (c.cell_size > 0.0) {
     if (c.cell_size < reach)
       throw std::invalid_argument(fmt::format(
@@ -80,6 +82,7 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       throw std::invalid_argument(fmt::format("particle {} refers to wall motion {} of {}",
                                               store_.gid[i], store_.motion[i], motions_.size()));
   add_box_walls(config_, planes_);
+  plane_work_.assign(planes_.size(), 0.0);
   range_ = config_.skin;
   // Positions are rounded at every step: a bound of a few units in the last place of the
   // largest coordinate a particle in the box can have, for each step's displacement.
@@ -88,6 +91,8 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
         std::max({position_round_off_, std::abs(config_.box.lo[a]), std::abs(config_.box.hi[a])});
   position_round_off_ *= 8.0 * std::numeric_limits<double>::epsilon();
   decomp_.set_min_slab(cell_edge_);
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    next_gid_ = std::max(next_gid_, store_.gid[i] + 1);
   if (comm_.size() > 1) {
     // Every rank holds every particle here: cut by particle count (unless balancing is off),
     // keep this sub-domain's.
@@ -145,6 +150,12 @@ void Simulation::step() {
   books_.dissipated += tally_.dissipated;
   books_.wall_work += tally_.wall_work;
   for (std::size_t w = 0; w < wall_loads_.size(); ++w) wall_work_[w] += wall_loads_[w].work;
+  if (!planes_.empty()) {
+    const auto& loads = std::visit(
+        [](const auto& f) -> const std::vector<WallLoad>& { return f.plane_loads; }, forces_);
+    for (std::size_t p = 0; p < loads.size() && p < plane_work_.size(); ++p)
+      plane_work_[p] += loads[p].work;
+  }
   steer_servo_walls();
 }
 
@@ -203,6 +214,7 @@ bool Simulation::kick_drift() {
   books_.gravity_work += gravity_work;
   time_ += dt;
   ++step_;
+  if (!inserts_.empty() && insertion_due(step_)) must_rebuild = true;
   if (place_walls(time_, false, &moved2_)) must_rebuild = true;
   return must_rebuild;
 }

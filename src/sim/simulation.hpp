@@ -21,6 +21,7 @@
 #include "domain/comm.hpp"
 #include "domain/decomposition.hpp"
 #include "domain/halo.hpp"
+#include "scene/particle_source.hpp"
 #include "scene/plane_wall.hpp"
 #include "scene/shaped_wall.hpp"
 #include "scene/wall_motion.hpp"
@@ -64,6 +65,9 @@ struct SimulationConfig {
   // The near pairs' margin as a fraction of the skin (core/near_pairs.hpp; 0: scan the whole
   // list every step). The trajectory is the same either way.
   double near_fraction = 0.25;
+  // The linked cells are at least this wide beyond the skin: grains that come later
+  // ([[insert]]) may be larger than any at the start [length].
+  double min_contact_reach = 0.0;
 };
 
 // The run cannot go on; what() holds the diagnosis (step, grain, position, velocity).
@@ -81,6 +85,10 @@ struct StiffestContact {
 
 class Simulation {
 public:
+  // The layout of checkpoint(), which the checkpoint file's format version names: layout 6
+  // added the sources' part; a state of layout 5 loads with no insert or outlet under way.
+  static constexpr std::uint32_t state_layout = 6, oldest_state_layout = 5;
+
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
   // `walls`: the triangle meshes and cylinders (every rank is given all of them).
@@ -115,6 +123,9 @@ public:
   // cumulative work on the grains (in `work`), summed over the ranks onto every rank.
   // Collective.
   std::vector<WallLoad> wall_loads() const;
+  // The same for the flat walls (planes(): the scene's, then the box's faces; torque zero).
+  // Collective.
+  std::vector<WallLoad> plane_loads() const;
   // The force on each triangle of mesh `wall` at the last force evaluation, summed over the
   // ranks onto every rank (zero where nothing touches). Collective.
   std::vector<Vec3> triangle_forces(std::size_t wall) const;
@@ -153,6 +164,7 @@ public:
     ar.value(initial_balance_);
     ar.value(tally_);
     checkpoint_walls(ar);
+    checkpoint_sources(ar);
     for (int a = 0; a < 3; ++a) {
       std::vector<double> cuts = decomp_.cuts(a);
       ar.vector(cuts);
@@ -190,7 +202,9 @@ public:
   // energy books are summed onto rank 0. A correct continuation, not a bitwise one (the
   // summation order changes with the decomposition). A section that does not load or does not
   // fit the scene throws std::invalid_argument on every rank.
-  void load(const std::vector<std::string>& share, std::uint64_t written_on);
+  // `layout`: the state layout of the file (state_layout or older).
+  void load(const std::vector<std::string>& share, std::uint64_t written_on,
+            std::uint32_t layout = state_layout);
 
   // Collective: continues another run's saved state under this simulation's scene (a branch:
   // `yuxi run SCENE --from CHECKPOINT`). The particles, their contacts' history, the walls'
@@ -209,7 +223,22 @@ public:
     bool keep_history = true;
   };
   void branch(const std::vector<std::string>& share, std::uint64_t written_on,
-              const BranchCheck& check);
+              const BranchCheck& check, std::uint32_t layout = state_layout);
+
+  // Sources and sinks of grains while the run goes on ([[insert]], [[outlet]]; the scene
+  // builder sets them before the first step, and before a checkpoint is loaded). Insertions
+  // happen at list builds (a batch due forces one); grains that an outlet holds leave at the
+  // next list build, their mechanical energy booked as removed, as escaped grains'.
+  void set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets);
+  struct SourceTally {
+    std::string name;
+    std::int64_t grains = 0; // cumulative
+    double mass = 0;         // cumulative
+    std::int64_t owed = 0;   // grains due but not placed yet (inserts: no free place found)
+  };
+  // Each insert's and each outlet's cumulative grains and mass. Collective.
+  std::vector<SourceTally> inflow() const;
+  std::vector<SourceTally> outflow() const;
 
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
@@ -260,6 +289,8 @@ private:
     if constexpr (Archive::loading) check_wall_files(crcs);
     ar.value(walls_built_at_);
     ar.vector(wall_work_);
+    if (!Archive::loading || loading_layout_ >= 6) ar.vector(plane_work_);
+    plane_work_.resize(planes_.size(), 0.0);
     std::vector<double> servo;
     for (const ShapedWall& w : walls_)
       if (const auto* m = std::get_if<MeshWall>(&w))
@@ -280,6 +311,28 @@ private:
         throw std::invalid_argument("the checkpoint's walls are not this scene's");
   }
   void check_wall_files(const std::vector<std::uint32_t>& saved) const;
+  // The sources' part of a checkpoint: the next global id, each insert's progress (the same on
+  // every rank) and each outlet's part on this rank.
+  template <class Archive> void checkpoint_sources(Archive& ar) {
+    if constexpr (Archive::loading)
+      if (loading_layout_ < 6) return; // (none under way)
+    ar.value(next_gid_);
+    ar.vector(insert_progress_);
+    ar.vector(outlet_part_);
+    if constexpr (Archive::loading)
+      if (insert_progress_.size() != inserts_.size() || outlet_part_.size() != outlets_.size()) {
+        // A branch may bring other sources: they start afresh.
+        if (!branch_)
+          throw std::invalid_argument("the checkpoint's inserts and outlets are not this scene's");
+        insert_progress_.assign(inserts_.size(), InsertProgress{});
+        outlet_part_.assign(outlets_.size(), OutletPart{});
+      }
+  }
+  // At a list build, after the escapes: grains in an outlet leave, a due batch is inserted.
+  void handle_outlets();
+  void insert_due_batches();
+  bool insertion_due(std::int64_t step) const;
+  void insert_batch(std::size_t source);
   // How a list build starts: in a step (the history stashed from the current list, balancing
   // when due); after loading a state, whose contact states are in the stash already and whose
   // cut planes are the saved ones (the run's next build balances as it would have); or after
@@ -339,7 +392,8 @@ private:
   std::vector<ShapedWall> walls_;
   std::vector<WallLoad> wall_loads_;         // this rank's, of the last force evaluation
   std::vector<ElementForce> element_forces_; // this rank's wall contacts, of the same
-  std::vector<double> wall_work_; // this rank's part of each shaped wall's cumulative work
+  std::vector<double> wall_work_;  // this rank's part of each shaped wall's cumulative work
+  std::vector<double> plane_work_; // and of each flat wall's
   // Each mesh's triangles binned on the cells (CSR by cell), reused while a still mesh and the
   // cells stay as they were.
   struct MeshBins {
@@ -388,8 +442,22 @@ private:
   // planes are set afresh).
   enum class Loading { whole, deferred, merged };
   Loading loading_ = Loading::whole;
+  std::vector<InsertSpec> inserts_;
+  std::vector<OutletSpec> outlets_;
+  struct InsertProgress { // the same on every rank
+    std::int64_t batches = 0, grains = 0, owed = 0;
+    double mass = 0;
+  };
+  struct OutletPart { // this rank's
+    std::int64_t grains = 0;
+    double mass = 0;
+  };
+  std::vector<InsertProgress> insert_progress_;
+  std::vector<OutletPart> outlet_part_;
+  GlobalId next_gid_ = 0; // of the next inserted grain (the same on every rank)
   // While branch() loads: the state continues under another scene (what it must hold).
   std::optional<BranchCheck> branch_;
+  std::uint32_t loading_layout_ = state_layout; // of the state load() takes
   PhaseTimes timers_;
 };
 

@@ -20,6 +20,10 @@ void Simulation::rebuild(BuildAfter after) {
       (rebuilds_ == 1 || (rebuilds_ > 0 && rebuilds_ % config_.rebalance_every == 0)))
     rebalance();
   handle_escapes();
+  if (!after_load) {
+    if (!outlets_.empty()) handle_outlets();
+    if (!inserts_.empty()) insert_due_batches();
+  }
   // Wrap grains into the periodic box along axes that one rank spans; across ranks the
   // migration shifts them.
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {

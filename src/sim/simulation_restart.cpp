@@ -38,7 +38,9 @@ void Simulation::validate_loaded_particles() const {
     throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
 }
 
-void Simulation::load(const std::vector<std::string>& share, std::uint64_t written_on) {
+void Simulation::load(const std::vector<std::string>& share, std::uint64_t written_on,
+                      std::uint32_t layout) {
+  loading_layout_ = layout;
   // (a branch takes its shares as on another number of ranks: merged, cut afresh)
   const bool own = !branch_ && written_on == static_cast<std::uint64_t>(comm_.size());
   // Every rank learns whether every other loaded its share before any takes a collective step.
@@ -59,8 +61,13 @@ void Simulation::load(const std::vector<std::string>& share, std::uint64_t writt
     error = e.what();
   }
   loading_ = Loading::whole;
+  loading_layout_ = state_layout;
   error = comm_.first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
+  // (a state of an older layout holds no next id)
+  GlobalId top = -1;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) top = std::max(top, store_.gid[i]);
+  next_gid_ = std::max(next_gid_, static_cast<GlobalId>(comm_.max(static_cast<double>(top))) + 1);
   if (own) {
     rebuild_after_load(true);
     return;
@@ -76,6 +83,19 @@ void Simulation::load(const std::vector<std::string>& share, std::uint64_t writt
   step_ = static_cast<std::int64_t>(scalars[1]);
   rebuilds_ = static_cast<std::int64_t>(scalars[2]);
   initial_balance_ = scalars[3];
+  // The inserts' progress and the next id, the same in every section, from those that loaded.
+  std::vector<double> sources{loaded ? static_cast<double>(next_gid_) : -HUGE_VAL};
+  for (const InsertProgress& p : insert_progress_)
+    for (double v : {static_cast<double>(p.batches), static_cast<double>(p.grains),
+                     static_cast<double>(p.owed), p.mass})
+      sources.push_back(loaded ? v : -HUGE_VAL);
+  comm_.max(sources.data(), static_cast<int>(sources.size()));
+  next_gid_ = static_cast<GlobalId>(sources[0]);
+  for (std::size_t k = 0; k < insert_progress_.size(); ++k) {
+    const double* v = &sources[1 + 4 * k];
+    insert_progress_[k] = {static_cast<std::int64_t>(v[0]), static_cast<std::int64_t>(v[1]),
+                           static_cast<std::int64_t>(v[2]), v[3]};
+  }
   books_.sum_over(comm_);
   double tally[] = {tally_.elastic, tally_.relaxation, static_cast<double>(tally_.touching)};
   comm_.sum(tally, 3);
@@ -144,10 +164,10 @@ void Simulation::check_branched_particles(const BranchCheck& check) const {
 }
 
 void Simulation::branch(const std::vector<std::string>& share, std::uint64_t written_on,
-                        const BranchCheck& check) {
+                        const BranchCheck& check, std::uint32_t layout) {
   branch_ = check;
   try {
-    load(share, written_on);
+    load(share, written_on, layout);
   } catch (...) {
     branch_.reset();
     throw;
@@ -176,7 +196,8 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
   ParticleStore pool;
   std::string states;
   EnergyBooks books;
-  std::vector<double> wall_work;
+  std::vector<double> wall_work, plane_work(planes_.size(), 0.0);
+  std::vector<OutletPart> outlets(outlet_part_.size());
   ContactTally tally;
   double time = 0, initial_balance = 0;
   std::int64_t step = 0, rebuilds = 0;
@@ -192,6 +213,12 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
     books.add(books_);
     wall_work.resize(wall_work_.size(), 0.0);
     for (std::size_t w = 0; w < wall_work_.size(); ++w) wall_work[w] += wall_work_[w];
+    for (std::size_t p = 0; p < plane_work.size() && p < plane_work_.size(); ++p)
+      plane_work[p] += plane_work_[p];
+    for (std::size_t o = 0; o < outlets.size(); ++o) {
+      outlets[o].grains += outlet_part_[o].grains;
+      outlets[o].mass += outlet_part_[o].mass;
+    }
     tally.elastic += tally_.elastic;
     tally.relaxation += tally_.relaxation;
     tally.touching += tally_.touching;
@@ -202,6 +229,8 @@ void Simulation::merge_sections(const std::vector<std::string>& share) {
   books_ = books;
   wall_work_ = wall_work;
   wall_work_.resize(walls_.size(), 0.0);
+  outlet_part_ = outlets;
+  plane_work_ = plane_work;
   tally_ = tally;
 }
 

@@ -152,6 +152,27 @@ std::vector<WallLoad> Simulation::wall_loads() const {
   return out;
 }
 
+std::vector<WallLoad> Simulation::plane_loads() const {
+  const std::vector<WallLoad>& mine = std::visit(
+      [](const auto& f) -> const std::vector<WallLoad>& { return f.plane_loads; }, forces_);
+  std::vector<double> sums;
+  for (std::size_t p = 0; p < planes_.size(); ++p) {
+    const WallLoad l = p < mine.size() ? mine[p] : WallLoad{};
+    const double work = p < plane_work_.size() ? plane_work_[p] : 0.0;
+    for (const double x : {l.force.x, l.force.y, l.force.z, work, static_cast<double>(l.contacts)})
+      sums.push_back(x);
+  }
+  if (!sums.empty()) comm_.sum(sums.data(), static_cast<int>(sums.size()));
+  std::vector<WallLoad> out(planes_.size());
+  for (std::size_t p = 0; p < planes_.size(); ++p) {
+    const double* s = sums.data() + 5 * p;
+    out[p].force = {s[0], s[1], s[2]};
+    out[p].work = s[3];
+    out[p].contacts = static_cast<std::size_t>(s[4]);
+  }
+  return out;
+}
+
 void Simulation::steer_servo_walls() {
   std::vector<double> along;
   std::vector<MeshWall*> servos;

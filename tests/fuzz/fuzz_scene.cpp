@@ -20,6 +20,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double cell = scene.sim.cell_size > 0 ? scene.sim.cell_size : 0.5;
     if ((b.hi.x - b.lo.x) / cell * (b.hi.y - b.lo.y) / cell * (b.hi.z - b.lo.z) / cell > 1e6)
       return 0;
+    // ... and to fills and pours of a few thousand grains.
+    for (const auto& f : scene.fills) {
+      const double r = f.grains.size.smallest(), grain = 4.0 / 3.0 * 3.15 * r * r * r;
+      const double volume = f.region.volume_in(b);
+      const double n = f.amount == yuxi::FillSpec::Amount::count ? f.value
+                       : f.amount == yuxi::FillSpec::Amount::mass
+                           ? f.value / (f.grains.density * grain)
+                           : f.value * volume / grain;
+      if (!(n < 5000)) return 0;
+    }
+    for (const auto& i : scene.inserts) {
+      const double per_batch = i.rate * i.interval;
+      if (!(per_batch < 5000) || i.by_mass) return 0;
+    }
     auto sim = yuxi::build_simulation(scene, false);
     sim->run(2);
   } catch (const yuxi::SceneError&) {

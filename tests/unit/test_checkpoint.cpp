@@ -121,7 +121,7 @@ INSTANTIATE_TEST_SUITE_P(
                  b[8] = 7;
                  return b;
                },
-               "checkpoint format version 7; this yuxi reads version 5"},
+               "checkpoint format version 7; this yuxi reads versions 5 to 6"},
         Damage{"not a checkpoint", [](std::string) { return std::string("hello, world: no"); },
                "not a yuxi checkpoint"},
         Damage{"empty", [](std::string) { return std::string(); }, "not a yuxi checkpoint"},

@@ -1,0 +1,147 @@
+// [[fill]]: the grains asked for, all inside the region, overlapping neither each other nor the
+// particles already there, the same on every call with the same seed; a packing fraction or a
+// mass turns into the right number of grains; and a request that cannot fit is refused before
+// any grain is placed, with how many fit and why.
+#include "scene/particle_fill.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+
+namespace yuxi {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+const Box domain{{0, 0, 0}, {20, 20, 40}};
+
+FillSpec box_fill(double count) {
+  FillSpec f;
+  f.name = "fill[1]";
+  f.region = Region(BoxRegion{{2, 2, 2}, {18, 18, 30}});
+  f.grains.size.kind = SizeDistribution::Kind::uniform;
+  f.grains.size.min = 0.4;
+  f.grains.size.max = 0.6;
+  f.grains.density = 2.0;
+  f.grains.seed = 42;
+  f.value = count;
+  return f;
+}
+
+// No two of `a` and `b` overlap (a brute-force check).
+void expect_no_overlaps(const std::vector<ParticleSpec>& a, const std::vector<ParticleSpec>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (&a == &b && j <= i) continue;
+      ASSERT_GE(norm(a[i].position - b[j].position), a[i].radius + b[j].radius - 1e-12)
+          << i << " " << j;
+    }
+  }
+}
+
+TEST(ParticleFill, RandomFillPlacesEveryGrainInsideAndApart) {
+  // a wall of large balls already in the region
+  std::vector<ParticleSpec> others;
+  for (int i = 0; i < 5; ++i) {
+    ParticleSpec p;
+    p.position = {4.0 + 3 * i, 10, 10};
+    p.radius = 1.5;
+    others.push_back(p);
+  }
+  const FillSpec f = box_fill(2000);
+  const auto grains = fill_particles(f, domain, others);
+  ASSERT_EQ(grains.size(), 2000u);
+  for (const auto& g : grains) {
+    ASSERT_TRUE(f.region.contains_sphere(g.position, g.radius));
+    ASSERT_GE(g.radius, 0.4);
+    ASSERT_LE(g.radius, 0.6);
+    ASSERT_NEAR(g.mass, 2.0 * 4.0 / 3.0 * pi * std::pow(g.radius, 3), 1e-12 * g.mass);
+  }
+  expect_no_overlaps(grains, grains);
+  expect_no_overlaps(grains, others);
+  // the same seed, the same grains; another seed, others
+  const auto again = fill_particles(f, domain, others);
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    ASSERT_EQ(grains[i].position.x, again[i].position.x);
+    ASSERT_EQ(grains[i].radius, again[i].radius);
+  }
+  FillSpec other_seed = f;
+  other_seed.grains.seed = 43;
+  EXPECT_NE(fill_particles(other_seed, domain, others)[0].position.x, grains[0].position.x);
+}
+
+TEST(ParticleFill, PackingFractionAndMassBecomeCounts) {
+  // phi = N <V> / V_region: 0.2 of 16 x 16 x 28 with <r^3> = (0.6^4 - 0.4^4) / (4 x 0.2)
+  FillSpec f = box_fill(0.2);
+  f.amount = FillSpec::Amount::packing_fraction;
+  const auto grains = fill_particles(f, domain, {});
+  double volume = 0;
+  for (const auto& g : grains) volume += 4.0 / 3.0 * pi * std::pow(g.radius, 3);
+  EXPECT_NEAR(volume / (16.0 * 16 * 28), 0.2, 0.6 * 4.0 / 3.0 * pi * 0.216 / (16.0 * 16 * 28));
+
+  FillSpec m = box_fill(500.0);
+  m.amount = FillSpec::Amount::mass;
+  double mass = 0;
+  const auto heavy = fill_particles(m, domain, {});
+  for (const auto& g : heavy) mass += g.mass;
+  EXPECT_NEAR(mass, 500.0, 2.0 * 4.0 / 3.0 * pi * 0.216); // within one largest grain
+}
+
+TEST(ParticleFill, TheLatticeGoesBeyondRandomPlacement) {
+  // 0.45 of a box of equal grains: refused at random, placed on the lattice
+  FillSpec f;
+  f.name = "fill[2]";
+  f.region = Region(BoxRegion{{0, 0, 0}, {10.3, 10.3, 10.3}});
+  f.grains.size.radius = 0.5;
+  f.amount = FillSpec::Amount::packing_fraction;
+  f.value = 0.45;
+  const Box box{{0, 0, 0}, {10.3, 10.3, 10.3}};
+  try {
+    fill_particles(f, box, {});
+    FAIL() << "a random fill of 0.45 was accepted";
+  } catch (const FillError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("fill[2]"), std::string::npos) << what;
+    EXPECT_NE(what.find("lattice"), std::string::npos) << what;
+  }
+  f.placement = FillSpec::Placement::lattice;
+  f.jitter = 0.01;
+  const auto grains = fill_particles(f, box, {});
+  EXPECT_NEAR(double(grains.size()), 0.45 * std::pow(10.3, 3) / (pi / 6), 1.0);
+  expect_no_overlaps(grains, grains);
+  // beyond the lattice's capacity (10^3 sites at spacing 1.02): refused, naming the sites
+  f.value = 0.55;
+  try {
+    fill_particles(f, box, {});
+    FAIL() << "a lattice beyond its sites was accepted";
+  } catch (const FillError& e) {
+    EXPECT_NE(std::string(e.what()).find("1000 free sites"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ParticleFill, ARandomFillThatJamsSaysHowManyFit) {
+  // 0.36 asked, with a crowd already there: the fill gives up and says how far it got
+  FillSpec f = box_fill(0.36);
+  f.amount = FillSpec::Amount::packing_fraction;
+  f.grains.size.kind = SizeDistribution::Kind::constant;
+  f.grains.size.radius = 0.5;
+  f.attempts_per_grain = 50;
+  std::vector<ParticleSpec> crowd;
+  for (double x = 3; x < 18; x += 1.1)
+    for (double y = 3; y < 18; y += 1.1)
+      for (double z = 3; z < 16; z += 1.1) {
+        ParticleSpec p;
+        p.position = {x, y, z};
+        p.radius = 0.5;
+        crowd.push_back(p);
+      }
+  try {
+    fill_particles(f, domain, crowd);
+    FAIL() << "a fill into a crowded region was accepted";
+  } catch (const FillError& e) {
+    EXPECT_NE(std::string(e.what()).find("placed "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("after 50 random draws"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
+} // namespace yuxi

@@ -1,0 +1,163 @@
+// Sources and sinks in a running simulation: a pour puts in exactly the grains its rate asks
+// for, none of them overlapping another, and its inserted energy keeps the books closed; an
+// outlet takes grains out with their mass and energy booked; a run with a pour resumed from a
+// checkpoint reaches the uninterrupted run's state byte for byte.
+#include "core/archive.hpp"
+#include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+namespace yuxi {
+namespace {
+
+// A 10 x 10 x 20 box with walls, a pour of 300 grains per time from z = 8..19.5 until t = 1,
+// and (optionally) an outlet below z = 2 that takes the grains as they land.
+std::string pour_scene(const std::string& extra) {
+  return R"(materials = ["grain", "wall"]
+[material.grain]
+density = 1.909859317
+[run]
+dt = 1.0e-3
+t_end = 2.0
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [10.0, 10.0, 20.0]
+boundary = ["wall", "wall", "wall"]
+gravity = [0.0, 0.0, -10.0]
+wall_material = "wall"
+[contact]
+model = "linear"
+[[contact.pair]]
+materials = ["grain", "grain"]
+k_n = 2.0e4
+k_t = 5.0e3
+gamma_n = 5.0
+gamma_t = 2.0
+mu_s = 0.5
+mu_d = 0.5
+[[contact.pair]]
+materials = ["grain", "wall"]
+k_n = 2.0e4
+gamma_n = 5.0
+[[insert]]
+material = "grain"
+rate = 300
+end = 1.0
+velocity = [0.0, 0.0, -1.0]
+velocity_spread = 0.3
+interval = 0.05
+size = { distribution = "uniform", min = 0.4, max = 0.5 }
+region = { shape = "box", lo = [0.5, 0.5, 8.0], hi = [9.5, 9.5, 19.5] }
+)" + extra;
+}
+
+// Books: the balance moves by no more than this share of what came in and went out.
+void expect_books_close(const EnergyBooks& e, double share) {
+  const double scale = std::abs(e.inserted) + e.dissipated + e.removed;
+  ASSERT_GT(scale, 0.0);
+  EXPECT_LT(std::abs(e.balance()), share * scale)
+      << "balance " << e.balance() << " inserted " << e.inserted << " dissipated " << e.dissipated
+      << " removed " << e.removed;
+}
+
+TEST(Sources, APourInsertsItsRateWithoutOverlap) {
+  auto sim = build_simulation(read_scene_text(pour_scene(""), "pour.toml"), false);
+  sim->run(1500);
+  const auto in = sim->inflow();
+  ASSERT_EQ(in.size(), 1u);
+  EXPECT_EQ(in[0].grains, 300); // rate x (end - start)
+  EXPECT_EQ(in[0].owed, 0);
+  const EnergyBooks e = sim->energies();
+  EXPECT_EQ(e.grains, 300u);
+  EXPECT_EQ(sim->particles().size(), 300u);
+  // every grain inside the box, every pair apart by no more than contact overlaps allow
+  const ParticleStore& p = sim->particles();
+  double mass = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    mass += p.mass[i];
+    for (std::size_t j = i + 1; j < p.size(); ++j)
+      ASSERT_GT(norm(p.x[i] - p.x[j]), 0.8 * (p.radius[i] + p.radius[j]));
+  }
+  EXPECT_NEAR(in[0].mass, mass, 1e-9 * mass);
+  // m = 8 r^3 at this density: 300 grains of <r^3> = (0.5^4 - 0.4^4) / 0.4
+  EXPECT_NEAR(mass / 300, 8.0 * (std::pow(0.5, 4) - std::pow(0.4, 4)) / 0.4, 0.03);
+  expect_books_close(e, 0.02);
+}
+
+TEST(Sources, AnOutletTakesGrainsAndTheirEnergyOut) {
+  const std::string outlet = R"(
+[[outlet]]
+name = "floor"
+region = { shape = "half_space", point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, -1.0] }
+)";
+  auto sim = build_simulation(read_scene_text(pour_scene(outlet), "pour.toml"), false);
+  sim->run(3000);
+  const auto in = sim->inflow();
+  const auto out = sim->outflow();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].name, "floor");
+  const EnergyBooks e = sim->energies();
+  EXPECT_EQ(in[0].grains, 300);
+  EXPECT_GT(out[0].grains, 250); // the free fall from z <= 19.5 lasts at most 1.8 in time
+  EXPECT_EQ(static_cast<std::int64_t>(e.grains), in[0].grains - out[0].grains);
+  double mass = 0;
+  for (std::size_t i = 0; i < sim->particles().size(); ++i) mass += sim->particles().mass[i];
+  EXPECT_NEAR(in[0].mass - out[0].mass, mass, 1e-9 * in[0].mass);
+  EXPECT_GT(e.removed, 0.0);
+  expect_books_close(e, 0.02);
+}
+
+// 50 grains in z = 1..5 and an outlet over x <= outlet_x, z <= 6.
+std::string bed_and_outlet(double outlet_x) {
+  return pour_scene(fmt::format(R"(
+[[fill]]
+material = "grain"
+radius = 0.5
+count = 50
+region = {{ shape = "box", lo = [1.0, 1.0, 1.0], hi = [9.0, 9.0, 5.0] }}
+[[outlet]]
+region = {{ shape = "box", lo = [0.0, 0.0, 0.0], hi = [{}, 10.0, 6.0] }}
+)",
+                                outlet_x));
+}
+
+TEST(Sources, AnOutletThatHoldsTheWholeBedIsRefused) {
+  try {
+    build_simulation(read_scene_text(bed_and_outlet(10.0), "pour.toml"), false);
+    FAIL() << "an outlet over the whole bed was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds all 50 grains"), std::string::npos) << e.what();
+  }
+  // over part of it: a warning that counts them
+  BuildReport report;
+  build_simulation(read_scene_text(bed_and_outlet(5.0), "pour.toml"), false, &report);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("of the 50 grains"), std::string::npos) << report.warnings[0];
+}
+
+TEST(Sources, APourResumesByteForByte) {
+  const Scene scene = read_scene_text(pour_scene(""), "pour.toml");
+  const auto bytes = [](Simulation& s) {
+    ArchiveWriter ar;
+    s.checkpoint(ar);
+    return ar.data();
+  };
+  auto straight = build_simulation(scene, false);
+  straight->run(1234);
+  auto first = build_simulation(scene, false);
+  first->run(617); // in the middle of an insertion interval
+  const std::string saved = bytes(*first);
+  auto resumed = build_simulation(scene, false);
+  ArchiveReader reader(saved);
+  resumed->checkpoint(reader);
+  EXPECT_TRUE(reader.at_end());
+  resumed->run(617);
+  EXPECT_EQ(bytes(*straight), bytes(*resumed));
+  EXPECT_EQ(straight->inflow()[0].grains, resumed->inflow()[0].grains);
+}
+
+} // namespace
+} // namespace yuxi
