@@ -4,6 +4,7 @@
 
 #include "contact/contact_model.hpp"
 #include "scene/fish_basin.hpp"
+#include "scene/measure_spec.hpp"
 #include "scene/particle_fill.hpp"
 #include "scene/particle_source.hpp"
 #include "scene/plane_wall.hpp"
@@ -113,6 +114,7 @@ struct Scene {
   std::vector<FillSpec> fills;         // [[fill]]: grains placed at the start
   std::vector<InsertSpec> inserts;     // [[insert]]: grains poured during the run
   std::vector<OutletSpec> outlets;     // [[outlet]]: where grains leave
+  std::vector<MeasureSpec> measures;   // [[measure]]: measurements.csv
   std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms
   std::optional<LammpsDataSpec> lammps_data;
   std::size_t n_lammps_atoms = 0;

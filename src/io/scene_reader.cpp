@@ -3,6 +3,7 @@
 #include "contact/contact_model.hpp"
 #include "core/units.hpp"
 #include "io/lammps_data_reader.hpp"
+#include "io/measure_scene_reader.hpp"
 #include "io/source_scene_reader.hpp"
 #include "io/toml_reader.hpp"
 #include "io/wall_scene_reader.hpp"
@@ -585,6 +586,7 @@ Scene read_scene_text(std::string_view text, const std::string& source) {
   read_lammps_data_section(scene, root);
   read_particles(scene, root);
   read_sources(scene, root);
+  read_measures(scene, root);
   root.finish();
   check_consistency(scene, root);
   return scene;

@@ -163,6 +163,32 @@ void write_sources(const Scene& s, toml::table& doc) {
   }
 }
 
+void write_measures(const Scene& s, toml::table& doc) {
+  if (s.measures.empty()) return;
+  using Quantity = MeasureSpec::Quantity;
+  toml::array measures;
+  for (const MeasureSpec& m : s.measures) {
+    static constexpr const char* names[] = {"mass",           "grains", "kinetic_per_grain",
+                                            "surface_height", "angle",  "wall_force"};
+    toml::table t{{"name", m.name}, {"quantity", names[static_cast<int>(m.quantity)]}};
+    if (m.region) t.insert("region", region_table(*m.region));
+    if (m.bin > 0) t.insert("bin", m.bin);
+    if (m.quantity == Quantity::wall_force) t.insert("wall", m.wall);
+    if (m.quantity == Quantity::angle) {
+      if (m.about_axis) {
+        t.insert("axis_point", vec(m.point));
+      } else {
+        t.insert("point", vec(m.point));
+        t.insert("direction", vec(m.direction));
+      }
+      if (std::isfinite(m.from)) t.insert("from", m.from);
+      if (std::isfinite(m.to)) t.insert("to", m.to);
+    }
+    measures.push_back(t);
+  }
+  doc.insert("measure", measures);
+}
+
 void write_window(const ActiveWindow& w, toml::table& t) {
   if (std::isfinite(w.from)) t.insert("active_from", w.from);
   if (std::isfinite(w.until)) t.insert("active_until", w.until);
@@ -386,6 +412,7 @@ std::string resolved_scene_toml(const Scene& s) {
     doc.insert("particle", parts);
   }
   write_sources(s, doc);
+  write_measures(s, doc);
   std::ostringstream out;
   out << "# Resolved scene: the input with every default filled in. Runs as it stands.\n\n"
       << doc << "\n";

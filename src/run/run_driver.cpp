@@ -5,6 +5,7 @@
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_walls.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/bed_measurements.hpp"
 #include "run/progress.hpp"
 #include "run/run_analysis.hpp"
 
@@ -69,6 +70,28 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
   if (root && !scene.outlets.empty())
     outflow = std::make_unique<EnergyCsv>(dir / "outflow.csv", resume_after(energy_every),
                                           "step,time,outlet,grains,mass");
+  // measurements.csv: the [[measure]] tables' columns.
+  std::unique_ptr<BedMeasurements> measures;
+  std::unique_ptr<EnergyCsv> measurements;
+  if (!scene.measures.empty()) {
+    double largest = 0;
+    for (std::size_t i = 0; i < sim.particles().n_owned(); ++i)
+      if (sim.particles().is_grain(i)) largest = std::max(largest, sim.particles().radius[i]);
+    sim.comm().max(&largest, 1);
+    for (const InsertSpec& s : scene.inserts) largest = std::max(largest, s.grains.size.largest());
+    measures = std::make_unique<BedMeasurements>(scene.measures, sim, largest);
+    if (root)
+      measurements = std::make_unique<EnergyCsv>(dir / "measurements.csv",
+                                                 resume_after(energy_every), measures->header());
+  }
+  const auto write_measurements = [&] {
+    if (!measures) return;
+    const std::vector<double> v = measures->values(sim); // collective
+    if (!measurements) return;
+    std::string row = fmt::format("{},{:.10g}", sim.step_count(), sim.time());
+    for (double x : v) row += fmt::format(",{:.10g}", x);
+    measurements->write_row(row);
+  };
   const auto write_flows = [&] {
     const auto row = [&](EnergyCsv& csv, const Simulation::SourceTally& f, bool owed) {
       csv.write_row(fmt::format("{},{:.10g},{},{},{:.10g}{}", sim.step_count(), sim.time(), f.name,
@@ -90,6 +113,7 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     n_particles = n_walls + static_cast<double>(e.grains);
     if (energies) energies->write(e);
     write_flows();
+    write_measurements();
     const auto row = [&](const std::string& name, const WallLoad& l) {
       walls->write_row(fmt::format("{},{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
                                    "{:.10g},{}",
