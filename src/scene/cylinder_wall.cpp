@@ -16,7 +16,9 @@ void CylinderWall::touches(const Vec3& x, double r, WallTouches& out) const {
   const Vec3 e = rho > 0.0 ? radial * (1.0 / rho) : perpendicular(axis);
   const auto add = [&](double distance, const Vec3& normal, const Vec3& point,
                        std::uint32_t element) {
-    if (!(distance < r)) return;
+    // A grain more than its radius behind a patch is on the patch's other side: it touches
+    // nothing there (several silos can then stand in one box).
+    if (!(distance < r) || distance < -r) return;
     WallTouch t;
     t.distance = distance;
     t.normal = normal;

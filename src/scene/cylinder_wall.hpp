@@ -13,6 +13,9 @@
 //                               from its nearest point to the centre.
 // Inside a capped cylinder, side and cap meet at a concave corner and both touch; elsewhere a
 // grain touches one patch at a time, and a rim hands over to a side or cap continuously.
+// A patch touches a grain whose distance is below its radius r and above -r: a grain whose
+// centre lies more than r behind a patch (an "inside" cylinder's grain outside it, far from its
+// wall) is on the other side and untouched, so that several cylinders may share a box.
 #pragma once
 
 #include "core/vec3.hpp"

@@ -42,6 +42,9 @@ struct Case {
   std::string source; // where the expected numbers come from
   bool long_running = false;
   std::function<CaseResult(const Paths&)> run;
+  // Runs a whole scene (seconds to minutes): its own ctest entry, kept from the sanitizer tier,
+  // instead of one of the quick gtest cases.
+  bool heavy = false;
 };
 
 // Every case, in the order of docs/models/validation.md.
@@ -51,5 +54,6 @@ const std::vector<Case>& all_cases();
 std::vector<Case> impact_cases();
 std::vector<Case> gravity_cases();
 std::vector<Case> chute_cases();
+std::vector<Case> bulk_cases();
 
 } // namespace yuxi::validation

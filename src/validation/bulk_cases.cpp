@@ -1,0 +1,291 @@
+// The bulk benchmarks (docs/models/validation.md section 4): each runs a scene of scenes/bulk/
+// into a folder (scene_run.hpp), reads back measurements.csv, inflow.csv and outflow.csv, and
+// checks them; the plot scripts draw the same folders (scripts/plot_bulk.py).
+//   B2s, B2   the Janssen silos (scenes/bulk/janssen-small.toml, janssen.toml)
+//   B3s, B3   Beverloo discharge (scenes/bulk/beverloo-small.toml, beverloo-Do<N>.toml)
+#include "core/units.hpp"
+#include "io/scene_reader.hpp"
+#include "validation/scene_run.hpp"
+#include "validation/validation_case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+
+namespace yuxi::validation {
+namespace {
+
+// A check that `measured` lies in [lo, hi].
+void add_range(CaseResult& res, const std::string& what, double measured, double lo, double hi) {
+  res.add(what, 0.5 * (lo + hi), measured, 0.5 * (hi - lo));
+}
+
+// The books: the drift of the balance (conserved by the exact dynamics) against the energy
+// that came in (inserted) or was turned over (dissipated).
+void add_books(CaseResult& res, const CsvTable& energies, double share) {
+  const double balance = std::abs(energies.last("balance") - energies.column("balance").front());
+  const double scale = std::abs(energies.last("inserted")) + energies.last("dissipated");
+  res.add(fmt::format("books: |balance drift| / (inserted + dissipated) (< {})", share), 0.0,
+          balance / scale, share);
+}
+
+struct Silo {
+  std::string tag;
+  bool smooth = false;
+  double diameter = 0;
+  double mass = 0, height = 0, floor_z = 0, side_z = 0;
+  double apparent() const { return -floor_z; } // g = 1: the bottom's force in mass units
+};
+
+// Janssen: M_app(M) = M_sat (1 - exp(-M / M_sat)); the least-squares M_sat (golden section on
+// log M_sat) and R^2 (docs/models/validation.md B2).
+std::pair<double, double> janssen_fit(const std::vector<Silo>& silos) {
+  const auto sse = [&](double m_sat) {
+    double s = 0;
+    for (const Silo& k : silos) {
+      const double r = k.apparent() - m_sat * (1 - std::exp(-k.mass / m_sat));
+      s += r * r;
+    }
+    return s;
+  };
+  double big = 0;
+  for (const Silo& k : silos) big = std::max(big, k.mass);
+  double a = std::log(0.01 * big), b = std::log(1000 * big);
+  const double phi = 0.5 * (std::sqrt(5.0) - 1);
+  for (int it = 0; it < 200; ++it) {
+    const double c = b - phi * (b - a), d = a + phi * (b - a);
+    (sse(std::exp(c)) < sse(std::exp(d)) ? b : a) = (sse(std::exp(c)) < sse(std::exp(d)) ? d : c);
+  }
+  const double m_sat = std::exp(0.5 * (a + b));
+  double mean = 0;
+  for (const Silo& k : silos) mean += k.apparent() / static_cast<double>(silos.size());
+  double total = 0;
+  for (const Silo& k : silos) total += (k.apparent() - mean) * (k.apparent() - mean);
+  return {m_sat, 1 - sse(m_sat) / total};
+}
+
+CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
+  const std::string relative = "bulk/" + name + ".toml";
+  const Scene scene = read_scene_file((paths.scenes / relative).string());
+  const auto folder = run_folder(name);
+  run_scene(paths, relative, folder, full);
+  const CsvTable m = read_csv(folder / "measurements.csv");
+  const CsvTable energies = read_csv(folder / "energies.csv");
+
+  // The silos, from the scene's side walls ("s<k>_side").
+  std::vector<Silo> silos;
+  for (const ShapedWall& w : scene.walls) {
+    const auto* c = std::get_if<CylinderWall>(&w);
+    if (!c || !c->name.ends_with("_side")) continue;
+    Silo s;
+    s.tag = c->name.substr(0, c->name.size() - 5);
+    s.smooth = scene.materials[c->material] == "smooth";
+    s.diameter = 2 * c->radius;
+    s.mass = m.last(s.tag + "_mass");
+    s.height = m.last(s.tag + "_height");
+    s.floor_z = m.last(s.tag + "_floor_z");
+    s.side_z = m.last(s.tag + "_side_z");
+    silos.push_back(s);
+  }
+  if (silos.empty()) throw std::runtime_error(relative + ": no silo (\"s<k>_side\") found");
+
+  CaseResult res;
+  double poured = 0, planned = 0, poured_mass = 0;
+  for (const InsertSpec& i : scene.inserts) planned += static_cast<double>(i.total);
+  for (const auto& [source, flow] : final_flows(folder / "inflow.csv")) {
+    poured += flow.first;
+    poured_mass += flow.second;
+  }
+  res.add("grains poured / grains planned", 1.0, poured / planned, 0.0);
+  double held = 0;
+  for (const Silo& s : silos) held += s.mass;
+  res.add_relative("mass in the silos / mass poured", 1.0, held / poured_mass, 1e-9);
+  const double ke = m.last("ke");
+  if (full)
+    add_range(res, "at rest: kinetic energy per grain [m g d] (< 1e-8)", ke, 0.0, 1e-8);
+  else
+    add_range(res, "settled: kinetic energy per grain [m g d] (< 1e-5)", ke, 0.0, 1e-5);
+  add_books(res, energies, 0.03);
+
+  std::vector<Silo> rough;
+  for (const Silo& s : silos) {
+    // Exact at rest: the bottom and the side carry the weight, sum F_z = -M g.
+    res.add_relative(fmt::format("{}: -(F_bottom,z + F_wall,z) / M g", s.tag), 1.0,
+                     -(s.floor_z + s.side_z) / s.mass, 1e-3);
+    if (s.smooth)
+      res.add_relative(fmt::format("{} (mu_w = 0): bottom force / M g", s.tag), 1.0,
+                       s.apparent() / s.mass, 5e-3);
+    else
+      rough.push_back(s);
+  }
+  std::sort(rough.begin(), rough.end(),
+            [](const Silo& a, const Silo& b) { return a.mass < b.mass; });
+
+  // The apparent mass against the filled mass, and Janssen's form through it.
+  const double diameter = silos.front().diameter, area = pi * diameter * diameter / 4;
+  double rho_b = 0;
+  for (const Silo& s : rough)
+    rho_b += s.mass / (area * s.height) / static_cast<double>(rough.size());
+  const auto [m_sat, r2] = janssen_fit(rough);
+  const double lambda = m_sat / (rho_b * area);
+  {
+    std::ofstream csv(folder / "janssen.csv");
+    csv << "silo,mu_w,diameter,height,mass,apparent_mass,bottom_z,wall_z,m_sat,lambda,rho_b,r2\n";
+    for (const Silo& s : silos)
+      csv << fmt::format(
+          "{},{},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.6g}\n", s.tag,
+          s.smooth ? 0.0 : 0.5, s.diameter, s.height, s.mass, s.apparent(), s.floor_z, s.side_z,
+          m_sat, lambda, rho_b, r2);
+  }
+  if (full && rough.size() >= 3) {
+    const Silo& tallest = rough.back();
+    add_range(res, fmt::format("M_app / M at H = {:.1f} D (< 0.5)", tallest.height / diameter),
+              tallest.apparent() / tallest.mass, 0.0, 0.5);
+    add_range(res, "Janssen fit R^2 (> 0.98)", r2, 0.98, 1.0);
+    add_range(res, "Janssen lambda / D (0.4-2)", lambda / diameter, 0.4, 2.0);
+  }
+  return res;
+}
+
+// One discharge: the rate W from the outlet's cumulative mass over the middle 60 % of the time
+// the orifice is open (docs/models/validation.md B3), the rates over that window's two halves,
+// and the bed's bulk density at the opening.
+struct Discharge {
+  double orifice = 0, diameter = 0;
+  double w = 0, w_first = 0, w_second = 0;
+  double rho_b = 0, height = 0;
+};
+
+double slope_between(const std::vector<double>& t, const std::vector<double>& m, double from,
+                     double to) {
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= from && t[i] <= to) x.push_back(t[i]), y.push_back(m[i]);
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
+  mx /= static_cast<double>(x.size());
+  my /= static_cast<double>(x.size());
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+  return sxy / sxx;
+}
+
+Discharge discharge(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
+  const std::string relative = "bulk/" + name + ".toml";
+  const Scene scene = read_scene_file((paths.scenes / relative).string());
+  const auto folder = run_folder(name);
+  run_scene(paths, relative, folder, progress);
+  const CsvTable out = read_csv(folder / "outflow.csv");
+  const CsvTable m = read_csv(folder / "measurements.csv");
+  Discharge d;
+  double t_open = 0;
+  for (const ShapedWall& w : scene.walls) {
+    if (const auto* c = std::get_if<CylinderWall>(&w)) {
+      if (c->name == "shutter") d.orifice = 2 * (c->radius - 0.5), t_open = c->active.until;
+      if (c->name == "side") d.diameter = 2 * c->radius;
+    }
+  }
+  const double t_end = scene.run.t_end, length = t_end - t_open;
+  const auto& t = out.column("time");
+  const auto& mass = out.column("mass");
+  const double a = t_open + 0.2 * length, b = t_end - 0.2 * length;
+  d.w = slope_between(t, mass, a, b);
+  d.w_first = slope_between(t, mass, a, 0.5 * (a + b));
+  d.w_second = slope_between(t, mass, 0.5 * (a + b), b);
+  // the bed at the opening
+  const auto& mt = m.column("time");
+  const std::size_t k =
+      static_cast<std::size_t>(std::lower_bound(mt.begin(), mt.end(), t_open - 1e-9) - mt.begin());
+  d.height = m.column("height")[k];
+  d.rho_b = m.column("silo_mass")[k] / (pi * d.diameter * d.diameter / 4 * d.height);
+
+  // Mechanics: every grain is accounted for, and the books close.
+  const CsvTable energies = read_csv(folder / "energies.csv");
+  const auto inflow = final_flows(folder / "inflow.csv");
+  const auto outflow = final_flows(folder / "outflow.csv");
+  const double filled = energies.column("grains").front();
+  res.add(name + ": grains now - (filled + poured - left)", 0.0,
+          energies.last("grains") -
+              (filled + inflow.at("refill").first - outflow.at("orifice").first),
+          0.0);
+  add_books(res, energies, 0.03);
+  std::ofstream csv(folder / "beverloo.csv");
+  csv << "orifice,diameter,w,w_first,w_second,rho_b,height,t_open,t_end\n";
+  csv << fmt::format("{},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{},{}\n", d.orifice, d.diameter, d.w,
+                     d.w_first, d.w_second, d.rho_b, d.height, t_open, t_end);
+  return d;
+}
+
+// Beverloo's C for k = 1.5: W / (rho_b sqrt(g) (D_o - 1.5 d)^(5/2)), g = d = 1.
+double beverloo_c(const Discharge& d) {
+  return d.w / (d.rho_b * std::pow(d.orifice - 1.5, 2.5));
+}
+
+CaseResult beverloo_small(const Paths& paths) {
+  CaseResult res;
+  const Discharge d = discharge(paths, "beverloo-small", res, false);
+  add_range(res, "C = W / (rho_b sqrt(g) (D_o - 1.5 d)^2.5), a wide band", beverloo_c(d), 0.2, 1.2);
+  return res;
+}
+
+CaseResult beverloo(const Paths& paths) {
+  CaseResult res;
+  std::vector<Discharge> runs;
+  for (int orifice : {5, 6, 8}) {
+    runs.push_back(discharge(paths, fmt::format("beverloo-Do{}", orifice), res, true));
+    const Discharge& d = runs.back();
+    res.add_relative(fmt::format("D_o = {}: W over the 2nd half / the 1st (steady)", orifice), 1.0,
+                     d.w_second / d.w_first, 0.05);
+    add_range(res, fmt::format("D_o = {}: fill height / D at the opening (> 1.5)", orifice),
+              d.height / d.diameter, 1.5, 10.0);
+  }
+  // log W against log (D_o - 1.5): the slope; and W^(2/5) against D_o: a line whose root is k
+  // and whose slope is (C rho_b)^(2/5).
+  std::vector<double> lx, ly, x, y;
+  double rho_b = 0;
+  for (const Discharge& d : runs) {
+    lx.push_back(std::log(d.orifice - 1.5));
+    ly.push_back(std::log(d.w));
+    x.push_back(d.orifice);
+    y.push_back(std::pow(d.w, 0.4));
+    rho_b += d.rho_b / static_cast<double>(runs.size());
+  }
+  const auto line = [](const std::vector<double>& u, const std::vector<double>& v) {
+    const double s = slope_between(u, v, -HUGE_VAL, HUGE_VAL);
+    double mu = 0, mv = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) mu += u[i], mv += v[i];
+    return std::pair{s, (mv - s * mu) / static_cast<double>(u.size())};
+  };
+  const double slope = line(lx, ly).first;
+  const auto [s, i] = line(x, y);
+  const double k = -i / s, c = std::pow(s, 2.5) / rho_b;
+  res.add("log-log slope of W against D_o - 1.5 d", 2.5, slope, 0.2);
+  add_range(res, "fitted C (0.45-0.70)", c, 0.45, 0.70);
+  add_range(res, "fitted k (1.0-3.0)", k, 1.0, 3.0);
+  const auto folder = run_folder("beverloo");
+  std::ofstream csv(folder / "beverloo.csv");
+  csv << "orifice,diameter,w,w_first,w_second,rho_b,height,c_fit,k_fit\n";
+  for (const Discharge& d : runs)
+    csv << fmt::format("{},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.6g},{:.6g}\n", d.orifice,
+                       d.diameter, d.w, d.w_first, d.w_second, d.rho_b, d.height, c, k);
+  return res;
+}
+
+} // namespace
+
+std::vector<Case> bulk_cases() {
+  return {{"B2s", "Janssen silos, small (D = 10 d): exact force balance, smooth wall, books",
+           "exact statics; Janssen (1895), Sperl (2006)", false,
+           [](const Paths& p) { return janssen(p, "janssen-small", false); }, true},
+          {"B2", "Janssen silos (D = 20 d, H = 0.5-6 D): saturation of the apparent mass",
+           "Janssen (1895), Sperl (2006); Landry et al., PRE 67, 041303 (2003)", true,
+           [](const Paths& p) { return janssen(p, "janssen", true); }, true},
+          {"B3s", "Beverloo discharge, small (D_o = 5 d): grains and books, a rate in a wide band",
+           "Beverloo et al. (1961); Nedderman et al. (1982)", false, beverloo_small, true},
+          {"B3", "Beverloo discharge, D_o = 5, 6, 8 d: steady rate, 5/2 power law, C and k",
+           "Beverloo et al. (1961); Nedderman et al. (1982)", true, beverloo, true}};
+}
+
+} // namespace yuxi::validation

@@ -1,0 +1,85 @@
+#include "validation/scene_run.hpp"
+
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+#include "run/run_driver.hpp"
+#include "run/scene_builder.hpp"
+
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace yuxi::validation {
+
+namespace fs = std::filesystem;
+
+fs::path run_folder(const std::string& name) {
+  const char* root = std::getenv("YUXI_VALIDATION_RUNS");
+  const fs::path dir =
+      (root ? fs::path(root) : fs::temp_directory_path() / "yuxi-validation") / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void run_scene(const Paths& paths, const std::string& relative, const fs::path& folder,
+               bool progress) {
+  const Scene scene = read_scene_file((paths.scenes / relative).string());
+  auto sim = build_simulation(scene, false);
+  RunOptions options;
+  options.output_dir = folder;
+  options.show_progress = progress;
+  options.scene_text = resolved_scene_toml(scene);
+  const RunSummary s = run_to_end(scene, *sim, options);
+  if (s.failed)
+    throw std::runtime_error(fmt::format("{}: the run failed: {}", relative, s.failure));
+}
+
+const std::vector<double>& CsvTable::column(const std::string& name) const {
+  const auto it = numbers.find(name);
+  if (it == numbers.end() || it->second.empty())
+    throw std::runtime_error(fmt::format("no column '{}' with values", name));
+  return it->second;
+}
+
+CsvTable read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    return cells;
+  };
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> names = split(line);
+  CsvTable t;
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    for (std::size_t c = 0; c < names.size() && c < cells.size(); ++c) {
+      char* end = nullptr;
+      const double v = std::strtod(cells[c].c_str(), &end);
+      const bool number = end != cells[c].c_str() && *end == '\0';
+      t.numbers[names[c]].push_back(number ? v : NAN);
+      t.text[names[c]].push_back(cells[c]);
+    }
+    ++t.rows;
+  }
+  return t;
+}
+
+std::map<std::string, std::pair<double, double>> final_flows(const fs::path& path) {
+  const CsvTable t = read_csv(path);
+  const bool in = t.text.count("insert") > 0;
+  const auto& names = t.text.at(in ? "insert" : "outlet");
+  std::map<std::string, std::pair<double, double>> out;
+  for (std::size_t r = 0; r < t.rows; ++r)
+    out[names[r]] = {t.numbers.at("grains")[r], t.numbers.at("mass")[r]};
+  return out;
+}
+
+} // namespace yuxi::validation
