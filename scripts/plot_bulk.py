@@ -14,9 +14,7 @@ Every PNG goes beside its data unless --out names another file.
 """
 import argparse
 import csv
-import math
 import pathlib
-import sys
 
 import matplotlib
 
@@ -59,6 +57,76 @@ def janssen(folder, out):
     print(f"wrote {out}")
 
 
+def beverloo(folders, out):
+    table = []
+    for folder in folders:
+        table += rows(folder / "beverloo.csv")
+    orifice = np.array([float(r["orifice"]) for r in table])
+    w = np.array([float(r["w"]) for r in table])
+    rho_b = np.mean([float(r["rho_b"]) for r in table])
+    fig, ax = plt.subplots(figsize=(5.5, 4.2))
+    x = np.linspace(max(orifice.min() - 1.5, 2.0), orifice.max() + 1, 100)
+    ax.plot(x - 1.5, 0.58 * rho_b * (x - 1.5) ** 2.5, "k:",
+            label=f"Beverloo, C = 0.58, k = 1.5, rho_b = {rho_b:.3f}")
+    if "c_fit" in table[0]:
+        c, k = float(table[0]["c_fit"]), float(table[0]["k_fit"])
+        ax.plot(x - 1.5, c * rho_b * np.clip(x - k, 0, None) ** 2.5, "C0-",
+                label=f"fit: C = {c:.3f}, k = {k:.2f}")
+    ax.plot(orifice - 1.5, w, "C0o", label="yuxi")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("D_o - 1.5 d [d]")
+    ax.set_ylabel("discharge rate W [m / tau]")
+    ax.set_title("Beverloo discharge, flat-bottomed silo")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=130)
+    print(f"wrote {out}")
+
+
+def heap(folder, out):
+    by = {r["scene"]: (float(r["angle"]), float(r["r2"])) for r in rows(folder / "heap.csv")}
+    fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.8))
+    mus = [(float(n[len("heap-mu"):]), by[n][0]) for n in by if n.count("-") == 1]
+    mus.sort()
+    a.plot([m for m, _ in mus], [t for _, t in mus], "C0o-", label="k_n = 2e4, e = 0.68")
+    for name, marker, label in (("heap-mu0.5-stiff", "s", "k_n x 10"),
+                                ("heap-mu0.5-e0.5", "v", "e = 0.5"),
+                                ("heap-mu0.5-e0.9", "^", "e = 0.9")):
+        if name in by:
+            a.plot([0.5], [by[name][0]], "C1" + marker, label=label)
+    a.axhspan(18, 26, color="0.9", label="band (a), 18-26 degrees")
+    a.set_xlabel("sliding friction mu_s = mu_d")
+    a.set_ylabel("angle of repose [degrees]")
+    a.legend(fontsize=7)
+    rolls = [(0.0, by["heap-mu0.5"][0])] if "heap-mu0.5" in by else []
+    rolls += sorted((float(n.split("mur")[1]), by[n][0]) for n in by if "mur" in n)
+    b.plot([m for m, _ in rolls], [t for _, t in rolls], "C2o-")
+    b.set_xlabel("rolling friction mu_r (mu_s = 0.5)")
+    b.set_ylabel("angle of repose [degrees]")
+    fig.suptitle("Heaps poured on a rough floor")
+    fig.tight_layout()
+    fig.savefig(out, dpi=130)
+    print(f"wrote {out}")
+
+
+def drum(folder, out):
+    table = rows(folder / "drum.csv")
+    fr = [float(r["froude"]) for r in table]
+    angle = [float(r["angle"]) for r in table]
+    spread = [float(r["spread"]) for r in table]
+    fig, ax = plt.subplots(figsize=(5.5, 4.2))
+    ax.errorbar(fr, angle, yerr=spread, fmt="C0o-", capsize=3, label="yuxi (mean, sd over time)")
+    ax.set_xscale("log")
+    ax.set_xlabel("Froude number omega^2 R / g")
+    ax.set_ylabel("dynamic angle of repose [degrees]")
+    ax.set_title("Rotating drum, R = 10 d, L = 10 d, 40 % full, mu = 0.5")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=130)
+    print(f"wrote {out}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("bench", choices=["janssen", "beverloo", "heap", "drum"])
@@ -66,8 +134,10 @@ def main():
     p.add_argument("--out", type=pathlib.Path)
     a = p.parse_args()
     out = a.out or a.folders[0] / f"{a.bench}.png"
-    {"janssen": lambda: janssen(a.folders[0], out)}.get(a.bench, lambda: sys.exit(
-        f"{a.bench}: no data reader yet"))()
+    {"janssen": lambda: janssen(a.folders[0], out),
+     "beverloo": lambda: beverloo(a.folders, out),
+     "heap": lambda: heap(a.folders[0], out),
+     "drum": lambda: drum(a.folders[0], out)}[a.bench]()
 
 
 if __name__ == "__main__":

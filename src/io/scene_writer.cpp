@@ -122,6 +122,11 @@ void write_sources(const Scene& s, toml::table& doc) {
     for (const FillSpec& f : s.fills) {
       toml::table t{{"region", region_table(f.region)}};
       write_grains(s, f.grains, t);
+      if (f.walls) {
+        t.insert("kind", "wall");
+        t.erase("velocity");
+        t.erase("velocity_spread");
+      }
       switch (f.amount) {
       case FillSpec::Amount::count:
         t.insert("count", static_cast<std::int64_t>(std::llround(f.value)));

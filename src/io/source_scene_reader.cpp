@@ -88,7 +88,9 @@ SizeDistribution read_size(TomlReader& t) {
 }
 
 // Sizes, material, density, velocity and seed of the grains of a [[fill]] or [[insert]].
-GrainKind read_grains(const Scene& scene, TomlReader& t, std::uint64_t default_seed) {
+// Fixed wall particles (`walls`) need no density: it defaults to 1.
+GrainKind read_grains(const Scene& scene, TomlReader& t, std::uint64_t default_seed,
+                      bool walls = false) {
   GrainKind g;
   g.size = read_size(t);
   g.material = material_of(scene, t, "material");
@@ -97,6 +99,8 @@ GrainKind read_grains(const Scene& scene, TomlReader& t, std::uint64_t default_s
     g.density = t.positive("density");
   } else if (std::isfinite(material_density)) {
     g.density = material_density;
+  } else if (walls) {
+    g.density = 1.0;
   } else {
     t.fail("density", fmt::format("give the grains' density here or in [material.{}]",
                                   scene.materials[g.material]));
@@ -112,7 +116,11 @@ void read_fill(Scene& scene, TomlReader& t, std::size_t index) {
   FillSpec f;
   f.name = fmt::format("{} (fill[{}])", t.where(""), index + 1);
   f.region = read_region(scene, t);
-  f.grains = read_grains(scene, t, 2008 + index);
+  f.walls = t.choice("kind", {"grain", "wall"}, "grain") == "wall";
+  f.grains = read_grains(scene, t, 2008 + index, f.walls);
+  if (f.walls && (t.has("velocity") || t.has("velocity_spread")))
+    t.fail(t.has("velocity") ? "velocity" : "velocity_spread",
+           "wall particles do not move: no velocity for kind = \"wall\"");
   const int amounts = t.has("count") + t.has("packing_fraction") + t.has("mass");
   if (amounts != 1) t.fail("count", "give exactly one of 'count', 'packing_fraction' and 'mass'");
   if (t.has("count")) {

@@ -63,7 +63,7 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
         throw SceneError(e.what());
       }
       for (const auto& p : grains) particles.add(p, next++);
-      r.grains += grains.size();
+      (f.walls ? r.walls : r.grains) += grains.size();
       r.filled += grains.size();
       placed.insert(placed.end(), grains.begin(), grains.end());
     }

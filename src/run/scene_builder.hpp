@@ -14,7 +14,7 @@ namespace yuxi {
 
 struct BuildReport {
   std::size_t walls = 0, grains = 0;
-  std::size_t filled = 0; // of the grains, those the [[fill]] tables placed
+  std::size_t filled = 0; // the particles (grains or walls) the [[fill]] tables placed
   StiffestContact stiffest;
   double dt_over_tc = 0.0;
   std::vector<std::string> warnings; // for the log: what the scene does that may be a mistake

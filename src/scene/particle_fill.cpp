@@ -58,8 +58,8 @@ ParticleSpec grain(const FillSpec& f, const Vec3& x, double r, Random& velocitie
   p.radius = r;
   p.mass = f.grains.mass_of(r);
   p.material = f.grains.material;
-  p.kind = Kind::grain;
-  p.velocity = f.grains.draw_velocity(velocities);
+  p.kind = f.walls ? Kind::wall : Kind::grain;
+  if (!f.walls) p.velocity = f.grains.draw_velocity(velocities);
   return p;
 }
 

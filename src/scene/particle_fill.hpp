@@ -51,6 +51,7 @@ struct FillSpec {
   Placement placement = Placement::random;
   double jitter = 0.0;           // lattice: random offset of each grain, within a ball [length]
   int attempts_per_grain = 1000; // random: draws of a place before the fill gives up
+  bool walls = false;            // fixed wall particles (a rough floor) instead of grains
 };
 
 // The request cannot be met: what() says how many grains fit and why.

@@ -3,6 +3,8 @@
 // checks them; the plot scripts draw the same folders (scripts/plot_bulk.py).
 //   B2s, B2   the Janssen silos (scenes/bulk/janssen-small.toml, janssen.toml)
 //   B3s, B3   Beverloo discharge (scenes/bulk/beverloo-small.toml, beverloo-Do<N>.toml)
+//   B1s, B1   heaps poured on a rough floor (scenes/bulk/heap-small.toml, heap-*.toml)
+//   D1s, D1   rotating drums (scenes/bulk/drum-small.toml, drum-fr<Fr>.toml)
 #include "core/units.hpp"
 #include "io/scene_reader.hpp"
 #include "validation/scene_run.hpp"
@@ -12,6 +14,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 
 namespace yuxi::validation {
 namespace {
@@ -273,10 +276,129 @@ CaseResult beverloo(const Paths& paths) {
   return res;
 }
 
+// One heap: its angle of repose (degrees) and the fit's R^2 at the end of the run, after the
+// checks that every grain is accounted for and that the books close.
+struct Heap {
+  std::string name;
+  double angle = 0, r2 = 0;
+};
+
+Heap heap(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
+  const std::string relative = "bulk/" + name + ".toml";
+  const auto folder = run_folder(name);
+  run_scene(paths, relative, folder, progress);
+  const CsvTable m = read_csv(folder / "measurements.csv");
+  const CsvTable energies = read_csv(folder / "energies.csv");
+  const auto inflow = final_flows(folder / "inflow.csv");
+  const auto outflow = final_flows(folder / "outflow.csv");
+  res.add(name + ": grains now - (poured - fallen off - escaped)", 0.0,
+          energies.last("grains") - (inflow.at("pour").first - outflow.at("off_the_floor").first -
+                                     energies.last("escaped")),
+          0.0);
+  add_books(res, energies, 0.03);
+  return {name, m.last("angle"), m.last("angle_r2")};
+}
+
+CaseResult heap_small(const Paths& paths) {
+  CaseResult res;
+  const Heap h = heap(paths, "heap-small", res, false);
+  add_range(res, "angle of repose [degrees], a wide band", h.angle, 5.0, 40.0);
+  add_range(res, "the cone's fit R^2 (> 0.8)", h.r2, 0.8, 1.0);
+  return res;
+}
+
+CaseResult heaps(const Paths& paths) {
+  CaseResult res;
+  std::map<std::string, Heap> by;
+  for (const char* name : {"heap-mu0.1", "heap-mu0.3", "heap-mu0.5", "heap-mu1.0",
+                           "heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9",
+                           "heap-mu0.5-mur0.05", "heap-mu0.5-mur0.1", "heap-mu0.5-mur0.2"})
+    by[name] = heap(paths, name, res, true);
+  const double base = by["heap-mu0.5"].angle;
+  add_range(res, "(a) angle at mu = 0.5 [degrees] (18-26)", base, 18.0, 26.0);
+  const char* mus[] = {"heap-mu0.1", "heap-mu0.3", "heap-mu0.5", "heap-mu1.0"};
+  for (int i = 0; i + 1 < 4; ++i)
+    add_range(res, fmt::format("(b) {} minus {} [degrees] (>= -0.5)", mus[i + 1], mus[i]),
+              by[mus[i + 1]].angle - by[mus[i]].angle, -0.5, 90.0);
+  add_range(res, "(c) angle at mu = 0.5 minus at mu = 0.1 [degrees] (>= 5)",
+            base - by["heap-mu0.1"].angle, 5.0, 90.0);
+  for (const char* other : {"heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9"})
+    res.add(fmt::format("(d) {} minus mu = 0.5 [degrees]", other), 0.0, by[other].angle - base,
+            1.5);
+  const auto folder = run_folder("heap");
+  std::ofstream csv(folder / "heap.csv");
+  csv << "scene,angle,r2\n";
+  for (const auto& [name, h] : by) csv << fmt::format("{},{:.6g},{:.6g}\n", name, h.angle, h.r2);
+  return res;
+}
+
+// One drum: the dynamic angle of repose averaged over the second half of the run (and its
+// spread), after the checks that no grain is lost and that the books close.
+struct Drum {
+  double froude = 0, angle = 0, spread = 0;
+};
+
+Drum drum(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
+  const std::string relative = "bulk/" + name + ".toml";
+  const Scene scene = read_scene_file((paths.scenes / relative).string());
+  const auto folder = run_folder(name);
+  run_scene(paths, relative, folder, progress);
+  const CsvTable m = read_csv(folder / "measurements.csv");
+  const CsvTable energies = read_csv(folder / "energies.csv");
+  res.add(name + ": grains at the end - at the start", 0.0,
+          energies.last("grains") - energies.column("grains").front(), 0.0);
+  add_books(res, energies, 0.03);
+  Drum d;
+  for (const ShapedWall& w : scene.walls)
+    if (const auto* c = std::get_if<CylinderWall>(&w))
+      d.froude = c->omega * c->omega * c->radius / std::abs(scene.sim.gravity.z);
+  const auto& t = m.column("time");
+  const auto& angle = m.column("angle");
+  std::vector<double> late;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= 0.5 * scene.run.t_end) late.push_back(angle[i]);
+  for (double a : late) d.angle += a / static_cast<double>(late.size());
+  for (double a : late)
+    d.spread += (a - d.angle) * (a - d.angle) / static_cast<double>(late.size());
+  d.spread = std::sqrt(d.spread);
+  return d;
+}
+
+CaseResult drum_small(const Paths& paths) {
+  CaseResult res;
+  const Drum d = drum(paths, "drum-small", res, false);
+  add_range(res, "dynamic angle at Fr = 0.01 [degrees], a wide band", d.angle, 15.0, 45.0);
+  return res;
+}
+
+CaseResult drums(const Paths& paths) {
+  CaseResult res;
+  std::vector<Drum> runs;
+  for (const char* name :
+       {"drum-fr0.001", "drum-fr0.003", "drum-fr0.01", "drum-fr0.03", "drum-fr0.1"})
+    runs.push_back(drum(paths, name, res, true));
+  for (std::size_t i = 0; i + 1 < runs.size(); ++i)
+    add_range(res,
+              fmt::format("angle at Fr = {:g} minus at Fr = {:g} [degrees] (>= -1)",
+                          runs[i + 1].froude, runs[i].froude),
+              runs[i + 1].angle - runs[i].angle, -1.0, 90.0);
+  add_range(res, "dynamic angle at Fr = 0.001 [degrees] (15-45)", runs.front().angle, 15.0, 45.0);
+  const auto folder = run_folder("drum");
+  std::ofstream csv(folder / "drum.csv");
+  csv << "froude,angle,spread\n";
+  for (const Drum& d : runs)
+    csv << fmt::format("{:.6g},{:.6g},{:.6g}\n", d.froude, d.angle, d.spread);
+  return res;
+}
+
 } // namespace
 
 std::vector<Case> bulk_cases() {
-  return {{"B2s", "Janssen silos, small (D = 10 d): exact force balance, smooth wall, books",
+  return {{"B1s", "heap on a rough floor, small (1,200 grains): grains, books, an angle",
+           "Zhou et al., PRE 64, 021301 (2001)", false, heap_small, true},
+          {"B1", "angle of repose against mu_s, stiffness, restitution and mu_r",
+           "Zhou et al., PRE 64, 021301 (2001); Silbert et al. (2001, 2003)", true, heaps, true},
+          {"B2s", "Janssen silos, small (D = 10 d): exact force balance, smooth wall, books",
            "exact statics; Janssen (1895), Sperl (2006)", false,
            [](const Paths& p) { return janssen(p, "janssen-small", false); }, true},
           {"B2", "Janssen silos (D = 20 d, H = 0.5-6 D): saturation of the apparent mass",
@@ -285,7 +407,11 @@ std::vector<Case> bulk_cases() {
           {"B3s", "Beverloo discharge, small (D_o = 5 d): grains and books, a rate in a wide band",
            "Beverloo et al. (1961); Nedderman et al. (1982)", false, beverloo_small, true},
           {"B3", "Beverloo discharge, D_o = 5, 6, 8 d: steady rate, 5/2 power law, C and k",
-           "Beverloo et al. (1961); Nedderman et al. (1982)", true, beverloo, true}};
+           "Beverloo et al. (1961); Nedderman et al. (1982)", true, beverloo, true},
+          {"D1s", "rotating drum, small (Fr = 0.01): grains, books, a dynamic angle",
+           "GDR MiDi (2004); Mellmann (2001) for the regimes", false, drum_small, true},
+          {"D1", "rotating drum: dynamic angle of repose against the Froude number",
+           "GDR MiDi (2004); Mellmann (2001) for the regimes", true, drums, true}};
 }
 
 } // namespace yuxi::validation

@@ -118,6 +118,26 @@ TEST(ParticleFill, TheLatticeGoesBeyondRandomPlacement) {
   }
 }
 
+TEST(ParticleFill, AWallFillMakesFixedParticles) {
+  // a rough floor: one lattice layer of wall particles, which carry no velocity
+  FillSpec f;
+  f.name = "floor";
+  f.walls = true;
+  f.region = Region(BoxRegion{{0, 0, 1.0}, {10, 10, 2.22}});
+  f.grains.size.radius = 0.5;
+  f.grains.velocity = {1, 0, 0};
+  f.placement = FillSpec::Placement::lattice;
+  f.jitter = 0.1;
+  f.value = 64;
+  const auto floor = fill_particles(f, domain, {});
+  ASSERT_EQ(floor.size(), 64u);
+  for (const auto& p : floor) {
+    EXPECT_EQ(p.kind, Kind::wall);
+    EXPECT_EQ(norm(p.velocity), 0.0);
+    EXPECT_LE(std::abs(p.position.z - 1.61), 0.1 + 1e-9);
+  }
+}
+
 TEST(ParticleFill, ARandomFillThatJamsSaysHowManyFit) {
   // 0.36 asked, with a crowd already there: the fill gives up and says how far it got
   FillSpec f = box_fill(0.36);

@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""Writes the heap scenes (docs/models/validation.md, B1): grains poured from a narrow region onto
+a rough floor (a disc of fixed wall particles on a jittered lattice) pile into a cone; the angle
+of repose is the slope of a line fitted to the free surface against the distance from the axis
+([[measure]] quantity = "angle"). Grains that roll off the floor's edge fall into an outlet.
+
+    heap-mu<mu>.toml          N = 4000 on a floor of radius 22 d, mu_s = mu_d = 0.1, 0.3, 0.5, 1.0  (the long suite)
+    heap-mu0.5-stiff.toml     k_n x 10 (dt / sqrt(10))
+    heap-mu0.5-e0.5.toml, heap-mu0.5-e0.9.toml   restitution 0.5 and 0.9 (else about 0.68)
+    heap-mu0.5-mur<mu_r>.toml rolling resistance mu_r = 0.05, 0.1, 0.2 (k_r = k_t / 2)
+    heap-small.toml           N = 1200 on a floor of radius 14 d, mu = 0.5 (the default tests)
+
+Units: d = 1 (radii uniform in 0.45-0.55), grain density 6/pi (m = 1 for d = 1), g = 1.
+
+usage: make_heap.py  (writes every file beside this script)
+"""
+import math
+import pathlib
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+
+def gamma_for(e, k, m):
+    """The damping rate giving restitution e (docs/models/validation.md L1)."""
+    le = math.log(e)
+    return 2 * math.sqrt(k / m) * -le / math.sqrt(math.pi**2 + le**2)
+
+
+def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
+    k_n = 2.0e4 * stiff
+    gamma_n = 50.0 * math.sqrt(stiff) if e is None else gamma_for(e, k_n, 0.5)
+    dt = 8.0e-4 / math.sqrt(stiff)
+    rate = 25.0
+    pour = grains / rate
+    t_end = round(pour + 25)
+    source_top = floor * 0.45 + 5  # 1-5 d above an apex at 24 degrees
+    out = [f"# Heap: {grains} grains poured onto a rough floor of radius {floor} d; mu_s = mu_d = "
+           f"{mu}, k_n = {k_n:g}, gamma_n = {gamma_n:.4g}, mu_r = {mu_r}.",
+           "# Written by make_heap.py; docs/models/validation.md (B1).", "",
+           'materials = ["grain", "floor"]', "", "[material.grain]",
+           "density = 1.909859317 # m = 1 for d = 1", "",
+           "[run]", f'name = "{name}"', f"dt = {dt:.6g}", f"t_end = {t_end}", "",
+           "[output]", "energy_interval = 1.0", f"snapshot_interval = {t_end / 4}", "",
+           "[checkpoint]", "every_minutes = 20", "",
+           "[domain]", f"lo = [{-floor - 4}, {-floor - 4}, -8.0]",
+           f"hi = [{floor + 4}, {floor + 4}, {source_top + 4}]", "gravity = [0.0, 0.0, -1.0]",
+           'on_escape = "remove" # grains that bounce off sideways', "",
+           "[contact]", 'model = "linear"']
+    for partner in ("grain", "floor"):
+        out += ["[[contact.pair]]", f'materials = ["grain", "{partner}"]', f"k_n = {k_n:g}",
+                f"k_t = {k_n * 2 / 7:.8g}", f"gamma_n = {gamma_n:.8g}",
+                f"gamma_t = {gamma_n / 2:.8g}", f"mu_s = {mu}", f"mu_d = {mu}"]
+        if mu_r > 0:
+            out += [f"k_r = {k_n / 7:.8g}", f"mu_r = {mu_r}"]
+    # (fixed wall particles never push each other; the reader asks for every pair that can touch)
+    out += ["[[contact.pair]]", 'materials = ["floor", "floor"]', f"k_n = {k_n:g}"]
+    out += ["",
+            "# the rough floor: fixed wall particles on a jittered lattice",
+            "[[fill]]", 'kind = "wall"', 'material = "floor"', "radius = 0.5",
+            'placement = "lattice"', "jitter = 0.1", "packing_fraction = 0.25",
+            f'region = {{ shape = "cylinder", center = [0.0, 0.0, 0.0], radius = {floor}, '
+            "lo = -0.61, hi = 0.61 }", "",
+            "[[insert]]", 'name = "pour"', 'material = "grain"', f"rate = {rate}",
+            f"total = {grains}", "interval = 0.08", "velocity = [0.0, 0.0, -2.0]",
+            "velocity_spread = 0.3", 'size = { distribution = "uniform", min = 0.45, max = 0.55 }',
+            f'region = {{ shape = "cylinder", center = [0.0, 0.0, {source_top - 4}], '
+            "radius = 3.0, lo = 0.0, hi = 4.0 }", "",
+            "[[outlet]]", 'name = "off_the_floor"',
+            'region = { shape = "half_space", point = [0.0, 0.0, -4.0], normal = [0.0, 0.0, -1.0] }',
+            "",
+            "[[measure]]", 'name = "angle"', 'quantity = "angle"', "axis_point = [0.0, 0.0, 0.0]",
+            "bin = 2.0", f"from = {0.2 * floor:.3g}", f"to = {0.7 * floor:.3g}",
+            "[[measure]]", 'name = "height"', 'quantity = "surface_height"',
+            'region = { shape = "cylinder", center = [0.0, 0.0, 0.0], radius = 3.0, lo = 0.0, '
+            f"hi = {source_top - 4} }}",
+            "[[measure]]", 'name = "heap_mass"', 'quantity = "mass"',
+            f'region = {{ shape = "cylinder", center = [0.0, 0.0, 0.0], radius = {floor + 2}, '
+            f"lo = 0.0, hi = {source_top + 4} }}",
+            "[[measure]]", 'name = "ke"', 'quantity = "kinetic_per_grain"', ""]
+    (HERE / f"{name}.toml").write_text("\n".join(out))
+
+
+for mu in (0.1, 0.3, 0.5, 1.0):
+    scene(f"heap-mu{mu}", 4000, 22.0, mu=mu)
+scene("heap-mu0.5-stiff", 4000, 22.0, stiff=10.0)
+for e in (0.5, 0.9):
+    scene(f"heap-mu0.5-e{e}", 4000, 22.0, e=e)
+for mu_r in (0.05, 0.1, 0.2):
+    scene(f"heap-mu0.5-mur{mu_r}", 4000, 22.0, mu_r=mu_r)
+scene("heap-small", 1200, 14.0)
