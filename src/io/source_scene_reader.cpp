@@ -168,7 +168,8 @@ void read_insert(Scene& scene, TomlReader& t, std::size_t index) {
   s.end = t.number("end", std::numeric_limits<double>::infinity());
   if (!(s.end > s.start)) t.fail("end", fmt::format("must come after start = {}", s.start));
   s.total = t.integer("total", -1, 1, std::numeric_limits<std::int64_t>::max());
-  s.interval = t.positive("interval", 100 * scene.sim.dt);
+  // 500 steps: a batch forces a list build, which costs about ten steps (docs/performance.md).
+  s.interval = t.positive("interval", 500 * scene.sim.dt);
   if (s.interval < scene.sim.dt) t.fail("interval", "must be at least one time step");
   s.attempts = static_cast<int>(t.integer("attempts", s.attempts, 1, 10000));
   // One batch must fit in the region by random placement.

@@ -2,6 +2,8 @@
 // particles already there, the same on every call with the same seed; a packing fraction or a
 // mass turns into the right number of grains; and a request that cannot fit is refused before
 // any grain is placed, with how many fit and why.
+#include "io/scene_reader.hpp"
+#include "run/scene_builder.hpp"
 #include "scene/particle_fill.hpp"
 
 #include <cmath>
@@ -161,6 +163,36 @@ TEST(ParticleFill, ARandomFillThatJamsSaysHowManyFit) {
     EXPECT_NE(std::string(e.what()).find("placed "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("after 50 random draws"), std::string::npos) << e.what();
   }
+}
+
+// The small basin with its grains from a [[fill]] (scenes/basin-small-fill.toml): the same count,
+// radii and masses as the basin's own lattice, within the sampling error of 2,048 grains.
+TEST(ParticleFill, TheBasinFromAFillHasTheLatticeBasinsStatistics) {
+  struct Stats {
+    double n = 0, mass = 0, r = 0, r2 = 0, walls = 0;
+  };
+  const auto stats = [](const char* name) {
+    const Scene scene = read_scene_file(std::string(YUXI_SCENES_DIR) + "/" + name);
+    const auto sim = build_simulation(scene, false);
+    const ParticleStore& p = sim->particles();
+    Stats s;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+      if (!p.is_grain(i)) {
+        s.walls += 1;
+        continue;
+      }
+      s.n += 1, s.mass += p.mass[i], s.r += p.radius[i], s.r2 += p.radius[i] * p.radius[i];
+    }
+    s.mass /= s.n, s.r /= s.n, s.r2 = std::sqrt(s.r2 / s.n - s.r * s.r);
+    return s;
+  };
+  const Stats lattice = stats("basin-small.toml"), fill = stats("basin-small-fill.toml");
+  EXPECT_EQ(fill.n, lattice.n);
+  EXPECT_EQ(fill.walls, lattice.walls);
+  const double error = 0.1 / std::sqrt(lattice.n); // of a mean radius; masses vary as 3 x that
+  EXPECT_NEAR(fill.r, lattice.r, 4 * std::sqrt(2.0) * error);
+  EXPECT_NEAR(fill.mass, lattice.mass, 4 * std::sqrt(2.0) * 3 * error);
+  EXPECT_NEAR(fill.r2, lattice.r2, 0.01); // the sd, 0.1
 }
 
 } // namespace
