@@ -1,10 +1,12 @@
 #include "validation/scene_run.hpp"
 
+#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "run/run_driver.hpp"
 #include "run/scene_builder.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <fstream>
@@ -19,7 +21,8 @@ fs::path run_folder(const std::string& name) {
   const char* root = std::getenv("YUXI_VALIDATION_RUNS");
   const fs::path dir =
       (root ? fs::path(root) : fs::temp_directory_path() / "yuxi-validation") / name;
-  fs::remove_all(dir);
+  // A kept folder with checkpoints may continue (run_scene decides).
+  if (!(root && fs::exists(dir / "checkpoints"))) fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
@@ -32,6 +35,19 @@ void run_scene(const Paths& paths, const std::string& relative, const fs::path& 
   options.output_dir = folder;
   options.show_progress = progress;
   options.scene_text = resolved_scene_toml(scene);
+  // A run of the same scene saved in the folder continues from its newest checkpoint (a long
+  // case goes on across sessions); one that reached the end is only read again.
+  if (fs::exists(folder / "checkpoints")) {
+    const auto saved = CheckpointSet(folder).newest_valid(sim->comm(), nullptr);
+    if (saved && saved->scene_text == options.scene_text) {
+      if (saved->step >= std::llround(scene.run.t_end / scene.sim.dt)) return;
+      apply_checkpoint(*saved, *sim);
+      options.resumed = true;
+    } else {
+      fs::remove_all(folder);
+      fs::create_directories(folder);
+    }
+  }
   const RunSummary s = run_to_end(scene, *sim, options);
   if (s.failed)
     throw std::runtime_error(fmt::format("{}: the run failed: {}", relative, s.failure));

@@ -11,12 +11,14 @@
 
 namespace yuxi::validation {
 
-// The folder a case's run writes into: $YUXI_VALIDATION_RUNS/<name> when that is set, else
-// <temp>/yuxi-validation/<name>; emptied first.
+// The folder a case's run writes into: $YUXI_VALIDATION_RUNS/<name> when that is set (kept when
+// it holds checkpoints, for run_scene to continue), else <temp>/yuxi-validation/<name>, emptied.
 std::filesystem::path run_folder(const std::string& name);
 
 // Runs the scene `scenes/<relative>` to its end into `folder` (progress on stderr when
-// `progress`). Throws std::runtime_error naming the scene if it fails.
+// `progress`): from the newest checkpoint there when it holds a run of the same scene (and not
+// at all when that run has ended), else from the start. Throws std::runtime_error naming the
+// scene if it fails.
 void run_scene(const Paths& paths, const std::string& relative, const std::filesystem::path& folder,
                bool progress);
 
