@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the heap scenes (docs/models/validation.md, B1): grains poured from a narrow region onto
-a rough floor (a disc of fixed wall particles on a jittered lattice) pile into a cone; the angle
+"""Writes the heap scenes (docs/models/validation.md, B1): grains poured from a narrow region high
+above the heap's apex onto a rough floor (a disc of fixed wall particles on a jittered lattice) pile into a cone; the angle
 of repose is the slope of a line fitted to the free surface against the distance from the axis
 ([[measure]] quantity = "angle"). Grains that roll off the floor's edge fall into an outlet.
 
@@ -33,7 +33,9 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
     rate = 25.0
     pour = grains / rate
     t_end = round(pour + 25)
-    source_top = floor * 0.45 + 5  # 1-5 d above an apex at 24 degrees
+    # the source 2-6 d above the apex of a 40-degree cone on the floor: the heap's apex must never
+    # reach it (a capped apex would fix the angle at atan(apex / floor radius))
+    source_top = floor * math.tan(math.radians(40)) + 6
     out = [f"# Heap: {grains} grains poured onto a rough floor of radius {floor} d; mu_s = mu_d = "
            f"{mu}, k_n = {k_n:g}, gamma_n = {gamma_n:.4g}, mu_r = {mu_r}.",
            "# Written by make_heap.py; docs/models/validation.md (B1).", "",
