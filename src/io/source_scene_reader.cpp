@@ -1,48 +1,24 @@
 #include "io/source_scene_reader.hpp"
 
 #include "core/units.hpp"
-#include "io/stl_reader.hpp"
 #include "io/wall_scene_reader.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <fmt/format.h>
 #include <limits>
 
 namespace yuxi {
 namespace {
 
-Vec3 unit_vector(TomlReader& t, std::string_view key, Vec3 fallback) {
-  const Vec3 v = t.vec3(key, fallback);
-  if (!(norm(v) > 0.0)) t.fail(key, "must not be the zero vector");
-  return v / norm(v);
-}
-
 Region read_mesh_region(const Scene& scene, TomlReader& r) {
-  const std::string given = r.string("file");
-  const auto base = std::filesystem::path(scene.source).parent_path();
-  const std::filesystem::path path =
-      std::filesystem::path(given).is_absolute() ? std::filesystem::path(given) : base / given;
-  const std::string file = std::filesystem::absolute(path).lexically_normal().string();
-  TriangleSoup soup;
+  PlacedMesh placed = read_placed_mesh(scene, r);
   try {
-    soup = read_stl(file);
-  } catch (const MeshFileError& e) {
-    r.fail("file", e.what());
-  }
-  TriangleMesh mesh = TriangleMesh::weld(soup.triangles);
-  const double scale = r.positive("scale", 1.0);
-  const Vec3 axis = unit_vector(r, "rotate_axis", Vec3{0, 0, 1});
-  const double degrees = r.number("rotate_degrees", 0.0);
-  const Vec3 shift = r.vec3("translate", Vec3{});
-  mesh.transform(scale, axis, degrees, shift);
-  if (!mesh.finite()) r.fail("scale", "the transformed mesh has non-finite coordinates");
-  try {
-    MeshRegion m(std::move(mesh), file);
-    m.scale = scale, m.rotate_axis = axis, m.rotate_degrees = degrees, m.translate = shift;
+    MeshRegion m(std::move(placed.mesh), placed.file);
+    m.scale = placed.scale, m.rotate_axis = placed.rotate_axis;
+    m.rotate_degrees = placed.rotate_degrees, m.translate = placed.translate;
     return Region(std::move(m));
   } catch (const std::invalid_argument& e) {
-    r.fail("file", fmt::format("{}: {}", file, e.what()));
+    r.fail("file", fmt::format("{}: {}", placed.file, e.what()));
   }
 }
 

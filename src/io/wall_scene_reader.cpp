@@ -11,12 +11,6 @@
 namespace yuxi {
 namespace {
 
-Vec3 unit(TomlReader& t, std::string_view key, Vec3 fallback) {
-  const Vec3 v = t.vec3(key, fallback);
-  if (norm(v) == 0.0) t.fail(key, "must not be the zero vector");
-  return v / norm(v);
-}
-
 ActiveWindow read_window(TomlReader& t) {
   ActiveWindow w;
   w.from = t.number("active_from", w.from);
@@ -45,12 +39,12 @@ WallMotion read_motion(TomlReader& t) {
   if (!rigid) return StaticMotion{};
   RigidMotion m;
   m.omega = t.number("omega", 0.0);
-  m.axis = unit(t, "axis", Vec3{0, 0, 1});
+  m.axis = unit_vector(t, "axis", Vec3{0, 0, 1});
   m.center = t.vec3("axis_point", Vec3{});
   m.drift = t.vec3("velocity", Vec3{});
   m.amplitude = t.number("oscillate_amplitude", 0.0);
   if (m.amplitude != 0.0) {
-    m.direction = unit(t, "oscillate_direction", Vec3{0, 0, 1});
+    m.direction = unit_vector(t, "oscillate_direction", Vec3{0, 0, 1});
     m.frequency = t.positive("oscillate_omega");
   }
   m.t0 = t.number("t0", 0.0);
@@ -90,28 +84,18 @@ void check_mesh_in_box(const Scene& scene, TomlReader& t, const MeshWall& wall) 
 void read_mesh(Scene& scene, TomlReader& t, std::size_t index) {
   MeshWall w;
   w.name = t.string("name", fmt::format("mesh {}", index + 1));
-  const std::string given = t.string("file");
-  const auto base = std::filesystem::path(scene.source).parent_path();
-  const std::filesystem::path path =
-      std::filesystem::path(given).is_absolute() ? std::filesystem::path(given) : base / given;
-  w.file = std::filesystem::absolute(path).lexically_normal().string();
-  TriangleSoup soup;
-  try {
-    soup = read_stl(w.file);
-  } catch (const MeshFileError& e) {
-    t.fail("file", e.what());
-  }
-  w.file_crc32 = soup.crc32;
-  if (soup.dropped_degenerate > 0)
+  PlacedMesh placed = read_placed_mesh(scene, t);
+  w.file = std::move(placed.file);
+  w.file_crc32 = placed.crc32;
+  if (placed.dropped_degenerate > 0)
     scene.warnings.push_back(fmt::format("{}: mesh '{}': {} triangles of zero area left out of {}",
-                                         t.where("file"), w.name, soup.dropped_degenerate, w.file));
-  w.mesh = TriangleMesh::weld(soup.triangles);
-  w.scale = t.positive("scale", 1.0);
-  w.rotate_axis = unit(t, "rotate_axis", Vec3{0, 0, 1});
-  w.rotate_degrees = t.number("rotate_degrees", 0.0);
-  w.translate = t.vec3("translate", Vec3{});
-  w.mesh.transform(w.scale, w.rotate_axis, w.rotate_degrees, w.translate);
-  if (!w.mesh.finite()) t.fail("scale", "the transformed mesh has non-finite coordinates");
+                                         t.where("file"), w.name, placed.dropped_degenerate,
+                                         w.file));
+  w.mesh = std::move(placed.mesh);
+  w.scale = placed.scale;
+  w.rotate_axis = placed.rotate_axis;
+  w.rotate_degrees = placed.rotate_degrees;
+  w.translate = placed.translate;
   w.material = material_of(scene, t, "material");
   w.motion = read_motion(t);
   w.surface_velocity = t.vec3("surface_velocity", Vec3{});
@@ -125,7 +109,7 @@ void read_mesh(Scene& scene, TomlReader& t, std::size_t index) {
   if (t.has("servo_force")) {
     // A piston: its speed along servo_axis is gain (servo_force - the grains' push), at most
     // servo_max_speed. Stable for gain k_n dt < 1 (k_n: the stiffest grain-wall spring).
-    w.servo_axis = unit(t, "servo_axis", Vec3{0, 0, -1});
+    w.servo_axis = unit_vector(t, "servo_axis", Vec3{0, 0, -1});
     w.controller = std::make_shared<ForceServo>(t.number("servo_force"), t.positive("servo_gain"),
                                                 t.positive("servo_max_speed"));
   }
@@ -138,7 +122,7 @@ void read_cylinder(Scene& scene, TomlReader& t, std::size_t index) {
   CylinderWall c;
   c.name = t.string("name", fmt::format("cylinder {}", index + 1));
   c.center = t.vec3("center");
-  c.axis = unit(t, "axis", Vec3{0, 0, 1});
+  c.axis = unit_vector(t, "axis", Vec3{0, 0, 1});
   c.radius = t.positive("radius");
   c.inside = t.choice("grains", {"inside", "outside"}, "inside") == "inside";
   c.lo = t.number("lo", -std::numeric_limits<double>::infinity());
@@ -153,6 +137,37 @@ void read_cylinder(Scene& scene, TomlReader& t, std::size_t index) {
 }
 
 } // namespace
+
+Vec3 unit_vector(TomlReader& t, std::string_view key, Vec3 fallback) {
+  const Vec3 v = t.vec3(key, fallback);
+  if (!(norm(v) > 0.0)) t.fail(key, "must not be the zero vector");
+  return v / norm(v);
+}
+
+PlacedMesh read_placed_mesh(const Scene& scene, TomlReader& t) {
+  PlacedMesh m;
+  const std::string given = t.string("file");
+  const auto base = std::filesystem::path(scene.source).parent_path();
+  const std::filesystem::path path =
+      std::filesystem::path(given).is_absolute() ? std::filesystem::path(given) : base / given;
+  m.file = std::filesystem::absolute(path).lexically_normal().string();
+  TriangleSoup soup;
+  try {
+    soup = read_stl(m.file);
+  } catch (const MeshFileError& e) {
+    t.fail("file", e.what());
+  }
+  m.crc32 = soup.crc32;
+  m.dropped_degenerate = soup.dropped_degenerate;
+  m.mesh = TriangleMesh::weld(soup.triangles);
+  m.scale = t.positive("scale", 1.0);
+  m.rotate_axis = unit_vector(t, "rotate_axis", Vec3{0, 0, 1});
+  m.rotate_degrees = t.number("rotate_degrees", 0.0);
+  m.translate = t.vec3("translate", Vec3{});
+  m.mesh.transform(m.scale, m.rotate_axis, m.rotate_degrees, m.translate);
+  if (!m.mesh.finite()) t.fail("scale", "the transformed mesh has non-finite coordinates");
+  return m;
+}
 
 void read_shaped_walls(Scene& scene, TomlReader& root) {
   for (auto& t : root.tables("mesh")) read_mesh(scene, t, scene.walls.size());

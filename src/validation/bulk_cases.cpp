@@ -5,6 +5,7 @@
 //   B3s, B3   Beverloo discharge (scenes/bulk/beverloo-small.toml, beverloo-Do<N>.toml)
 //   B1s, B1   heaps poured on a rough floor (scenes/bulk/heap-small.toml, heap-*.toml)
 //   D1s, D1   rotating drums (scenes/bulk/drum-small.toml, drum-fr<Fr>.toml)
+#include "analysis/line_fit.hpp"
 #include "core/units.hpp"
 #include "io/scene_reader.hpp"
 #include "validation/scene_run.hpp"
@@ -18,6 +19,25 @@
 
 namespace yuxi::validation {
 namespace {
+
+// A scene of scenes/bulk/ run to its end (or read back, scene_run.hpp), with the two tables every
+// case reads.
+struct BulkRun {
+  Scene scene;
+  std::filesystem::path folder;
+  CsvTable measurements, energies;
+};
+
+BulkRun run_bulk(const Paths& paths, const std::string& name, bool progress) {
+  BulkRun r{read_scene_file((paths.scenes / ("bulk/" + name + ".toml")).string()),
+            run_folder(name),
+            {},
+            {}};
+  run_scene(r.scene, r.folder, progress);
+  r.measurements = read_csv(r.folder / "measurements.csv");
+  r.energies = read_csv(r.folder / "energies.csv");
+  return r;
+}
 
 // A check that `measured` lies in [lo, hi].
 void add_range(CaseResult& res, const std::string& what, double measured, double lo, double hi) {
@@ -58,7 +78,10 @@ std::pair<double, double> janssen_fit(const std::vector<Silo>& silos) {
   const double phi = 0.5 * (std::sqrt(5.0) - 1);
   for (int it = 0; it < 200; ++it) {
     const double c = b - phi * (b - a), d = a + phi * (b - a);
-    (sse(std::exp(c)) < sse(std::exp(d)) ? b : a) = (sse(std::exp(c)) < sse(std::exp(d)) ? d : c);
+    if (sse(std::exp(c)) < sse(std::exp(d)))
+      b = d;
+    else
+      a = c;
   }
   const double m_sat = std::exp(0.5 * (a + b));
   double mean = 0;
@@ -69,12 +92,11 @@ std::pair<double, double> janssen_fit(const std::vector<Silo>& silos) {
 }
 
 CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
-  const std::string relative = "bulk/" + name + ".toml";
-  const Scene scene = read_scene_file((paths.scenes / relative).string());
-  const auto folder = run_folder(name);
-  run_scene(paths, relative, folder, full);
-  const CsvTable m = read_csv(folder / "measurements.csv");
-  const CsvTable energies = read_csv(folder / "energies.csv");
+  const BulkRun run = run_bulk(paths, name, full);
+  const Scene& scene = run.scene;
+  const auto& folder = run.folder;
+  const CsvTable& m = run.measurements;
+  const CsvTable& energies = run.energies;
 
   // The silos, from the scene's side walls ("s<k>_side").
   std::vector<Silo> silos;
@@ -91,7 +113,7 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
     s.side_z = m.last(s.tag + "_side_z");
     silos.push_back(s);
   }
-  if (silos.empty()) throw std::runtime_error(relative + ": no silo (\"s<k>_side\") found");
+  if (silos.empty()) throw std::runtime_error(scene.source + ": no silo (\"s<k>_side\") found");
 
   CaseResult res;
   double poured = 0, planned = 0, poured_mass = 0;
@@ -160,28 +182,21 @@ struct Discharge {
   double rho_b = 0, height = 0;
 };
 
-double slope_between(const std::vector<double>& t, const std::vector<double>& m, double from,
-                     double to) {
+// The least-squares slope of m against t over from <= t <= to.
+double slope_within(const std::vector<double>& t, const std::vector<double>& m, double from,
+                    double to) {
   std::vector<double> x, y;
   for (std::size_t i = 0; i < t.size(); ++i)
     if (t[i] >= from && t[i] <= to) x.push_back(t[i]), y.push_back(m[i]);
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
-  mx /= static_cast<double>(x.size());
-  my /= static_cast<double>(x.size());
-  double sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
-  return sxy / sxx;
+  return analysis::fit_line(x, y).slope;
 }
 
 Discharge discharge(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
-  const std::string relative = "bulk/" + name + ".toml";
-  const Scene scene = read_scene_file((paths.scenes / relative).string());
-  const auto folder = run_folder(name);
-  run_scene(paths, relative, folder, progress);
+  const BulkRun run = run_bulk(paths, name, progress);
+  const Scene& scene = run.scene;
+  const auto& folder = run.folder;
   const CsvTable out = read_csv(folder / "outflow.csv");
-  const CsvTable m = read_csv(folder / "measurements.csv");
+  const CsvTable& m = run.measurements;
   Discharge d;
   double t_open = 0;
   for (const ShapedWall& w : scene.walls) {
@@ -194,9 +209,9 @@ Discharge discharge(const Paths& paths, const std::string& name, CaseResult& res
   const auto& t = out.column("time");
   const auto& mass = out.column("mass");
   const double a = t_open + 0.2 * length, b = t_end - 0.2 * length;
-  d.w = slope_between(t, mass, a, b);
-  d.w_first = slope_between(t, mass, a, 0.5 * (a + b));
-  d.w_second = slope_between(t, mass, 0.5 * (a + b), b);
+  d.w = slope_within(t, mass, a, b);
+  d.w_first = slope_within(t, mass, a, 0.5 * (a + b));
+  d.w_second = slope_within(t, mass, 0.5 * (a + b), b);
   // the bed at the opening
   const auto& mt = m.column("time");
   const std::size_t k =
@@ -205,7 +220,7 @@ Discharge discharge(const Paths& paths, const std::string& name, CaseResult& res
   d.rho_b = m.column("silo_mass")[k] / (pi * d.diameter * d.diameter / 4 * d.height);
 
   // Mechanics: every grain is accounted for, and the books close.
-  const CsvTable energies = read_csv(folder / "energies.csv");
+  const CsvTable& energies = run.energies;
   const auto inflow = final_flows(folder / "inflow.csv");
   const auto outflow = final_flows(folder / "outflow.csv");
   const double filled = energies.column("grains").front();
@@ -255,15 +270,9 @@ CaseResult beverloo(const Paths& paths) {
     y.push_back(std::pow(d.w, 0.4));
     rho_b += d.rho_b / static_cast<double>(runs.size());
   }
-  const auto line = [](const std::vector<double>& u, const std::vector<double>& v) {
-    const double s = slope_between(u, v, -HUGE_VAL, HUGE_VAL);
-    double mu = 0, mv = 0;
-    for (std::size_t i = 0; i < u.size(); ++i) mu += u[i], mv += v[i];
-    return std::pair{s, (mv - s * mu) / static_cast<double>(u.size())};
-  };
-  const double slope = line(lx, ly).first;
-  const auto [s, i] = line(x, y);
-  const double k = -i / s, c = std::pow(s, 2.5) / rho_b;
+  const double slope = analysis::fit_line(lx, ly).slope;
+  const analysis::LineFit root = analysis::fit_line(x, y);
+  const double k = -root.intercept / root.slope, c = std::pow(root.slope, 2.5) / rho_b;
   res.add("log-log slope of W against D_o - 1.5 d", 2.5, slope, 0.2);
   add_range(res, "fitted C (0.45-0.70)", c, 0.45, 0.70);
   add_range(res, "fitted k (1.0-3.0)", k, 1.0, 3.0);
@@ -284,11 +293,10 @@ struct Heap {
 };
 
 Heap heap(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
-  const std::string relative = "bulk/" + name + ".toml";
-  const auto folder = run_folder(name);
-  run_scene(paths, relative, folder, progress);
-  const CsvTable m = read_csv(folder / "measurements.csv");
-  const CsvTable energies = read_csv(folder / "energies.csv");
+  const BulkRun run = run_bulk(paths, name, progress);
+  const auto& folder = run.folder;
+  const CsvTable& m = run.measurements;
+  const CsvTable& energies = run.energies;
   const auto inflow = final_flows(folder / "inflow.csv");
   const auto outflow = final_flows(folder / "outflow.csv");
   res.add(name + ": grains now - (poured - fallen off - escaped)", 0.0,
@@ -339,12 +347,10 @@ struct Drum {
 };
 
 Drum drum(const Paths& paths, const std::string& name, CaseResult& res, bool progress) {
-  const std::string relative = "bulk/" + name + ".toml";
-  const Scene scene = read_scene_file((paths.scenes / relative).string());
-  const auto folder = run_folder(name);
-  run_scene(paths, relative, folder, progress);
-  const CsvTable m = read_csv(folder / "measurements.csv");
-  const CsvTable energies = read_csv(folder / "energies.csv");
+  const BulkRun run = run_bulk(paths, name, progress);
+  const Scene& scene = run.scene;
+  const CsvTable& m = run.measurements;
+  const CsvTable& energies = run.energies;
   res.add(name + ": grains at the end - at the start", 0.0,
           energies.last("grains") - energies.column("grains").front(), 0.0);
   add_books(res, energies, 0.03);

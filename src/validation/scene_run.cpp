@@ -27,9 +27,7 @@ fs::path run_folder(const std::string& name) {
   return dir;
 }
 
-void run_scene(const Paths& paths, const std::string& relative, const fs::path& folder,
-               bool progress) {
-  const Scene scene = read_scene_file((paths.scenes / relative).string());
+void run_scene(const Scene& scene, const fs::path& folder, bool progress) {
   auto sim = build_simulation(scene, false);
   RunOptions options;
   options.output_dir = folder;
@@ -50,7 +48,7 @@ void run_scene(const Paths& paths, const std::string& relative, const fs::path& 
   }
   const RunSummary s = run_to_end(scene, *sim, options);
   if (s.failed)
-    throw std::runtime_error(fmt::format("{}: the run failed: {}", relative, s.failure));
+    throw std::runtime_error(fmt::format("{}: the run failed: {}", scene.source, s.failure));
 }
 
 const std::vector<double>& CsvTable::column(const std::string& name) const {

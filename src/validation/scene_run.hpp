@@ -2,6 +2,7 @@
 // run's files for the plot scripts, and read back the tables the run wrote.
 #pragma once
 
+#include "io/scene.hpp"
 #include "validation/validation_case.hpp"
 
 #include <filesystem>
@@ -15,12 +16,11 @@ namespace yuxi::validation {
 // it holds checkpoints, for run_scene to continue), else <temp>/yuxi-validation/<name>, emptied.
 std::filesystem::path run_folder(const std::string& name);
 
-// Runs the scene `scenes/<relative>` to its end into `folder` (progress on stderr when
+// Runs `scene` to its end into `folder` (progress on stderr when
 // `progress`): from the newest checkpoint there when it holds a run of the same scene (and not
 // at all when that run has ended), else from the start. Throws std::runtime_error naming the
 // scene if it fails.
-void run_scene(const Paths& paths, const std::string& relative, const std::filesystem::path& folder,
-               bool progress);
+void run_scene(const Scene& scene, const std::filesystem::path& folder, bool progress);
 
 // A CSV table: its columns by name, each a column of numbers (a cell that is not a number, such
 // as a name, reads as NaN; the names of a text column are in `text`).
