@@ -5,6 +5,7 @@
 #include "plot_script.hpp"
 #include "thermo/two_grain.hpp"
 #include "validation/binary_collision.hpp"
+#include "validation/collision_study.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -20,105 +21,29 @@ namespace yuxi {
 namespace fs = std::filesystem;
 namespace {
 
-// The model's example coefficients (Model::example(), in the model units of the study:
-// contact/example_units.hpp) for one material.
-AnyContactLaw builtin_law(const std::string& model) {
-  AnyContactLaw law = make_contact_law(model, 1);
-  std::visit(
-      [](auto& l) {
-        using Model = typename std::decay_t<decltype(l)>::model_type;
-        l.coeffs.set(0, 0, Model::example());
-      },
-      law);
-  return law;
-}
-
-std::string model_name(const AnyContactLaw& law) {
-  return std::visit(
-      [](const auto& l) { return std::string(std::decay_t<decltype(l)>::model_type::name); }, law);
-}
-
-// The exact two-grain setup of a thermodynamic law (none for the other models).
-std::optional<thermo::TwoGrainSetup> exact_setup(const AnyContactLaw& law, double mass,
-                                                 double radius) {
-  const auto* l = std::get_if<ContactLaw<Thermodynamic>>(&law);
-  if (!l) return std::nullopt;
-  const auto& c = l->coeffs(0, 0);
-  thermo::TwoGrainSetup s;
-  s.m1 = s.m2 = mass;
-  s.a1 = s.a2 = radius;
-  s.k = Thermodynamic::spring_constant(c, 0.5 * radius);
-  s.xi = thermo::xi_of_friction(c.friction);
-  s.transport = thermo::Transport::example(c.model(), s.k, 0.5 * mass, 2 * radius);
-  return s;
-}
-
-struct Study {
-  std::string name;
-  AnyContactLaw law;
-};
-
-std::vector<Study> studies(const CollideOptions& o) {
-  std::vector<Study> out;
-  if (!o.scene_path.empty()) {
-    const Scene scene = read_scene_file(o.scene_path);
-    out.push_back({model_name(scene.law), scene.law});
-    return out;
-  }
-  std::vector<std::string> names = o.models;
-  if (names.empty()) names = built_in_models();
-  for (const auto& n : names) out.push_back({n, builtin_law(n)});
-  return out;
-}
-
-std::vector<double> speeds(const CollideOptions& o) {
-  if (!(o.v0_min > 0 && o.v0_max >= o.v0_min))
-    throw std::invalid_argument("--v0-min and --v0-max must satisfy 0 < min <= max");
-  if (o.per_decade < 1) throw std::invalid_argument("--per-decade must be at least 1");
-  const double decades = std::log10(o.v0_max / o.v0_min);
-  const int n = static_cast<int>(std::lround(decades * o.per_decade));
-  std::vector<double> v;
-  for (int k = 0; k <= n; ++k) v.push_back(o.v0_min * std::pow(10.0, k * decades / std::max(n, 1)));
-  return v;
-}
+using validation::exact_setup;
+using validation::StudyLaw;
 
 // Restitution against impact speed, every model, head-on: Fig. 4.
-void sweep_speeds(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+void sweep_speeds(const CollideOptions& o, const std::vector<StudyLaw>& runs, const fs::path& dir) {
   auto csv = fmt::output_file((dir / "restitution.csv").string());
   csv.print("model,source,v0,impact_speed,e_n,contact_time,peak_force,max_overlap,heat_fraction,"
             "energy_drift,final_drift\n");
+  const std::vector<double> v0s = validation::study_speeds(o.v0_min, o.v0_max, o.per_decade);
   for (const auto& s : runs) {
-    const auto exact = exact_setup(s.law, o.mass, o.radius);
-    const std::vector<double> v0s = speeds(o);
-    for (double v0 : v0s) {
-      validation::BinaryCollision c;
-      c.law = s.law;
-      c.radius = o.radius;
-      c.mass = o.mass;
-      c.v0 = v0;
-      c.steps_per_contact = o.steps_per_contact;
-      const auto r = validation::collide_binary(c);
-      if (!r.separated) throw std::runtime_error(fmt::format("{}: no separation", s.name));
-      csv.print("{},engine,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g}\n",
-                s.name, v0, 2 * v0, r.e_n, r.contact_time, r.peak_force, r.max_overlap, r.heat,
-                r.max_drift, r.final_drift);
-      if (exact) {
-        auto e = *exact;
-        e.v0 = v0;
-        const auto x = thermo::collide(e);
-        csv.print("{},exact,{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g}\n",
-                  s.name, v0, 2 * v0, x.restitution, x.contact_time, x.peak_force, x.max_overlap,
-                  (x.final_heat + x.final_w_relax) / x.initial_energy, x.max_energy_error,
-                  x.max_energy_error);
-      }
-    }
+    for (const auto& r :
+         validation::restitution_sweep({s}, v0s, o.mass, o.radius, o.steps_per_contact))
+      csv.print("{},{},{:.6g},{:.6g},{:.8f},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g}\n", r.model,
+                r.source, r.v0, r.impact_speed, r.e_n, r.contact_time, r.peak_force, r.max_overlap,
+                r.heat_fraction, r.energy_drift, r.final_drift);
     spdlog::info("{}: {} impact speeds", s.name, v0s.size());
   }
 }
 
 // Oblique impacts at v0 = 1e-3 (spec T13): with rotation, with rotation locked, and the exact
 // 2-D solution (no rotation) for the thermodynamic model.
-void sweep_obliquity(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+void sweep_obliquity(const CollideOptions& o, const std::vector<StudyLaw>& runs,
+                     const fs::path& dir) {
   auto csv = fmt::output_file((dir / "oblique.csv").string());
   csv.print("model,source,impact_parameter,e_n,e_t,v_rel_after_x,v_rel_after_y,spin_0_z,spin_1_z,"
             "heat_fraction,energy_drift\n");
@@ -155,25 +80,20 @@ void sweep_obliquity(const CollideOptions& o, const std::vector<Study>& runs, co
 }
 
 // The head-on time series of the thermodynamic model at v0 = 1e-3 (spec T14, Fig. 3).
-void write_series(const CollideOptions& o, const std::vector<Study>& runs, const fs::path& dir) {
+void write_series(const CollideOptions& o, const std::vector<StudyLaw>& runs, const fs::path& dir) {
   for (const auto& s : runs) {
-    auto e = exact_setup(s.law, o.mass, o.radius);
-    if (!e) continue;
-    e->v0 = 1e-3;
-    const double t_c = validation::contact_time(s.law, o.mass, o.radius, 2e-3);
-    e->sample_interval = t_c / 400;
-    e->after_separation = 3 * t_c;
-    const auto x = thermo::collide(*e);
+    const auto x = validation::head_on_series(s.law, o.mass, o.radius);
+    if (!x) continue;
     auto csv = fmt::output_file((dir / "collision_series.csv").string());
     csv.print("t,x1,delta,fn,un,w_el,kinetic,mechanical,w_relax,heat,total\n");
-    const double e0 = x.initial_energy;
-    for (const auto& p : x.series)
+    const double e0 = x->initial_energy;
+    for (const auto& p : x->series)
       csv.print("{:.8g},{:.10g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.12g}\n",
                 p.t, p.x1, p.delta, p.fn, p.un, p.w_el / e0, p.kinetic / e0, p.mechanical / e0,
                 p.w_relax / e0, p.heat / e0, p.total / e0);
     spdlog::info("time series of the head-on collision (v0 = 1e-3): e = {:.6f}, E_total kept to "
                  "{:.2g}",
-                 x.restitution, x.max_energy_error);
+                 x->restitution, x->max_energy_error);
     return;
   }
 }
@@ -181,7 +101,7 @@ void write_series(const CollideOptions& o, const std::vector<Study>& runs, const
 } // namespace
 
 std::vector<std::string> built_in_models() {
-  return {contact_model_names.begin(), contact_model_names.end()};
+  return validation::built_in_models();
 }
 
 int collide_command(const CollideOptions& o) {
@@ -195,7 +115,7 @@ int collide_command(const CollideOptions& o) {
       fs::remove_all(dir);
     }
     fs::create_directories(dir);
-    const auto runs = studies(o);
+    const auto runs = validation::study_laws(o.scene_path, o.models);
     sweep_speeds(o, runs, dir);
     sweep_obliquity(o, runs, dir);
     write_series(o, runs, dir);

@@ -7,6 +7,7 @@
 #include "plot_script.hpp"
 #include "run/progress.hpp"
 #include "run/run_driver.hpp"
+#include "run/run_opening.hpp"
 #include "run/scene_builder.hpp"
 
 #include <algorithm>
@@ -64,20 +65,6 @@ void describe(const Scene& scene, const Simulation& sim, const BuildReport& r) {
                scene.sim.gravity.y, scene.sim.gravity.z);
 }
 
-fs::path prepare_output(const RunCommandOptions& o, const Scene& scene) {
-  const fs::path dir =
-      o.output_dir.empty() ? fs::path("runs") / scene.run.name : fs::path(o.output_dir);
-  if (fs::exists(dir) && !fs::is_empty(dir)) {
-    if (!o.overwrite)
-      throw SceneError(fmt::format("output folder {} already holds a run; choose another with "
-                                   "-o or pass --overwrite",
-                                   dir.string()));
-    fs::remove_all(dir);
-  }
-  fs::create_directories(dir);
-  return dir;
-}
-
 // Reads, validates and builds the scene; prints the error of bad input and returns false.
 bool prepare(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim) {
   try {
@@ -107,104 +94,22 @@ extern "C" void on_stop_signal(int sig) {
   stop_signal = sig;
 }
 
-// Loads the newest valid checkpoint of a run folder into a new simulation.
-bool resume(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim,
-            std::string& scene_text) {
-  std::vector<std::string> refused;
-  const Comm comm = Comm::world(); // (every rank reads its share of the checkpoint)
-  const auto data = CheckpointSet(o.resume).newest_valid(comm, &refused);
-  if (comm.root())
-    for (const auto& r : refused)
-      fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
-  if (!data) {
-    if (comm.root())
-      fmt::print(stderr, "error: {}: no valid checkpoint to resume from\n",
-                 (fs::path(o.resume) / "checkpoints").string());
-    return false;
-  }
+// Opens the run of --resume or --from; prints the error of bad input and returns false.
+bool open(const RunCommandOptions& o, OpenedRun& run) {
   try {
-    scene_text = data->scene_text;
-    scene = read_scene_text(scene_text, (fs::path(o.resume) / "scene.resolved.toml").string());
-    if (o.t_end || !o.balance_by.empty()) {
-      if (o.t_end) scene.run.t_end = *o.t_end;
-      apply_balance_by(o, scene);
-      scene_text = resolved_scene_toml(scene); // later checkpoints carry the new settings
-    }
-    BuildReport report;
-    sim = build_simulation(scene, true, &report);
-    apply_checkpoint(*data, *sim);
-    describe(scene, *sim, report);
-    spdlog::info("resuming from {} at step {}, t = {}", data->file.string(), data->step,
-                 data->time);
-    return true;
-  } catch (const std::exception& e) {
-    print_error(e.what());
-    return false;
-  }
-}
-
-// The checkpoint of --from: the file itself, or the newest valid one of a run folder.
-std::optional<CheckpointData> read_branch_point(const std::string& from, const Comm& comm) {
-  if (!fs::is_directory(from)) return read_checkpoint(from, comm);
-  std::vector<std::string> refused;
-  auto data = CheckpointSet(from).newest_valid(comm, &refused);
-  if (comm.root())
-    for (const auto& r : refused)
-      fmt::print(stderr, "warning: checkpoint refused: {}; trying an older one\n", r);
-  if (!data)
-    throw CheckpointError(fmt::format("{}: no valid checkpoint to start from",
-                                      (fs::path(from) / "checkpoints").string()));
-  return data;
-}
-
-// Builds the scene of --from and continues the checkpoint's state under it (a branch). A scene
-// identical to the checkpoint's, but for its name and end time, continues as --resume does, bit
-// for bit; any other takes the state through Simulation::branch, which books the change of
-// energy the new scene gives it.
-bool branch(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation>& sim) {
-  try {
-    scene = load(o);
-    const Comm comm = Comm::world();
-    const auto data = read_branch_point(o.from, comm);
-    // (named as the scene of the run that wrote it, which resolves relative paths as resume)
-    const Scene saved =
-        read_scene_text(data->scene_text,
-                        (data->file.parent_path().parent_path() / "scene.resolved.toml").string());
-    if (saved.materials != scene.materials)
-      throw SceneError(fmt::format(
-          "{}: materials: [{}] are not the checkpoint's [{}] ({}): a branch keeps the materials "
-          "of the run it starts from, in their order",
-          scene.source, fmt::join(scene.materials, ", "), fmt::join(saved.materials, ", "),
-          data->file.string()));
-    if (!(scene.run.t_end > data->time))
-      throw SceneError(fmt::format("{}: run.t_end = {} is not after the checkpoint's time t = {}",
-                                   scene.source, scene.run.t_end, data->time));
-    BuildReport report;
-    sim = build_simulation(scene, o.force_dt, &report);
-    Scene same = scene;
-    same.run.name = saved.run.name;
-    same.run.t_end = saved.run.t_end;
-    if (resolved_scene_toml(same) == data->scene_text) {
-      apply_checkpoint(*data, *sim);
-      spdlog::info("the scene is the checkpoint's: the run continues as --resume would");
+    if (!o.resume.empty()) {
+      run = open_resume(o.resume, [&](Scene& scene) {
+        if (o.t_end) scene.run.t_end = *o.t_end;
+        apply_balance_by(o, scene);
+        return o.t_end || !o.balance_by.empty();
+      });
     } else {
-      const bool keep = saved.contact_model == scene.contact_model;
-      if (!keep && comm.root())
-        fmt::print(stderr,
-                   "warning: the contact model changes from {} to {}: every contact's history "
-                   "(tangential springs and model state) is dropped, and contacts open afresh "
-                   "under the new law\n",
-                   saved.contact_model, scene.contact_model);
-      try {
-        sim->branch(data->sections, data->n_sections, {report.walls, report.grains, keep},
-                    data->format_version);
-      } catch (const std::invalid_argument& e) {
-        throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
-      }
+      run = open_branch(load(o), o.from, o.force_dt);
     }
-    describe(scene, *sim, report);
-    spdlog::info("branching from {} at step {}, t = {}", data->file.string(), data->step,
-                 data->time);
+    if (Comm::world().root())
+      for (const auto& w : run.warnings) fmt::print(stderr, "warning: {}\n", w);
+    describe(run.scene, *run.sim, run.report);
+    spdlog::info("{}", run.origin);
     return true;
   } catch (const std::exception& e) { // SceneError, CheckpointError, invalid_argument
     print_error(e.what());
@@ -213,23 +118,25 @@ bool branch(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulation
 }
 
 int run_command(const RunCommandOptions& o) {
-  Scene scene;
-  std::unique_ptr<Simulation> sim;
-  std::string scene_text;
-  fs::path dir;
-  if (!o.resume.empty()) {
-    if (!resume(o, scene, sim, scene_text)) return 2;
-    dir = o.resume;
-  } else {
-    if (!(o.from.empty() ? prepare(o, scene, sim) : branch(o, scene, sim))) return 2;
+  OpenedRun run;
+  if (o.resume.empty() && o.from.empty()) {
+    if (!prepare(o, run.scene, run.sim)) return 2;
+    run.scene_text = resolved_scene_toml(run.scene);
+  } else if (!open(o, run)) {
+    return 2;
+  }
+  const Scene& scene = run.scene;
+  const std::unique_ptr<Simulation>& sim = run.sim;
+  const std::string& scene_text = run.scene_text;
+  fs::path dir = o.resume;
+  if (o.resume.empty()) {
     // Rank 0 checks and creates the folder (only once the scene is known to be good); every
     // rank learns the outcome.
     std::string error;
-    scene_text = resolved_scene_toml(scene);
     dir = o.output_dir.empty() ? fs::path("runs") / scene.run.name : fs::path(o.output_dir);
     if (sim->comm().root()) {
       try {
-        dir = prepare_output(o, scene);
+        prepare_output_folder(dir, o.overwrite);
         std::ofstream(dir / "scene.resolved.toml") << scene_text;
       } catch (const std::exception& e) {
         error = e.what();
@@ -245,8 +152,12 @@ int run_command(const RunCommandOptions& o) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
 
-  RunOptions ro{dir, o.progress && Progress::stderr_is_terminal(), scene_text, !o.resume.empty(),
-                &stop_signal};
+  RunOptions ro;
+  ro.output_dir = dir;
+  ro.show_progress = o.progress && Progress::stderr_is_terminal();
+  ro.scene_text = scene_text;
+  ro.resumed = !o.resume.empty();
+  ro.stop = &stop_signal;
   if (sim->comm().size() > 1)
     spdlog::info("{} MPI ranks: {}; owned particles max/mean {:.3f}", sim->comm().size(),
                  sim->decomposition().describe(), sim->imbalance());

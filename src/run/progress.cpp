@@ -11,9 +11,9 @@ bool Progress::stderr_is_terminal() {
   return isatty(STDERR_FILENO) == 1;
 }
 
-Progress::Progress(std::int64_t first_step, std::int64_t last_step, bool enabled)
-    : first_(first_step), last_(last_step), enabled_(enabled), start_(Clock::now()),
-      last_draw_(start_) {}
+Progress::Progress(std::int64_t first_step, std::int64_t last_step, bool enabled, Sink sink)
+    : first_(first_step), last_(last_step), enabled_(enabled), sink_(std::move(sink)),
+      start_(Clock::now()), last_draw_(start_) {}
 
 void Progress::update(std::int64_t step, double time) {
   if (!enabled_) return;
@@ -25,16 +25,26 @@ void Progress::update(std::int64_t step, double time) {
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double eta = rate > 0 ? static_cast<double>(last_ - step) / rate : 0.0;
   const auto eta_s = static_cast<long>(eta);
-  fmt::print(stderr, "\r  step {}/{}  t = {:.4f}  {:.0f} steps/s  {:.1f}%  ETA {}:{:02d}:{:02d}   ",
-             step, last_, time, rate,
-             100.0 * done / static_cast<double>(std::max<std::int64_t>(1, last_ - first_)),
-             eta_s / 3600, (eta_s / 60) % 60, eta_s % 60);
-  std::fflush(stderr);
+  const std::string line = fmt::format(
+      "\r  step {}/{}  t = {:.4f}  {:.0f} steps/s  {:.1f}%  ETA {}:{:02d}:{:02d}   ", step, last_,
+      time, rate, 100.0 * done / static_cast<double>(std::max<std::int64_t>(1, last_ - first_)),
+      eta_s / 3600, (eta_s / 60) % 60, eta_s % 60);
+  if (sink_) {
+    sink_(line);
+  } else {
+    fmt::print(stderr, "{}", line);
+    std::fflush(stderr);
+  }
   drawn_ = true;
 }
 
 void Progress::finish() {
-  if (drawn_) fmt::print(stderr, "\n");
+  if (drawn_) {
+    if (sink_)
+      sink_("\n");
+    else
+      fmt::print(stderr, "\n");
+  }
   drawn_ = false;
 }
 

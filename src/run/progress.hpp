@@ -4,12 +4,15 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <string>
 
 namespace yuxi {
 
 class Progress {
 public:
-  Progress(std::int64_t first_step, std::int64_t last_step, bool enabled);
+  using Sink = std::function<void(const std::string& line)>;
+  Progress(std::int64_t first_step, std::int64_t last_step, bool enabled, Sink sink = {});
   void update(std::int64_t step, double time);
   void finish();
   static bool stderr_is_terminal();
@@ -18,6 +21,7 @@ private:
   using Clock = std::chrono::steady_clock;
   std::int64_t first_, last_;
   bool enabled_;
+  Sink sink_;
   bool drawn_ = false;
   Clock::time_point start_, last_draw_;
 };

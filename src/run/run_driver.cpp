@@ -26,29 +26,56 @@ std::int64_t every(double interval, double dt) {
 
 } // namespace
 
-RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options) {
-  const auto& dir = options.output_dir;
-  const double dt = sim.config().dt;
-  const std::int64_t first = sim.step_count();
-  const std::int64_t last = std::llround(scene.run.t_end / dt);
-  const std::int64_t energy_every = every(scene.output.energy_interval, dt);
-  const std::int64_t snapshot_every = every(scene.output.snapshot_interval, dt);
-
-  // A resumed run keeps the rows and frames of the steps up to its checkpoint, except one that
-  // the saved run wrote only because it ended there (off the output's interval): extended to a
-  // later end, the files are then those of a run straight to it.
-  const auto resume_after = [&](std::int64_t interval) -> std::optional<std::int64_t> {
-    if (!options.resumed) return std::nullopt;
-    const bool off_interval = interval > 0 && first % interval != 0;
-    return off_interval && first < last ? first - 1 : first;
-  };
-  // energies.csv is written by rank 0, from energies reduced over ranks; every rank writes its
-  // own particles into the snapshots and checkpoints (no rank gathers the others').
-  const bool root = sim.comm().root();
-  std::unique_ptr<EnergyCsv> energies;
+struct RunDriver::Impl {
+  const Scene& scene;
+  Simulation& sim;
+  RunOptions options;
+  double dt;
+  std::int64_t first, last, energy_every, snapshot_every;
+  bool root;
+  std::unique_ptr<EnergyCsv> energies, walls, inflow, outflow, measurements;
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
-  std::unique_ptr<EnergyCsv> walls;
+  std::unique_ptr<BedMeasurements> measures;
+  std::unique_ptr<RunAnalysis> analysis;
+  std::optional<CheckpointSet> checkpoints;
+  std::chrono::steady_clock::time_point last_checkpoint, start;
+  // Particles in the rate (grains and wall particles), counted again at each row of
+  // energies.csv: grains may come and go.
+  double n_particles = 0, n_walls = 0, particle_steps = 0;
+  RunSummary summary;
+
+  Impl(const Scene& s, Simulation& sm, RunOptions o);
+  std::optional<std::int64_t> resume_after(std::int64_t interval) const;
+  void write_measurements();
+  void write_flows();
+  void write_energies();
+  void snapshot();
+  bool stop_requested() const;
+  bool checkpoint_due(std::int64_t next) const;
+  void write_checkpoint();
+};
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The signal and the clock are polled every poll_steps steps only: each poll is a collective,
+// and one per step costs more than the step itself on small systems split over ranks.
+constexpr std::int64_t poll_steps = 50;
+
+} // namespace
+
+RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
+    : scene(s), sim(sm), options(std::move(o)), dt(sim.config().dt), first(sim.step_count()),
+      last(std::llround(scene.run.t_end / dt)),
+      energy_every(every(scene.output.energy_interval, dt)),
+      snapshot_every(every(scene.output.snapshot_interval, dt)), root(sim.comm().root()) {
+  const auto& dir = options.output_dir;
+  // energies.csv is written by rank 0, from energies reduced over ranks; every rank writes its
+  // own particles into the snapshots and checkpoints (no rank gathers the others').
   if (root)
     energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume_after(energy_every));
   // walls.csv: per shaped wall, the force and torque the grains put on it and its cumulative
@@ -63,7 +90,6 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box,
                                               resume_after(snapshot_every), sim.comm());
   // inflow.csv and outflow.csv: each insert's and outlet's cumulative grains and mass.
-  std::unique_ptr<EnergyCsv> inflow, outflow;
   if (root && !scene.inserts.empty())
     inflow = std::make_unique<EnergyCsv>(dir / "inflow.csv", resume_after(energy_every),
                                          "step,time,insert,grains,mass,owed");
@@ -71,154 +97,208 @@ RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& opt
     outflow = std::make_unique<EnergyCsv>(dir / "outflow.csv", resume_after(energy_every),
                                           "step,time,outlet,grains,mass");
   // measurements.csv: the [[measure]] tables' columns.
-  std::unique_ptr<BedMeasurements> measures;
-  std::unique_ptr<EnergyCsv> measurements;
   if (!scene.measures.empty()) {
     double largest = 0;
     for (std::size_t i = 0; i < sim.particles().n_owned(); ++i)
       if (sim.particles().is_grain(i)) largest = std::max(largest, sim.particles().radius[i]);
     sim.comm().max(&largest, 1);
-    for (const InsertSpec& s : scene.inserts) largest = std::max(largest, s.grains.size.largest());
+    for (const InsertSpec& i : scene.inserts) largest = std::max(largest, i.grains.size.largest());
     measures = std::make_unique<BedMeasurements>(scene.measures, sim, largest);
     if (root)
       measurements = std::make_unique<EnergyCsv>(dir / "measurements.csv",
                                                  resume_after(energy_every), measures->header());
   }
-  const auto write_measurements = [&] {
-    if (!measures) return;
-    const std::vector<double> v = measures->values(sim); // collective
-    if (!measurements) return;
-    std::string row = fmt::format("{},{:.10g}", sim.step_count(), sim.time());
-    for (double x : v) row += fmt::format(",{:.10g}", x);
-    measurements->write_row(row);
-  };
-  const auto write_flows = [&] {
-    const auto row = [&](EnergyCsv& csv, const Simulation::SourceTally& f, bool owed) {
-      csv.write_row(fmt::format("{},{:.10g},{},{},{:.10g}{}", sim.step_count(), sim.time(), f.name,
-                                f.grains, f.mass,
-                                owed ? fmt::format(",{}", f.owed) : std::string()));
-    };
-    if (inflow)
-      for (const auto& f : sim.inflow()) row(*inflow, f, true);
-    if (!scene.outlets.empty()) {
-      const auto flows = sim.outflow(); // collective
-      for (std::size_t k = 0; outflow && k < flows.size(); ++k) row(*outflow, flows[k], false);
-    }
-  };
-  // Particles in the rate (grains and wall particles), counted again at each row of
-  // energies.csv: grains may come and go.
-  double n_particles = 0, n_walls = 0;
-  const auto write_energies = [&] {
-    const EnergyBooks e = sim.energies(); // collective
-    n_particles = n_walls + static_cast<double>(e.grains);
-    if (energies) energies->write(e);
-    write_flows();
-    write_measurements();
-    const auto row = [&](const std::string& name, const WallLoad& l) {
-      walls->write_row(fmt::format("{},{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
-                                   "{:.10g},{}",
-                                   sim.step_count(), sim.time(), name, l.force.x, l.force.y,
-                                   l.force.z, l.torque.x, l.torque.y, l.torque.z, l.work,
-                                   l.contacts));
-    };
-    if (!sim.walls().empty()) {
-      const std::vector<WallLoad> loads = sim.wall_loads(); // collective
-      for (std::size_t w = 0; walls && w < loads.size(); ++w)
-        row(wall_name(sim.walls()[w]), loads[w]);
-    }
-    if (!sim.planes().empty()) {
-      const std::vector<WallLoad> loads = sim.plane_loads(); // collective
-      for (std::size_t p = 0; walls && p < loads.size(); ++p) row(sim.planes()[p].name, loads[p]);
-    }
-  };
-  CheckpointSet checkpoints(dir, scene.checkpoint.keep);
-  const auto& policy = scene.checkpoint;
-  auto last_checkpoint = std::chrono::steady_clock::now();
-  // A signal reaches one rank or all; every rank must stop at the same step.
-  const auto stop_requested = [&] { return sim.comm().any(options.stop && *options.stop != 0); };
-  // A checkpoint may follow any step and leaves the trajectory untouched (see
-  // Simulation::checkpoint): a run repeats itself to the bit whenever its checkpoints were
-  // written, by step count, by the clock, on a signal or at the end. The signal and the clock
-  // are polled every poll_steps steps only: each poll is a collective, and one per step costs
-  // more than the step itself on small systems split over ranks.
-  const auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  constexpr std::int64_t poll_steps = 50;
-  const auto checkpoint_due = [&](std::int64_t next) {
-    if (next == last) return true;
-    if (policy.every_steps > 0 && next % policy.every_steps == 0) return true;
-    if (next % poll_steps != 0) return false;
-    if (stop_requested()) return true;
-    const double minutes = seconds_since(last_checkpoint) / 60.0;
-    return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
-  };
-  RunSummary summary;
-  auto snapshot = [&] {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (vtk) {
-      // The shaped walls beside the particles, in the same frame (none: no walls file).
-      std::optional<WallSurface> surface;
-      if (!sim.walls().empty()) surface = wall_surface(sim); // collective
-      vtk->write(sim.particles(), sim.step_count(), sim.time(),
-                 surface ? &*surface : nullptr); // collective
-    }
-    if (dump) dump->write(sim.particles(), sim.step_count());
-    summary.snapshot_seconds += seconds_since(t0);
-  };
-
-  std::unique_ptr<RunAnalysis> analysis;
+  checkpoints.emplace(dir, scene.checkpoint.keep);
+  last_checkpoint = std::chrono::steady_clock::now();
   if (scene.analysis)
     analysis = std::make_unique<RunAnalysis>(scene, dir, dt,
                                              options.resumed ? std::optional(first) : std::nullopt);
-
-  Progress progress(first, last, options.show_progress && sim.comm().root());
   n_particles =
       static_cast<double>(sim.comm().sum(static_cast<std::int64_t>(sim.particles().n_owned())));
   n_walls = n_particles - static_cast<double>(sim.energies().grains);
-  const auto start = std::chrono::steady_clock::now();
-  double particle_steps = 0.0;
+  start = std::chrono::steady_clock::now();
   if (!options.resumed) {
     write_energies();
     if (snapshot_every) snapshot();
   }
+}
+
+// A resumed run keeps the rows and frames of the steps up to its checkpoint, except one that
+// the saved run wrote only because it ended there (off the output's interval): extended to a
+// later end, the files are then those of a run straight to it.
+std::optional<std::int64_t> RunDriver::Impl::resume_after(std::int64_t interval) const {
+  if (!options.resumed) return std::nullopt;
+  const bool off_interval = interval > 0 && first % interval != 0;
+  return off_interval && first < last ? first - 1 : first;
+}
+
+void RunDriver::Impl::write_measurements() {
+  if (!measures) return;
+  const std::vector<double> v = measures->values(sim); // collective
+  if (!measurements) return;
+  std::string row = fmt::format("{},{:.10g}", sim.step_count(), sim.time());
+  for (double x : v) row += fmt::format(",{:.10g}", x);
+  measurements->write_row(row);
+}
+
+void RunDriver::Impl::write_flows() {
+  const auto row = [&](EnergyCsv& csv, const Simulation::SourceTally& f, bool owed) {
+    csv.write_row(fmt::format("{},{:.10g},{},{},{:.10g}{}", sim.step_count(), sim.time(), f.name,
+                              f.grains, f.mass, owed ? fmt::format(",{}", f.owed) : std::string()));
+  };
+  if (inflow)
+    for (const auto& f : sim.inflow()) row(*inflow, f, true);
+  if (!scene.outlets.empty()) {
+    const auto flows = sim.outflow(); // collective
+    for (std::size_t k = 0; outflow && k < flows.size(); ++k) row(*outflow, flows[k], false);
+  }
+}
+
+void RunDriver::Impl::write_energies() {
+  const EnergyBooks e = sim.energies(); // collective
+  n_particles = n_walls + static_cast<double>(e.grains);
+  if (energies) energies->write(e);
+  write_flows();
+  write_measurements();
+  const auto row = [&](const std::string& name, const WallLoad& l) {
+    walls->write_row(fmt::format("{},{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                                 "{:.10g},{}",
+                                 sim.step_count(), sim.time(), name, l.force.x, l.force.y,
+                                 l.force.z, l.torque.x, l.torque.y, l.torque.z, l.work,
+                                 l.contacts));
+  };
+  if (!sim.walls().empty()) {
+    const std::vector<WallLoad> loads = sim.wall_loads(); // collective
+    for (std::size_t w = 0; walls && w < loads.size(); ++w)
+      row(wall_name(sim.walls()[w]), loads[w]);
+  }
+  if (!sim.planes().empty()) {
+    const std::vector<WallLoad> loads = sim.plane_loads(); // collective
+    for (std::size_t p = 0; walls && p < loads.size(); ++p) row(sim.planes()[p].name, loads[p]);
+  }
+}
+
+void RunDriver::Impl::snapshot() {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (vtk) {
+    // The shaped walls beside the particles, in the same frame (none: no walls file).
+    std::optional<WallSurface> surface;
+    if (!sim.walls().empty()) surface = wall_surface(sim); // collective
+    vtk->write(sim.particles(), sim.step_count(), sim.time(),
+               surface ? &*surface : nullptr); // collective
+  }
+  if (dump) dump->write(sim.particles(), sim.step_count());
+  summary.snapshot_seconds += seconds_since(t0);
+}
+
+// A signal reaches one rank or all; every rank must stop at the same step.
+bool RunDriver::Impl::stop_requested() const {
+  bool here = options.stop && *options.stop != 0;
+  if (options.stop_requested) here = options.stop_requested() || here;
+  return sim.comm().any(here);
+}
+
+// A checkpoint may follow any step and leaves the trajectory untouched (see
+// Simulation::checkpoint): a run repeats itself to the bit whenever its checkpoints were
+// written, by step count, by the clock, on a signal or at the end.
+bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
+  const auto& policy = scene.checkpoint;
+  if (next == last) return true;
+  if (policy.every_steps > 0 && next % policy.every_steps == 0) return true;
+  if (next % poll_steps != 0) return false;
+  if (stop_requested()) return true;
+  const double minutes = seconds_since(last_checkpoint) / 60.0;
+  return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
+}
+
+void RunDriver::Impl::write_checkpoint() {
+  const auto t0 = std::chrono::steady_clock::now();
+  checkpoints->write(options.scene_text, sim);
+  last_checkpoint = std::chrono::steady_clock::now();
+  summary.checkpoint_seconds += seconds_since(t0);
+}
+
+RunDriver::RunDriver(const Scene& scene, Simulation& sim, RunOptions options)
+    : impl_(std::make_unique<Impl>(scene, sim, std::move(options))) {}
+
+RunDriver::~RunDriver() = default;
+
+std::int64_t RunDriver::end_step() const {
+  return impl_->last;
+}
+
+void RunDriver::set_end_time(double t_end) {
+  impl_->last = std::llround(t_end / impl_->dt);
+}
+
+void RunDriver::set_show_progress(bool on) {
+  impl_->options.show_progress = on;
+}
+
+void RunDriver::write_checkpoint() {
+  impl_->write_checkpoint();
+}
+
+bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
+  Impl& d = *impl_;
+  Simulation& sim = d.sim;
+  if (d.summary.failed) return false;
+  d.summary.stopped = d.summary.interrupted = false;
+  until = std::min(until, d.last);
+  Progress progress(sim.step_count(), until, d.options.show_progress && sim.comm().root(),
+                    d.options.progress_sink);
   try {
-    while (sim.step_count() < last) {
-      const bool checkpoint_now = checkpoint_due(sim.step_count() + 1);
-      if (analysis) analysis->before_step(sim);
+    while (sim.step_count() < until) {
+      const bool checkpoint_now = d.checkpoint_due(sim.step_count() + 1);
+      if (d.analysis) d.analysis->before_step(sim);
       sim.step();
-      if (analysis) analysis->after_step(sim);
-      particle_steps += n_particles;
+      if (d.analysis) d.analysis->after_step(sim);
+      d.particle_steps += d.n_particles;
       const std::int64_t k = sim.step_count();
-      if (k % energy_every == 0 || k == last) write_energies();
-      if (snapshot_every && (k % snapshot_every == 0 || k == last)) snapshot();
+      if (k % d.energy_every == 0 || k == d.last) d.write_energies();
+      if (d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last)) d.snapshot();
+      const bool go_on = !(hook.every > 0 && k % hook.every == 0 && hook.call && !hook.call());
       if (checkpoint_now) {
-        const auto t0 = std::chrono::steady_clock::now();
-        checkpoints.write(options.scene_text, sim);
-        last_checkpoint = std::chrono::steady_clock::now();
-        summary.checkpoint_seconds += seconds_since(t0);
-        if (stop_requested()) {
-          summary.interrupted = true;
+        d.write_checkpoint();
+        if (d.stop_requested()) {
+          d.summary.interrupted = true;
           break;
         }
       }
       progress.update(k, sim.time());
+      if (!go_on) {
+        d.summary.stopped = true;
+        break;
+      }
     }
   } catch (const SimulationError& e) {
     progress.finish();
-    summary.failed = true;
-    summary.failure = e.what();
-    if (root) std::ofstream(dir / "failure.txt") << e.what() << "\n";
-    write_vtu(dir / "failure.vtu", sim.particles(), sim.comm()); // every rank stopped together
+    d.summary.failed = true;
+    d.summary.failure = e.what();
+    if (d.root) std::ofstream(d.options.output_dir / "failure.txt") << e.what() << "\n";
+    // (every rank stopped together)
+    write_vtu(d.options.output_dir / "failure.vtu", sim.particles(), sim.comm());
   }
   progress.finish();
-  if (analysis && !summary.failed) analysis->finish(sim);
-  summary.wall_seconds = seconds_since(start);
-  summary.steps = sim.step_count() - first;
-  summary.particle_steps_per_second =
-      summary.wall_seconds > 0 ? particle_steps / summary.wall_seconds : 0.0;
-  summary.final_energies = sim.energies();
-  return summary;
+  return !(d.summary.failed || d.summary.interrupted);
+}
+
+RunSummary RunDriver::finish() {
+  Impl& d = *impl_;
+  if (d.analysis && !d.summary.failed) d.analysis->finish(d.sim);
+  d.analysis.reset();
+  d.summary.wall_seconds = seconds_since(d.start);
+  d.summary.steps = d.sim.step_count() - d.first;
+  d.summary.particle_steps_per_second =
+      d.summary.wall_seconds > 0 ? d.particle_steps / d.summary.wall_seconds : 0.0;
+  d.summary.final_energies = d.sim.energies();
+  return d.summary;
+}
+
+RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options) {
+  RunDriver driver(scene, sim, options);
+  driver.advance(driver.end_step());
+  return driver.finish();
 }
 
 } // namespace yuxi

@@ -1,4 +1,4 @@
-// Runs a built simulation to the scene's end time and writes its outputs into one folder:
+// Runs a built simulation and writes its outputs into one folder:
 //   energies.csv          the energy books every output.energy_interval
 //   particles.pvd + .vtu  VTK snapshots every output.snapshot_interval (ParaView)
 //   particles.lammpstrj   the same frames as a LAMMPS dump (OVITO)
@@ -8,13 +8,18 @@
 //   analysis/             the fish-basin analysis of the scene's [analysis] table
 //                         (run_analysis.hpp); a run resumed inside the averaging window
 //                         averages over the part after the restart
+// `yuxi run` goes to the end in one call (run_to_end); the Python API advances a RunDriver in
+// pieces, with a callback between steps, and the files are the same as in one go.
 #pragma once
 
 #include "io/scene.hpp"
 #include "sim/simulation.hpp"
 
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 
 namespace yuxi {
@@ -25,6 +30,10 @@ struct RunOptions {
   std::string scene_text; // the resolved scene, stored in every checkpoint
   bool resumed = false;   // the simulation was loaded from a checkpoint: continue the files
   const volatile std::sig_atomic_t* stop = nullptr; // set by a signal: checkpoint and return
+  // Asked, with the signal, whether to stop (the Python API's Ctrl-C); every rank must be asked.
+  std::function<bool()> stop_requested;
+  // Where progress lines go (standard error when empty); `line` starts with '\r'.
+  std::function<void(const std::string& line)> progress_sink;
 };
 
 struct RunSummary {
@@ -36,9 +45,44 @@ struct RunSummary {
   EnergyBooks final_energies;
   bool failed = false;
   bool interrupted = false; // stopped by a signal after writing a checkpoint
+  bool stopped = false;     // stopped by a step hook (no checkpoint forced)
   std::string failure;      // the diagnosis when failed
 };
 
+// Called every `every` steps after a step; returns false to stop the run there.
+struct StepHook {
+  std::int64_t every = 0; // 0: never
+  std::function<bool()> call;
+};
+
+class RunDriver {
+public:
+  // Opens the output files (continued where `options.resumed`) and, for a fresh run, writes the
+  // rows and frame of step 0. Collective.
+  RunDriver(const Scene& scene, Simulation& sim, RunOptions options);
+  ~RunDriver();
+  RunDriver(const RunDriver&) = delete;
+  RunDriver& operator=(const RunDriver&) = delete;
+
+  // Steps until step `until` (clamped to the end step), a signal, a hook's stop or a failure.
+  // Returns false if the run may not go on (failed or interrupted). Collective.
+  bool advance(std::int64_t until, const StepHook& hook = {});
+  // The step at which the run ends (the scene's t_end); a later end extends the run as
+  // `--resume --t-end` does.
+  std::int64_t end_step() const;
+  void set_end_time(double t_end);
+  void set_show_progress(bool on);
+  // Writes a checkpoint into the run folder now. Collective.
+  void write_checkpoint();
+  // Ends the run's analysis and returns what it did (also after a failure). Collective.
+  RunSummary finish();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The whole run in one go: RunDriver, advanced to its end, finished.
 RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options);
 
 } // namespace yuxi
