@@ -8,7 +8,7 @@
 #   io                                 on sim
 #   run                                on io, sim, analysis
 #   validation                         on run, thermo
-# apps/, tests/ and bench/ may include any layer.
+# apps/, python/ (the Python module), tests/ and bench/ may include any layer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

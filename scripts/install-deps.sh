@@ -8,7 +8,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev libboost-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy python3-pytest python3-mpi4py
+  pybind11-dev python3-pybind11
   clang-format zlib1g-dev clang libclang-rt-14-dev
 )
 missing=()

@@ -236,6 +236,9 @@ void write_shaped_walls(const Scene& s, toml::table& doc) {
         t.insert("servo_force", servo->target());
         t.insert("servo_gain", servo->gain());
         t.insert("servo_max_speed", servo->max_speed());
+      } else if (m->controller) {
+        t.insert("servo_axis", vec(m->servo_axis));
+        t.insert("controlled", true);
       }
       meshes.push_back(t);
     } else {

@@ -112,6 +112,12 @@ void read_mesh(Scene& scene, TomlReader& t, std::size_t index) {
     w.servo_axis = unit_vector(t, "servo_axis", Vec3{0, 0, -1});
     w.controller = std::make_shared<ForceServo>(t.number("servo_force"), t.positive("servo_gain"),
                                                 t.positive("servo_max_speed"));
+    if (t.boolean("controlled", false))
+      t.fail("controlled", "a wall is either a servo (servo_force) or controlled from outside");
+  } else if (t.boolean("controlled", false)) {
+    // Its speed along servo_axis is set from outside while the run goes (the Python API).
+    w.servo_axis = unit_vector(t, "servo_axis", Vec3{0, 0, -1});
+    w.controller = std::make_shared<HeldSpeed>();
   }
   check_mesh_in_box(scene, t, w);
   t.finish();

@@ -36,4 +36,17 @@ private:
   double target_, gain_, max_speed_;
 };
 
+// A speed set from outside between steps (`controlled = true` in a scene; the Python API's
+// callbacks set it): it holds until set again.
+class HeldSpeed final : public WallController {
+public:
+  explicit HeldSpeed(double speed = 0.0) : speed_(speed) {}
+  double speed(double, double) override { return speed_; }
+  void set(double speed) { speed_ = speed; }
+  double held() const { return speed_; }
+
+private:
+  double speed_;
+};
+
 } // namespace yuxi

@@ -32,7 +32,10 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -240,6 +243,30 @@ public:
   std::vector<SourceTally> inflow() const;
   std::vector<SourceTally> outflow() const;
 
+  // Changes from outside the equations of motion between steps (the Python API:
+  // simulation_edits.cpp). Each books the change of mechanical energy it makes as `inserted`
+  // (removed grains' as `removed`), so the books keep closing and the blow-up check is not
+  // tripped.
+  // Velocities and angular velocities of grains this rank owns, by global id (an id that is not
+  // such a grain throws std::invalid_argument naming it). Nothing else changes.
+  void set_velocities(std::span<const GlobalId> ids, std::span<const Vec3> v);
+  void set_angular_velocities(std::span<const GlobalId> ids, std::span<const Vec3> w);
+  // Positions of grains this rank owns. Collective: the list is built afresh and the forces
+  // evaluated without advancing any spring (every rank calls it, with its own grains or none).
+  void set_positions(std::span<const GlobalId> ids, std::span<const Vec3> x);
+  // New grains, the same list on every rank (each keeps those in its sub-domain), with ids
+  // from the counter of inserted grains; returns their ids. Collective.
+  std::vector<GlobalId> add_grains(std::span<const ParticleSpec> grains);
+  // Removes the grains of these ids that this rank owns (others are passed over); returns how
+  // many went on all ranks. Collective.
+  std::int64_t remove_grains(std::span<const GlobalId> ids);
+  // Gives a controlled mesh (one with a controller: a servo, or `controlled = true`) another
+  // controller. Throws std::invalid_argument if wall `wall` is not such a mesh.
+  void set_wall_controller(std::size_t wall, std::shared_ptr<WallController> controller);
+  // The speed along its axis that a controlled mesh moved at in the last step, and how far it
+  // has moved along it [length/time, length].
+  std::pair<double, double> wall_servo_state(std::size_t wall) const;
+
   // Makes the next step rebuild the neighbour list (and re-sort particles) whatever the skin
   // criterion says; the trajectory must not change.
   void request_rebuild() { rebuild_requested_ = true; }
@@ -338,7 +365,9 @@ private:
   // cut planes are the saved ones (the run's next build balances as it would have); or after
   // loading one saved at any step, built from the positions of its last build (x, which the
   // build leaves in x_build as it found it: rebuild_after_load).
-  enum class BuildAfter { step, load, load_at_last_build };
+  // `edit`: a change between steps (simulation_edits.cpp), like a step's build but with no
+  // balancing, no sources and no books left due.
+  enum class BuildAfter { step, edit, load, load_at_last_build };
   void rebuild(BuildAfter after = BuildAfter::step);
   void migrate();
   void rebalance();
@@ -346,6 +375,13 @@ private:
   // `as_saved`: the state of as many ranks as saved it, continued bit for bit; otherwise
   // particles merged from other ranks' sections, given a new list.
   void rebuild_after_load(bool as_saved);
+  // Runs `check` on every rank (an std::invalid_argument on any rank throws on all), then
+  // applies `change` to this rank's particles in a list build (edit_), evaluates the forces
+  // without advancing any spring, and books the change of energy. Collective.
+  void edit_particles(const std::function<void()>& check, std::function<void()> change);
+  // The indices of the owned grains of these global ids; throws std::invalid_argument naming
+  // an id that is not one.
+  std::vector<std::size_t> owned_grains(std::span<const GlobalId> ids) const;
   // load()'s parts on this rank: its own section, or the merge of its share.
   void load_own_section(const std::string& section);
   void merge_sections(const std::vector<std::string>& share);
@@ -454,7 +490,8 @@ private:
   };
   std::vector<InsertProgress> insert_progress_;
   std::vector<OutletPart> outlet_part_;
-  GlobalId next_gid_ = 0; // of the next inserted grain (the same on every rank)
+  GlobalId next_gid_ = 0;      // of the next inserted grain (the same on every rank)
+  std::function<void()> edit_; // the change of edit_particles(), made in its list build
   // While branch() loads: the state continues under another scene (what it must hold).
   std::optional<BranchCheck> branch_;
   std::uint32_t loading_layout_ = state_layout; // of the state load() takes

@@ -8,7 +8,8 @@
 namespace yuxi {
 
 void Simulation::rebuild(BuildAfter after) {
-  const bool after_load = after != BuildAfter::step;
+  const bool after_load = after == BuildAfter::load || after == BuildAfter::load_at_last_build;
+  const bool in_step = after == BuildAfter::step;
   // (the spans without exchanges go into timers_.neighbor_local)
   if (!after_load) {
     PhaseTimer timer(timers_.neighbor_local);
@@ -16,11 +17,15 @@ void Simulation::rebuild(BuildAfter after) {
   }
   // Rebalance by measured cost at the first rebuild after the start (the start could only
   // count particles), then every rebalance_every rebuilds.
-  if (!after_load && comm_.size() > 1 && config_.rebalance_every > 0 &&
+  if (in_step && comm_.size() > 1 && config_.rebalance_every > 0 &&
       (rebuilds_ == 1 || (rebuilds_ > 0 && rebuilds_ % config_.rebalance_every == 0)))
     rebalance();
   handle_escapes();
-  if (!after_load) {
+  if (after == BuildAfter::edit && edit_) {
+    store_.clear_ghosts();
+    edit_();
+  }
+  if (in_step) {
     if (!outlets_.empty()) handle_outlets();
     if (!inserts_.empty()) insert_due_batches();
   }
@@ -84,7 +89,7 @@ void Simulation::rebuild(BuildAfter after) {
   // collective: a collective here would make every rank wait for the slowest list build, and
   // again at that step for the slowest pairs, where one wait covers both. (A loaded state's
   // books were checked before it was saved.)
-  if (step_ > 0 && !after_load) books_due_ = energy_parts();
+  if (step_ > 0 && in_step) books_due_ = energy_parts();
 }
 
 void Simulation::migrate() {

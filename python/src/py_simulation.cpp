@@ -1,0 +1,498 @@
+#include "py_simulation.hpp"
+
+#include "io/checkpoint_file.hpp"
+#include "io/scene_error.hpp"
+#include "io/scene_writer.hpp"
+#include "scene/wall_controller.hpp"
+
+#include <cstring>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <numbers>
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+namespace fs = std::filesystem;
+
+namespace yuxi::python {
+namespace {
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
+
+// Rank 0 prepares the folder; every rank learns the outcome.
+void make_output_folder(const Simulation& sim, const fs::path& dir, bool overwrite,
+                        const std::string& scene_text) {
+  std::string error;
+  if (sim.comm().root()) {
+    try {
+      prepare_output_folder(dir, overwrite);
+      std::ofstream(dir / "scene.resolved.toml") << scene_text;
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  error = sim.comm().first_error(error);
+  if (!error.empty()) throw SceneError(error);
+}
+
+fs::path output_of(const std::string& output, const Scene& scene) {
+  return output.empty() ? fs::path("runs") / scene.run.name : fs::path(output);
+}
+
+// Progress lines through Python's sys.stderr, which a notebook shows.
+void write_progress(const std::string& line) {
+  py::module_::import("sys").attr("stderr").attr("write")(line);
+  py::module_::import("sys").attr("stderr").attr("flush")();
+}
+
+// A controller written in Python: speed = f(resisting force, time).
+class PythonController final : public WallController {
+public:
+  explicit PythonController(py::function f) : f_(std::move(f)) {}
+  double speed(double resisting, double t) override { return f_(resisting, t).cast<double>(); }
+
+private:
+  py::function f_;
+};
+
+std::size_t wall_index(Simulation& sim, const std::string& name) {
+  for (std::size_t w = 0; w < sim.walls().size(); ++w)
+    if (wall_name(sim.walls()[w]) == name) return w;
+  std::vector<std::string> names;
+  for (const auto& w : sim.walls()) names.push_back(wall_name(w));
+  throw py::key_error(fmt::format("no mesh or cylinder named '{}' (the scene has: {})", name,
+                                  fmt::join(names, ", ")));
+}
+
+// An (n, 3) array of doubles as Vec3s (copied: the engine's arrays are not the caller's).
+std::vector<Vec3> vec3s(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+                        const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(fmt::format("{}: expected an array of shape (n, 3)", what));
+  std::vector<Vec3> out(static_cast<std::size_t>(a.shape(0)));
+  const double* p = a.data();
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = {p[3 * k], p[3 * k + 1], p[3 * k + 2]};
+  return out;
+}
+
+std::vector<GlobalId>
+ids_of(const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& a) {
+  if (a.ndim() != 1) throw py::value_error("ids: expected a one-dimensional array");
+  return {a.data(), a.data() + a.shape(0)};
+}
+
+// A view of n Vec3s or scalars of the engine's memory: no copy, read-only, keeping `owner`
+// alive. (Valid until the next step: the Python layer checks the generation.)
+template <class T> py::array view(const T* data, std::size_t n, py::handle owner) {
+  py::array a;
+  if constexpr (std::is_same_v<T, Vec3>)
+    a = py::array_t<double>(
+        {static_cast<py::ssize_t>(n), py::ssize_t{3}},
+        {static_cast<py::ssize_t>(sizeof(Vec3)), static_cast<py::ssize_t>(sizeof(double))},
+        reinterpret_cast<const double*>(data), owner);
+  else
+    a = py::array_t<T>({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data,
+                       owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+py::dict books_dict(const EnergyBooks& e) {
+  py::dict d;
+  d["step"] = e.step;
+  d["time"] = e.time;
+  d["translational"] = e.translational;
+  d["rotational"] = e.rotational;
+  d["kinetic"] = e.kinetic();
+  d["elastic"] = e.elastic;
+  d["gravitational"] = e.gravitational;
+  d["relaxation"] = e.relaxation;
+  d["mechanical"] = e.mechanical();
+  d["dissipated"] = e.dissipated;
+  d["wall_work"] = e.wall_work;
+  d["removed"] = e.removed;
+  d["gravity_work"] = e.gravity_work;
+  d["inserted"] = e.inserted;
+  d["balance"] = e.balance();
+  d["grains"] = e.grains;
+  d["contacts"] = e.contacts;
+  d["escaped"] = e.escaped;
+  return d;
+}
+
+py::dict load_dict(const WallLoad& l) {
+  py::dict d;
+  d["force"] = py::make_tuple(l.force.x, l.force.y, l.force.z);
+  d["torque"] = py::make_tuple(l.torque.x, l.torque.y, l.torque.z);
+  d["work"] = l.work;
+  d["contacts"] = l.contacts;
+  return d;
+}
+
+py::list tallies(const std::vector<Simulation::SourceTally>& flows) {
+  py::list out;
+  for (const auto& f : flows) {
+    py::dict d;
+    d["name"] = f.name;
+    d["grains"] = f.grains;
+    d["mass"] = f.mass;
+    d["owed"] = f.owed;
+    out.append(d);
+  }
+  return out;
+}
+
+} // namespace
+
+PySimulation::PySimulation(const PyScene& scene, const std::string& output, bool overwrite,
+                           bool progress, bool force_dt)
+    : progress_(progress) {
+  run_ = open_scene(scene.scene, force_dt);
+  folder_ = output_of(output, run_.scene);
+  make_output_folder(*run_.sim, folder_, overwrite, run_.scene_text);
+  open_driver(false);
+}
+
+std::unique_ptr<PySimulation> PySimulation::resume(const std::string& folder,
+                                                   std::optional<double> t_end, bool progress) {
+  std::unique_ptr<PySimulation> s(new PySimulation());
+  s->progress_ = progress;
+  s->run_ = open_resume(folder, [&](Scene& scene) {
+    if (t_end) scene.run.t_end = *t_end;
+    return t_end.has_value();
+  });
+  s->folder_ = folder;
+  s->open_driver(true);
+  return s;
+}
+
+std::unique_ptr<PySimulation> PySimulation::branch(const std::string& from, const PyScene& scene,
+                                                   const std::string& output, bool overwrite,
+                                                   bool progress, bool force_dt) {
+  std::unique_ptr<PySimulation> s(new PySimulation());
+  s->progress_ = progress;
+  s->run_ = open_branch(scene.scene, from, force_dt);
+  s->folder_ = output_of(output, s->run_.scene);
+  make_output_folder(*s->run_.sim, s->folder_, overwrite, s->run_.scene_text);
+  s->open_driver(false);
+  return s;
+}
+
+void PySimulation::open_driver(bool resumed) {
+  RunOptions o;
+  o.output_dir = folder_;
+  o.scene_text = run_.scene_text;
+  o.resumed = resumed;
+  // Ctrl-C: Python's handler has set its flag; the run checkpoints, and the interrupt is
+  // raised once it has.
+  o.stop_requested = [this] {
+    if (interrupt_) return true; // (asked again after the checkpoint)
+    if (PyErr_CheckSignals() == 0) return false;
+    interrupt_.emplace();
+    return true;
+  };
+  o.progress_sink = write_progress;
+  driver_ = std::make_unique<RunDriver>(run_.scene, *run_.sim, o);
+}
+
+py::tuple PySimulation::generation() const {
+  return py::make_tuple(run_.sim->step_count(), edits_);
+}
+
+void PySimulation::advance(py::object self, std::int64_t until, py::object callback,
+                           std::int64_t every) {
+  if (finished_) throw std::runtime_error("the simulation was closed");
+  if (until > driver_->end_step())
+    driver_->set_end_time(static_cast<double>(until) * run_.scene.sim.dt);
+  StepHook hook;
+  // An exception in the callback stops the run at that step, and is raised once it has
+  // (KeyboardInterrupt after a checkpoint, as Ctrl-C between callbacks).
+  std::optional<py::error_already_set> callback_error;
+  if (!callback.is_none()) {
+    if (every < 1) throw py::value_error("every: must be at least 1");
+    hook.every = every;
+    hook.call = [&] {
+      try {
+        const py::object answer = callback(self);
+        return !(answer.is(py::bool_(false)));
+      } catch (py::error_already_set& e) {
+        if (e.matches(PyExc_KeyboardInterrupt))
+          interrupt_.emplace(std::move(e));
+        else
+          callback_error.emplace(std::move(e));
+        return false;
+      }
+    };
+  }
+  driver_->set_show_progress(progress_);
+  const bool ok = driver_->advance(until, hook);
+  if (interrupt_) {
+    if (ok) driver_->write_checkpoint(); // (a stop by signal has written one)
+    py::error_already_set e = std::move(*interrupt_);
+    interrupt_.reset();
+    throw e;
+  }
+  if (callback_error) throw std::move(*callback_error);
+  if (!ok) {
+    const RunSummary s = driver_->finish();
+    finished_ = true;
+    throw std::runtime_error(fmt::format("the simulation stopped: {}; its last state is in {}",
+                                         s.failure, (folder_ / "failure.vtu").string()));
+  }
+}
+
+void PySimulation::checkpoint(const std::string& path) {
+  if (path.empty())
+    driver_->write_checkpoint();
+  else
+    write_checkpoint(path, run_.scene_text, *run_.sim);
+}
+
+py::dict PySimulation::finish() {
+  py::dict d;
+  if (finished_ || !driver_) return d;
+  const RunSummary s = driver_->finish();
+  finished_ = true;
+  d["steps"] = s.steps;
+  d["wall_seconds"] = s.wall_seconds;
+  d["particle_steps_per_second"] = s.particle_steps_per_second;
+  d["energies"] = books_dict(s.final_energies);
+  return d;
+}
+
+void PySimulation::close() {
+  if (!run_.sim) return;
+  finish();
+  driver_.reset();
+  run_.sim.reset();
+}
+
+void bind_simulation(py::module_& m) {
+  py::class_<PySimulation>(m, "_Simulation")
+      .def(py::init<const PyScene&, const std::string&, bool, bool, bool>(), py::arg("scene"),
+           py::arg("output") = "", py::arg("overwrite") = false, py::arg("progress") = true,
+           py::arg("force_dt") = false)
+      .def_static("resume", &PySimulation::resume, py::arg("folder"),
+                  py::arg("t_end") = std::nullopt, py::arg("progress") = true)
+      .def_static("branch", &PySimulation::branch, py::arg("checkpoint"), py::arg("scene"),
+                  py::arg("output") = "", py::arg("overwrite") = false, py::arg("progress") = true,
+                  py::arg("force_dt") = false)
+      .def(
+          "advance",
+          [](py::object self, std::int64_t until, py::object callback, std::int64_t every) {
+            self.cast<PySimulation&>().advance(self, until, callback, every);
+          },
+          py::arg("until"), py::arg("callback") = py::none(), py::arg("every") = 100)
+      .def("checkpoint", &PySimulation::checkpoint, py::arg("path") = "")
+      .def("finish", &PySimulation::finish)
+      .def("close", &PySimulation::close)
+      .def("set_progress", &PySimulation::set_progress)
+      .def_property_readonly("generation", &PySimulation::generation)
+      .def_property_readonly("finished", &PySimulation::finished)
+      .def_property_readonly("folder", [](PySimulation& s) { return s.folder().string(); })
+      .def_property_readonly("time", [](PySimulation& s) { return s.sim().time(); })
+      .def_property_readonly("step_count", [](PySimulation& s) { return s.sim().step_count(); })
+      .def_property_readonly("dt", [](PySimulation& s) { return s.sim().config().dt; })
+      .def_property_readonly("end_step", [](PySimulation& s) { return s.driver().end_step(); })
+      .def_property_readonly("rank", [](PySimulation& s) { return s.sim().comm().rank(); })
+      .def_property_readonly("ranks", [](PySimulation& s) { return s.sim().comm().size(); })
+      .def_property_readonly("scene_toml",
+                             [](PySimulation& s) { return resolved_scene_toml(s.scene()); })
+      .def_property_readonly("materials", [](PySimulation& s) { return s.scene().materials; })
+      .def("_array",
+           [](py::object self, const std::string& name) -> py::array {
+             PySimulation& s = self.cast<PySimulation&>();
+             const ParticleStore& p = s.sim().particles();
+             const std::size_t n = p.n_owned();
+             if (name == "id") return view(p.gid.data(), n, self);
+             if (name == "kind")
+               return view(reinterpret_cast<const std::uint8_t*>(p.kind.data()), n, self);
+             if (name == "material") return view(p.material.data(), n, self);
+             if (name == "radius") return view(p.radius.data(), n, self);
+             if (name == "mass") return view(p.mass.data(), n, self);
+             if (name == "position") return view(p.x.data(), n, self);
+             if (name == "velocity") return view(p.v.data(), n, self);
+             if (name == "angular_velocity") return view(p.w.data(), n, self);
+             if (name == "force") return view(p.f.data(), n, self);
+             if (name == "torque") return view(p.torque.data(), n, self);
+             throw py::key_error(fmt::format("no particle field '{}'", name));
+           })
+      .def("gather",
+           [](PySimulation& s, const std::string& name) -> py::object {
+             const ParticleStore all = s.sim().gather_particles(); // collective
+             if (!s.sim().comm().root()) return py::none();
+             const std::size_t n = all.n_owned();
+             const auto vec = [&](const std::vector<Vec3>& f) {
+               py::array_t<double> a({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+               std::memcpy(a.mutable_data(), f.data(), n * sizeof(Vec3));
+               return py::object(a);
+             };
+             const auto scalars = [&](const auto& f) {
+               using T = typename std::decay_t<decltype(f)>::value_type;
+               py::array_t<T> a(static_cast<py::ssize_t>(n));
+               std::memcpy(a.mutable_data(), f.data(), n * sizeof(T));
+               return py::object(a);
+             };
+             if (name == "id") return scalars(all.gid);
+             if (name == "material") return scalars(all.material);
+             if (name == "radius") return scalars(all.radius);
+             if (name == "mass") return scalars(all.mass);
+             if (name == "position") return vec(all.x);
+             if (name == "velocity") return vec(all.v);
+             if (name == "angular_velocity") return vec(all.w);
+             if (name == "force") return vec(all.f);
+             if (name == "torque") return vec(all.torque);
+             if (name == "kind") {
+               py::array_t<std::uint8_t> a(static_cast<py::ssize_t>(n));
+               for (std::size_t i = 0; i < n; ++i)
+                 a.mutable_at(i) = static_cast<std::uint8_t>(all.kind[i]);
+               return py::object(a);
+             }
+             throw py::key_error(fmt::format("no particle field '{}'", name));
+           })
+      .def("energies", [](PySimulation& s) { return books_dict(s.sim().energies()); })
+      .def("wall_loads",
+           [](PySimulation& s) {
+             py::dict d;
+             const auto shaped = s.sim().wall_loads(); // collective
+             for (std::size_t w = 0; w < shaped.size(); ++w)
+               d[py::str(wall_name(s.sim().walls()[w]))] = load_dict(shaped[w]);
+             const auto planes = s.sim().plane_loads(); // collective
+             for (std::size_t p = 0; p < planes.size(); ++p)
+               d[py::str(s.sim().planes()[p].name)] = load_dict(planes[p]);
+             return d;
+           })
+      .def("inflow", [](PySimulation& s) { return tallies(s.sim().inflow()); })
+      .def("outflow", [](PySimulation& s) { return tallies(s.sim().outflow()); })
+      .def("set_velocities",
+           [](PySimulation& s,
+              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
+             const auto id = ids_of(ids);
+             const auto values = vec3s(v, "velocities");
+             s.sim().set_velocities(id, values);
+           })
+      .def("set_angular_velocities",
+           [](PySimulation& s,
+              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& w) {
+             const auto id = ids_of(ids);
+             const auto values = vec3s(w, "angular velocities");
+             s.sim().set_angular_velocities(id, values);
+           })
+      .def("set_positions",
+           [](PySimulation& s,
+              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& x) {
+             const auto id = ids_of(ids);
+             const auto values = vec3s(x, "positions");
+             s.sim().set_positions(id, values);
+             s.edited();
+           })
+      .def("add_grains",
+           [](PySimulation& s,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& x,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& radius,
+              const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
+              const std::string& material) {
+             const auto at = vec3s(x, "positions");
+             const auto vel = vec3s(v, "velocities");
+             if (radius.ndim() != 1 || static_cast<std::size_t>(radius.shape(0)) != at.size() ||
+                 vel.size() != at.size())
+               throw py::value_error("add_grains: positions, radii and velocities differ in "
+                                     "length");
+             const auto kind = s.scene().material_index(material);
+             if (!kind) throw py::value_error(fmt::format("no material '{}'", material));
+             const double density = s.scene().material_properties[*kind].density;
+             if (!(density > 0))
+               throw py::value_error(fmt::format("material '{}' has no density", material));
+             std::vector<ParticleSpec> grains(at.size());
+             for (std::size_t k = 0; k < at.size(); ++k) {
+               const double r = radius.at(static_cast<py::ssize_t>(k));
+               grains[k].position = at[k];
+               grains[k].velocity = vel[k];
+               grains[k].radius = r;
+               grains[k].mass = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+               grains[k].material = *kind;
+             }
+             const std::vector<GlobalId> ids = s.sim().add_grains(grains);
+             s.edited();
+             return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+           })
+      .def("remove_grains",
+           [](PySimulation& s,
+              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids) {
+             const auto id = ids_of(ids);
+             const std::int64_t n = s.sim().remove_grains(id);
+             s.edited();
+             return n;
+           })
+      .def("set_wall_speed",
+           [](PySimulation& s, const std::string& name, double speed) {
+             const std::size_t w = wall_index(s.sim(), name);
+             s.sim().set_wall_controller(w, std::make_shared<HeldSpeed>(speed));
+           })
+      .def("set_wall_controller",
+           [](PySimulation& s, const std::string& name, py::function f) {
+             const std::size_t w = wall_index(s.sim(), name);
+             s.sim().set_wall_controller(w, std::make_shared<PythonController>(std::move(f)));
+           })
+      .def("wall_motion",
+           [](PySimulation& s, const std::string& name) {
+             const auto [speed, offset] = s.sim().wall_servo_state(wall_index(s.sim(), name));
+             py::dict d;
+             d["speed"] = speed;
+             d["offset"] = offset;
+             return d;
+           })
+      .def("record_contacts", [](PySimulation& s, bool on) { s.sim().record_contacts(on); })
+      .def("contacts", [](PySimulation& s) {
+        const Simulation& sim = s.sim();
+        const ContactRecord& rec = sim.contact_record();
+        if (!rec.enabled)
+          throw std::runtime_error("contacts are not recorded: call record_contacts(True), then "
+                                   "step");
+        const ParticleStore& p = sim.particles();
+        const NeighborList& list = sim.neighbor_list();
+        std::vector<std::int64_t> a, b;
+        std::vector<std::string> wall;
+        std::vector<double> force, elastic, overlap;
+        const auto keep = [&](std::int64_t ia, std::int64_t ib, const std::string& w, Vec3 f,
+                              double e, double o) {
+          a.push_back(ia), b.push_back(ib), wall.push_back(w);
+          force.insert(force.end(), {f.x, f.y, f.z});
+          elastic.push_back(e), overlap.push_back(o);
+        };
+        for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
+          const Vec3 f = rec.pair_force[k];
+          if (f.x == 0 && f.y == 0 && f.z == 0 && rec.pair_elastic[k] == 0) continue;
+          const std::uint32_t i = list.rows[k], j = list.partners[k];
+          keep(p.gid[i], p.gid[j], "", f, rec.pair_elastic[k],
+               p.radius[i] + p.radius[j] - norm(p.x[i] - p.x[j]));
+        }
+        for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
+          const Vec3 f = rec.plane_force[k];
+          if (f.x == 0 && f.y == 0 && f.z == 0 && rec.plane_elastic[k] == 0) continue;
+          const auto& c = list.planes[k];
+          const PlaneWall& w = sim.planes()[c.plane];
+          keep(p.gid[c.particle], -1, w.name, f, rec.plane_elastic[k],
+               p.radius[c.particle] - w.distance(p.x[c.particle], sim.time()));
+        }
+        py::dict d;
+        const auto n = static_cast<py::ssize_t>(a.size());
+        d["id_a"] = py::array_t<std::int64_t>(n, a.data());
+        d["id_b"] = py::array_t<std::int64_t>(n, b.data());
+        d["wall"] = py::module_::import("numpy").attr("array")(py::cast(wall), "dtype"_a = "str");
+        py::array_t<double> fa({n, py::ssize_t{3}});
+        if (n > 0) std::memcpy(fa.mutable_data(), force.data(), force.size() * sizeof(double));
+        d["force"] = fa;
+        d["elastic"] = py::array_t<double>(n, elastic.data());
+        d["overlap"] = py::array_t<double>(n, overlap.data());
+        return d;
+      });
+}
+
+} // namespace yuxi::python

@@ -1,0 +1,73 @@
+// The Python API's simulation: a run opened from a scene, a run folder or a checkpoint, advanced
+// in pieces by a RunDriver (the same files as `yuxi run`), with numpy views of this rank's
+// particles and the changes between steps of Simulation's edits (simulation_edits.cpp).
+#pragma once
+
+#include "py_scene.hpp"
+#include "run/run_driver.hpp"
+#include "run/run_opening.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+namespace yuxi::python {
+
+class PySimulation {
+public:
+  // A scene from t = 0, writing into `output` (runs/<name> when empty).
+  PySimulation(const PyScene& scene, const std::string& output, bool overwrite, bool progress,
+               bool force_dt);
+  // A run folder from its newest valid checkpoint (to a later end if `t_end` is given).
+  static std::unique_ptr<PySimulation> resume(const std::string& folder,
+                                              std::optional<double> t_end, bool progress);
+  // A checkpoint's state under another scene (yuxi run SCENE --from CHECKPOINT).
+  static std::unique_ptr<PySimulation> branch(const std::string& from, const PyScene& scene,
+                                              const std::string& output, bool overwrite,
+                                              bool progress, bool force_dt);
+
+  // Steps to `until` (a step count), calling `callback(self)` every `every` steps; the
+  // callback stops the run by returning False.
+  void advance(pybind11::object self, std::int64_t until, pybind11::object callback,
+               std::int64_t every);
+  void checkpoint(const std::string& path);
+  pybind11::dict finish();
+  // Finishes the run and frees the engine (before MPI ends). Collective.
+  void close();
+
+  Simulation& sim() {
+    if (!run_.sim) throw std::runtime_error("the simulation was closed");
+    return *run_.sim;
+  }
+  const Scene& scene() const { return run_.scene; }
+  const std::filesystem::path& folder() const { return folder_; }
+  RunDriver& driver() {
+    if (!driver_) throw std::runtime_error("the simulation was closed");
+    return *driver_;
+  }
+  // Changes with every step and every edit: a view of an older generation is stale.
+  pybind11::tuple generation() const;
+  void edited() { ++edits_; }
+  bool finished() const { return finished_; }
+
+  void set_progress(bool on) { progress_ = on; }
+
+private:
+  PySimulation() = default;
+  void open_driver(bool resumed);
+
+  OpenedRun run_;
+  std::filesystem::path folder_;
+  std::unique_ptr<RunDriver> driver_;
+  std::int64_t edits_ = 0;
+  bool progress_ = true;
+  bool finished_ = false;
+  // A KeyboardInterrupt met while stepping: the run checkpoints, then it is raised.
+  std::optional<pybind11::error_already_set> interrupt_;
+};
+
+void bind_simulation(pybind11::module_& m);
+
+} // namespace yuxi::python

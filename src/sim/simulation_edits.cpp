@@ -1,0 +1,192 @@
+// Changes to a simulation's state between steps from outside the equations of motion: the
+// Python API's writes to velocities and positions, grains added and removed by a script, and
+// a controlled wall given another controller. Each change books the mechanical energy it makes
+// or takes (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
+#include "sim/simulation.hpp"
+
+#include <fmt/format.h>
+#include <unordered_map>
+
+namespace yuxi {
+
+std::vector<std::size_t> Simulation::owned_grains(std::span<const GlobalId> ids) const {
+  // (a map, not a scan per id: a write of all n velocities would cost n^2)
+  std::unordered_map<GlobalId, std::size_t> index;
+  index.reserve(store_.n_owned());
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) index.emplace(store_.gid[i], i);
+  std::vector<std::size_t> out;
+  out.reserve(ids.size());
+  for (const GlobalId id : ids) {
+    const auto it = index.find(id);
+    if (it == index.end())
+      throw std::invalid_argument(
+          fmt::format("particle id {} is not one of this rank's particles (rank {} owns {})", id,
+                      comm_.rank(), store_.n_owned()));
+    if (!store_.is_grain(it->second))
+      throw std::invalid_argument(fmt::format(
+          "particle id {} is a wall particle: its motion is the scene's, not set from outside",
+          id));
+    out.push_back(it->second);
+  }
+  return out;
+}
+
+namespace {
+
+void check_sizes(std::size_t ids, std::size_t values, const char* what) {
+  if (ids != values)
+    throw std::invalid_argument(fmt::format("{}: {} ids but {} values", what, ids, values));
+}
+
+} // namespace
+
+void Simulation::set_velocities(std::span<const GlobalId> ids, std::span<const Vec3> v) {
+  check_sizes(ids.size(), v.size(), "velocities");
+  const std::vector<std::size_t> at = owned_grains(ids);
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    if (!is_finite(v[k]))
+      throw std::invalid_argument(fmt::format("velocity of particle id {} is not finite", ids[k]));
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::size_t i = at[k];
+    books_.inserted += 0.5 * store_.mass[i] * (norm2(v[k]) - norm2(store_.v[i]));
+    store_.v[i] = v[k];
+  }
+}
+
+void Simulation::set_angular_velocities(std::span<const GlobalId> ids, std::span<const Vec3> w) {
+  check_sizes(ids.size(), w.size(), "angular velocities");
+  const std::vector<std::size_t> at = owned_grains(ids);
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    if (!is_finite(w[k]))
+      throw std::invalid_argument(
+          fmt::format("angular velocity of particle id {} is not finite", ids[k]));
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::size_t i = at[k];
+    const double before = rotational_energy(i);
+    store_.w[i] = w[k];
+    books_.inserted += rotational_energy(i) - before;
+  }
+}
+
+void Simulation::edit_particles(const std::function<void()>& check, std::function<void()> change) {
+  // Every rank checks its part first, so that none is left waiting in the list build.
+  std::string error;
+  try {
+    check();
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  error = comm_.first_error(error);
+  if (!error.empty()) throw std::invalid_argument(error);
+  const EnergyBooks before = energies(); // collective
+  edit_ = std::move(change);             // (made in the list build, once the history is stashed)
+  rebuild(BuildAfter::edit);
+  edit_ = nullptr;
+  start_forces_from_gravity();
+  compute_forces(false);
+  stop_if_unhealthy();
+  // What came in: the change of mechanical energy, and what the removed grains took away.
+  const EnergyBooks after = energies();
+  if (comm_.root())
+    books_.inserted += (after.mechanical() + after.relaxation) -
+                       (before.mechanical() + before.relaxation) + (after.removed - before.removed);
+}
+
+void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Vec3> x) {
+  check_sizes(ids.size(), x.size(), "positions");
+  std::vector<std::size_t> at;
+  edit_particles(
+      [&] {
+        at = owned_grains(ids);
+        for (std::size_t k = 0; k < ids.size(); ++k)
+          if (!is_finite(x[k]) || !config_.box.contains(config_.box.wrap(x[k])))
+            throw std::invalid_argument(
+                fmt::format("position ({}, {}, {}) of particle id {} is outside the domain", x[k].x,
+                            x[k].y, x[k].z, ids[k]));
+      },
+      [&] {
+        // (the stash of the list build keeps contacts by id: the order may change)
+        std::vector<std::pair<GlobalId, Vec3>> to;
+        for (std::size_t k = 0; k < ids.size(); ++k) to.emplace_back(ids[k], x[k]);
+        std::unordered_map<GlobalId, Vec3> where(to.begin(), to.end());
+        for (std::size_t i = 0; i < store_.n_owned(); ++i)
+          if (const auto it = where.find(store_.gid[i]); it != where.end())
+            store_.x[i] = it->second;
+      });
+}
+
+std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grains) {
+  std::vector<GlobalId> ids;
+  for (std::size_t k = 0; k < grains.size(); ++k) {
+    const ParticleSpec& p = grains[k];
+    const auto where = [&] { return fmt::format("new grain {}", k); };
+    if (!is_finite(p.position) || !config_.box.contains(p.position))
+      throw std::invalid_argument(where() + ": its position is outside the domain");
+    if (!(p.radius > 0) || !(p.mass > 0) || !is_finite(p.velocity) ||
+        !is_finite(p.angular_velocity))
+      throw std::invalid_argument(where() +
+                                  ": radius and mass must be positive, velocities finite");
+    if (2 * p.radius + config_.skin > cell_edge_)
+      throw std::invalid_argument(
+          fmt::format("{}: radius {} is larger than the linked cells allow ({}); give the scene's "
+                      "[neighbor] min_contact_reach",
+                      where(), p.radius, 0.5 * (cell_edge_ - config_.skin)));
+    if (p.material >= n_materials_)
+      throw std::invalid_argument(fmt::format("{}: material {} is not one of the scene's {}",
+                                              where(), p.material, n_materials_));
+    ids.push_back(next_gid_ + static_cast<GlobalId>(k));
+  }
+  // (edit_particles books their energy with the change of the contacts')
+  edit_particles([] {},
+                 [&] {
+                   for (const ParticleSpec& spec : grains) {
+                     const GlobalId id = next_gid_++;
+                     if (!decomp_.owns(config_.box.wrap(spec.position))) continue;
+                     ParticleSpec p = spec;
+                     p.kind = Kind::grain;
+                     store_.add(p, id);
+                   }
+                 });
+  return ids;
+}
+
+std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
+  std::int64_t removed = 0;
+  edit_particles([] {},
+                 [&] {
+                   std::unordered_map<GlobalId, std::size_t> index;
+                   for (std::size_t i = 0; i < store_.n_owned(); ++i)
+                     if (store_.is_grain(i)) index.emplace(store_.gid[i], i);
+                   std::vector<std::size_t> gone;
+                   for (const GlobalId id : ids) {
+                     const auto it = index.find(id);
+                     if (it == index.end()) continue;
+                     gone.push_back(it->second);
+                     books_.removed += mechanical_energy(it->second);
+                     index.erase(it);
+                   }
+                   std::sort(gone.begin(), gone.end());
+                   removed = static_cast<std::int64_t>(gone.size());
+                   if (!gone.empty()) store_.remove_owned(gone);
+                 });
+  return comm_.sum(removed);
+}
+
+void Simulation::set_wall_controller(std::size_t wall, std::shared_ptr<WallController> controller) {
+  auto* mesh = wall < walls_.size() ? std::get_if<MeshWall>(&walls_[wall]) : nullptr;
+  if (!mesh || !mesh->controller)
+    throw std::invalid_argument(fmt::format(
+        "wall {} is not a controlled mesh: give its [[mesh]] servo_force or controlled = true",
+        wall < walls_.size() ? fmt::format("'{}'", wall_name(walls_[wall]))
+                             : std::to_string(wall)));
+  if (!controller) throw std::invalid_argument("a wall's controller cannot be empty");
+  mesh->controller = std::move(controller);
+}
+
+std::pair<double, double> Simulation::wall_servo_state(std::size_t wall) const {
+  const auto* mesh = wall < walls_.size() ? std::get_if<MeshWall>(&walls_[wall]) : nullptr;
+  if (!mesh) return {0.0, 0.0};
+  return {mesh->servo_speed, mesh->servo_offset};
+}
+
+} // namespace yuxi
