@@ -4,7 +4,8 @@
 # UndefinedBehaviorSanitizer, with the libFuzzer targets in the same build), runs the unit,
 # validation, CLI, crash and MPI tests there (but those labelled heavy, minutes each there), then
 # each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every test
-# in Release. Long validation cases: ctest --preset long.
+# in Release, the Python module's (pytest, with the examples' short forms) among them. Long
+# validation cases: ctest --preset long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
