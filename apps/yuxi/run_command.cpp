@@ -14,7 +14,6 @@
 #include <csignal>
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <spdlog/spdlog.h>
 
 namespace fs = std::filesystem;
@@ -130,21 +129,11 @@ int run_command(const RunCommandOptions& o) {
   const std::string& scene_text = run.scene_text;
   fs::path dir = o.resume;
   if (o.resume.empty()) {
-    // Rank 0 checks and creates the folder (only once the scene is known to be good); every
-    // rank learns the outcome.
-    std::string error;
-    dir = o.output_dir.empty() ? fs::path("runs") / scene.run.name : fs::path(o.output_dir);
-    if (sim->comm().root()) {
-      try {
-        prepare_output_folder(dir, o.overwrite);
-        std::ofstream(dir / "scene.resolved.toml") << scene_text;
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-    }
-    error = sim->comm().first_error(error);
-    if (!error.empty()) {
-      print_error(error);
+    // (only once the scene is known to be good)
+    try {
+      dir = create_run_folder(sim->comm(), o.output_dir, scene, o.overwrite, scene_text);
+    } catch (const SceneError& e) {
+      print_error(e.what());
       return 2;
     }
   }

@@ -3,13 +3,12 @@
 #include "io/checkpoint_file.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_writer.hpp"
+#include "scene/particle_fill.hpp"
 #include "scene/wall_controller.hpp"
 
 #include <cstring>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <fstream>
-#include <numbers>
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
@@ -21,26 +20,6 @@ namespace yuxi::python {
 namespace {
 
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
-
-// Rank 0 prepares the folder; every rank learns the outcome.
-void make_output_folder(const Simulation& sim, const fs::path& dir, bool overwrite,
-                        const std::string& scene_text) {
-  std::string error;
-  if (sim.comm().root()) {
-    try {
-      prepare_output_folder(dir, overwrite);
-      std::ofstream(dir / "scene.resolved.toml") << scene_text;
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  error = sim.comm().first_error(error);
-  if (!error.empty()) throw SceneError(error);
-}
-
-fs::path output_of(const std::string& output, const Scene& scene) {
-  return output.empty() ? fs::path("runs") / scene.run.name : fs::path(output);
-}
 
 // Progress lines through Python's sys.stderr, which a notebook shows.
 void write_progress(const std::string& line) {
@@ -67,9 +46,11 @@ std::size_t wall_index(Simulation& sim, const std::string& name) {
                                   fmt::join(names, ", ")));
 }
 
+using IdArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
 // An (n, 3) array of doubles as Vec3s (copied: the engine's arrays are not the caller's).
-std::vector<Vec3> vec3s(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
-                        const char* what) {
+std::vector<Vec3> vec3s(const DoubleArray& a, const char* what) {
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw py::value_error(fmt::format("{}: expected an array of shape (n, 3)", what));
   std::vector<Vec3> out(static_cast<std::size_t>(a.shape(0)));
@@ -78,8 +59,7 @@ std::vector<Vec3> vec3s(const py::array_t<double, py::array::c_style | py::array
   return out;
 }
 
-std::vector<GlobalId>
-ids_of(const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& a) {
+std::vector<GlobalId> ids_of(const IdArray& a) {
   if (a.ndim() != 1) throw py::value_error("ids: expected a one-dimensional array");
   return {a.data(), a.data() + a.shape(0)};
 }
@@ -98,6 +78,42 @@ template <class T> py::array view(const T* data, std::size_t n, py::handle owner
                        owner);
   a.attr("setflags")(py::arg("write") = false);
   return a;
+}
+
+// The particle fields of the API by name: one table for the views and for gather(). `f` gets
+// the field's array.
+template <class F> py::object with_field(const ParticleStore& p, const std::string& name, F&& f) {
+  if (name == "id") return f(p.gid);
+  if (name == "kind") return f(p.kind);
+  if (name == "material") return f(p.material);
+  if (name == "radius") return f(p.radius);
+  if (name == "mass") return f(p.mass);
+  if (name == "position") return f(p.x);
+  if (name == "velocity") return f(p.v);
+  if (name == "angular_velocity") return f(p.w);
+  if (name == "force") return f(p.f);
+  if (name == "torque") return f(p.torque);
+  throw py::key_error(fmt::format("no particle field '{}'", name));
+}
+
+// A field's elements as numpy takes them (a kind as its byte).
+template <class T> const T* elements(const std::vector<T>& field) {
+  return field.data();
+}
+const std::uint8_t* elements(const std::vector<Kind>& field) {
+  static_assert(sizeof(Kind) == 1);
+  return reinterpret_cast<const std::uint8_t*>(field.data());
+}
+
+// A binding of one of Simulation's writes by id (velocities, angular velocities, positions).
+// `moves_arrays`: the write builds the list afresh, which moves the arrays (views go stale).
+auto setter(void (Simulation::*write)(std::span<const GlobalId>, std::span<const Vec3>),
+            const char* what, bool moves_arrays = false) {
+  return
+      [write, what, moves_arrays](PySimulation& s, const IdArray& ids, const DoubleArray& values) {
+        (s.sim().*write)(ids_of(ids), vec3s(values, what));
+        if (moves_arrays) s.edited();
+      };
 }
 
 py::dict books_dict(const EnergyBooks& e) {
@@ -151,8 +167,7 @@ PySimulation::PySimulation(const PyScene& scene, const std::string& output, bool
                            bool progress, bool force_dt)
     : progress_(progress) {
   run_ = open_scene(scene.scene, force_dt);
-  folder_ = output_of(output, run_.scene);
-  make_output_folder(*run_.sim, folder_, overwrite, run_.scene_text);
+  folder_ = create_run_folder(run_.sim->comm(), output, run_.scene, overwrite, run_.scene_text);
   open_driver(false);
 }
 
@@ -175,8 +190,8 @@ std::unique_ptr<PySimulation> PySimulation::branch(const std::string& from, cons
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
   s->run_ = open_branch(scene.scene, from, force_dt);
-  s->folder_ = output_of(output, s->run_.scene);
-  make_output_folder(*s->run_.sim, s->folder_, overwrite, s->run_.scene_text);
+  s->folder_ =
+      create_run_folder(s->run_.sim->comm(), output, s->run_.scene, overwrite, s->run_.scene_text);
   s->open_driver(false);
   return s;
 }
@@ -303,55 +318,20 @@ void bind_simulation(py::module_& m) {
                              [](PySimulation& s) { return resolved_scene_toml(s.scene()); })
       .def_property_readonly("materials", [](PySimulation& s) { return s.scene().materials; })
       .def("_array",
-           [](py::object self, const std::string& name) -> py::array {
-             PySimulation& s = self.cast<PySimulation&>();
-             const ParticleStore& p = s.sim().particles();
-             const std::size_t n = p.n_owned();
-             if (name == "id") return view(p.gid.data(), n, self);
-             if (name == "kind")
-               return view(reinterpret_cast<const std::uint8_t*>(p.kind.data()), n, self);
-             if (name == "material") return view(p.material.data(), n, self);
-             if (name == "radius") return view(p.radius.data(), n, self);
-             if (name == "mass") return view(p.mass.data(), n, self);
-             if (name == "position") return view(p.x.data(), n, self);
-             if (name == "velocity") return view(p.v.data(), n, self);
-             if (name == "angular_velocity") return view(p.w.data(), n, self);
-             if (name == "force") return view(p.f.data(), n, self);
-             if (name == "torque") return view(p.torque.data(), n, self);
-             throw py::key_error(fmt::format("no particle field '{}'", name));
+           [](py::object self, const std::string& name) {
+             const ParticleStore& p = self.cast<PySimulation&>().sim().particles();
+             return with_field(p, name, [&](const auto& field) -> py::object {
+               return view(elements(field), p.n_owned(), self);
+             });
            })
       .def("gather",
            [](PySimulation& s, const std::string& name) -> py::object {
+             with_field(s.sim().particles(), name, [](const auto&) { return py::object(); });
              const ParticleStore all = s.sim().gather_particles(); // collective
              if (!s.sim().comm().root()) return py::none();
-             const std::size_t n = all.n_owned();
-             const auto vec = [&](const std::vector<Vec3>& f) {
-               py::array_t<double> a({static_cast<py::ssize_t>(n), py::ssize_t{3}});
-               std::memcpy(a.mutable_data(), f.data(), n * sizeof(Vec3));
-               return py::object(a);
-             };
-             const auto scalars = [&](const auto& f) {
-               using T = typename std::decay_t<decltype(f)>::value_type;
-               py::array_t<T> a(static_cast<py::ssize_t>(n));
-               std::memcpy(a.mutable_data(), f.data(), n * sizeof(T));
-               return py::object(a);
-             };
-             if (name == "id") return scalars(all.gid);
-             if (name == "material") return scalars(all.material);
-             if (name == "radius") return scalars(all.radius);
-             if (name == "mass") return scalars(all.mass);
-             if (name == "position") return vec(all.x);
-             if (name == "velocity") return vec(all.v);
-             if (name == "angular_velocity") return vec(all.w);
-             if (name == "force") return vec(all.f);
-             if (name == "torque") return vec(all.torque);
-             if (name == "kind") {
-               py::array_t<std::uint8_t> a(static_cast<py::ssize_t>(n));
-               for (std::size_t i = 0; i < n; ++i)
-                 a.mutable_at(i) = static_cast<std::uint8_t>(all.kind[i]);
-               return py::object(a);
-             }
-             throw py::key_error(fmt::format("no particle field '{}'", name));
+             return with_field(all, name, [&](const auto& field) -> py::object {
+               return view(elements(field), all.n_owned(), py::none()).attr("copy")();
+             });
            })
       .def("energies", [](PySimulation& s) { return books_dict(s.sim().energies()); })
       .def("wall_loads",
@@ -367,37 +347,13 @@ void bind_simulation(py::module_& m) {
            })
       .def("inflow", [](PySimulation& s) { return tallies(s.sim().inflow()); })
       .def("outflow", [](PySimulation& s) { return tallies(s.sim().outflow()); })
-      .def("set_velocities",
-           [](PySimulation& s,
-              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
-             const auto id = ids_of(ids);
-             const auto values = vec3s(v, "velocities");
-             s.sim().set_velocities(id, values);
-           })
+      .def("set_velocities", setter(&Simulation::set_velocities, "velocities"))
       .def("set_angular_velocities",
-           [](PySimulation& s,
-              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& w) {
-             const auto id = ids_of(ids);
-             const auto values = vec3s(w, "angular velocities");
-             s.sim().set_angular_velocities(id, values);
-           })
-      .def("set_positions",
-           [](PySimulation& s,
-              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& x) {
-             const auto id = ids_of(ids);
-             const auto values = vec3s(x, "positions");
-             s.sim().set_positions(id, values);
-             s.edited();
-           })
+           setter(&Simulation::set_angular_velocities, "angular velocities"))
+      .def("set_positions", setter(&Simulation::set_positions, "positions", true))
       .def("add_grains",
-           [](PySimulation& s,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& x,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& radius,
-              const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
-              const std::string& material) {
+           [](PySimulation& s, const DoubleArray& x, const DoubleArray& radius,
+              const DoubleArray& v, const std::string& material) {
              const auto at = vec3s(x, "positions");
              const auto vel = vec3s(v, "velocities");
              if (radius.ndim() != 1 || static_cast<std::size_t>(radius.shape(0)) != at.size() ||
@@ -409,13 +365,15 @@ void bind_simulation(py::module_& m) {
              const double density = s.scene().material_properties[*kind].density;
              if (!(density > 0))
                throw py::value_error(fmt::format("material '{}' has no density", material));
+             GrainKind grain;
+             grain.density = density;
              std::vector<ParticleSpec> grains(at.size());
              for (std::size_t k = 0; k < at.size(); ++k) {
                const double r = radius.at(static_cast<py::ssize_t>(k));
                grains[k].position = at[k];
                grains[k].velocity = vel[k];
                grains[k].radius = r;
-               grains[k].mass = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+               grains[k].mass = grain.mass_of(r);
                grains[k].material = *kind;
              }
              const std::vector<GlobalId> ids = s.sim().add_grains(grains);
@@ -423,8 +381,7 @@ void bind_simulation(py::module_& m) {
              return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
            })
       .def("remove_grains",
-           [](PySimulation& s,
-              const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids) {
+           [](PySimulation& s, const IdArray& ids) {
              const auto id = ids_of(ids);
              const std::int64_t n = s.sim().remove_grains(id);
              s.edited();

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <fstream>
 
 namespace fs = std::filesystem;
 
@@ -101,15 +102,28 @@ OpenedRun open_branch(Scene scene, const fs::path& from, bool force_dt) {
   return r;
 }
 
-void prepare_output_folder(const fs::path& dir, bool overwrite) {
-  if (fs::exists(dir) && !fs::is_empty(dir)) {
-    if (!overwrite)
-      throw SceneError(fmt::format("output folder {} already holds a run; choose another with "
-                                   "-o or pass --overwrite",
-                                   dir.string()));
-    fs::remove_all(dir);
+fs::path create_run_folder(const Comm& comm, const fs::path& output, const Scene& scene,
+                           bool overwrite, const std::string& scene_text) {
+  const fs::path dir = output.empty() ? fs::path("runs") / scene.run.name : output;
+  std::string error;
+  if (comm.root()) {
+    try {
+      if (fs::exists(dir) && !fs::is_empty(dir)) {
+        if (!overwrite)
+          throw SceneError(fmt::format("output folder {} already holds a run; choose another "
+                                       "with -o or pass --overwrite",
+                                       dir.string()));
+        fs::remove_all(dir);
+      }
+      fs::create_directories(dir);
+      std::ofstream(dir / "scene.resolved.toml") << scene_text;
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
   }
-  fs::create_directories(dir);
+  error = comm.first_error(error);
+  if (!error.empty()) throw SceneError(error);
+  return dir;
 }
 
 } // namespace yuxi

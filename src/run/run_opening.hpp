@@ -41,8 +41,11 @@ OpenedRun open_resume(const std::filesystem::path& run_folder,
 // time) or CheckpointError (no valid checkpoint, particles that are not the scene's).
 OpenedRun open_branch(Scene scene, const std::filesystem::path& from, bool force_dt);
 
-// Creates an empty output folder; one that holds files is refused unless `overwrite` (then
-// emptied). Throws SceneError.
-void prepare_output_folder(const std::filesystem::path& dir, bool overwrite);
+// Collective: the run folder `output` (runs/<scene name> when empty), created empty by rank 0
+// with the resolved scene in it (scene.resolved.toml). A folder that holds files is refused
+// unless `overwrite` (then emptied). Throws SceneError on every rank with rank 0's reason.
+std::filesystem::path create_run_folder(const Comm& comm, const std::filesystem::path& output,
+                                        const Scene& scene, bool overwrite,
+                                        const std::string& scene_text);
 
 } // namespace yuxi

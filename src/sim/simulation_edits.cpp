@@ -2,31 +2,29 @@
 // Python API's writes to velocities and positions, grains added and removed by a script, and
 // a controlled wall given another controller. Each change books the mechanical energy it makes
 // or takes (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
+#include "contact/contact_history.hpp"
 #include "sim/simulation.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
-#include <unordered_map>
 
 namespace yuxi {
 
 std::vector<std::size_t> Simulation::owned_grains(std::span<const GlobalId> ids) const {
-  // (a map, not a scan per id: a write of all n velocities would cost n^2)
-  std::unordered_map<GlobalId, std::size_t> index;
-  index.reserve(store_.n_owned());
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) index.emplace(store_.gid[i], i);
+  const OwnedIndex index(store_);
   std::vector<std::size_t> out;
   out.reserve(ids.size());
   for (const GlobalId id : ids) {
-    const auto it = index.find(id);
-    if (it == index.end())
+    const std::size_t i = index.find(id);
+    if (i == OwnedIndex::none)
       throw std::invalid_argument(
           fmt::format("particle id {} is not one of this rank's particles (rank {} owns {})", id,
                       comm_.rank(), store_.n_owned()));
-    if (!store_.is_grain(it->second))
+    if (!store_.is_grain(i))
       throw std::invalid_argument(fmt::format(
           "particle id {} is a wall particle: its motion is the scene's, not set from outside",
           id));
-    out.push_back(it->second);
+    out.push_back(i);
   }
   return out;
 }
@@ -94,10 +92,9 @@ void Simulation::edit_particles(const std::function<void()>& check, std::functio
 
 void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Vec3> x) {
   check_sizes(ids.size(), x.size(), "positions");
-  std::vector<std::size_t> at;
   edit_particles(
       [&] {
-        at = owned_grains(ids);
+        owned_grains(ids); // (throws for an id that is not one)
         for (std::size_t k = 0; k < ids.size(); ++k)
           if (!is_finite(x[k]) || !config_.box.contains(config_.box.wrap(x[k])))
             throw std::invalid_argument(
@@ -105,13 +102,10 @@ void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Ve
                             x[k].y, x[k].z, ids[k]));
       },
       [&] {
-        // (the stash of the list build keeps contacts by id: the order may change)
-        std::vector<std::pair<GlobalId, Vec3>> to;
-        for (std::size_t k = 0; k < ids.size(); ++k) to.emplace_back(ids[k], x[k]);
-        std::unordered_map<GlobalId, Vec3> where(to.begin(), to.end());
-        for (std::size_t i = 0; i < store_.n_owned(); ++i)
-          if (const auto it = where.find(store_.gid[i]); it != where.end())
-            store_.x[i] = it->second;
+        // (found again: the list build may have taken escaped grains out before this)
+        const OwnedIndex index(store_);
+        for (std::size_t k = 0; k < ids.size(); ++k)
+          if (const std::size_t i = index.find(ids[k]); i != OwnedIndex::none) store_.x[i] = x[k];
       });
 }
 
@@ -154,18 +148,15 @@ std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
   std::int64_t removed = 0;
   edit_particles([] {},
                  [&] {
-                   std::unordered_map<GlobalId, std::size_t> index;
-                   for (std::size_t i = 0; i < store_.n_owned(); ++i)
-                     if (store_.is_grain(i)) index.emplace(store_.gid[i], i);
+                   const OwnedIndex index(store_);
                    std::vector<std::size_t> gone;
-                   for (const GlobalId id : ids) {
-                     const auto it = index.find(id);
-                     if (it == index.end()) continue;
-                     gone.push_back(it->second);
-                     books_.removed += mechanical_energy(it->second);
-                     index.erase(it);
-                   }
+                   for (const GlobalId id : ids)
+                     if (const std::size_t i = index.find(id);
+                         i != OwnedIndex::none && store_.is_grain(i))
+                       gone.push_back(i);
                    std::sort(gone.begin(), gone.end());
+                   gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
+                   for (const std::size_t i : gone) books_.removed += mechanical_energy(i);
                    removed = static_cast<std::int64_t>(gone.size());
                    if (!gone.empty()) store_.remove_owned(gone);
                  });
