@@ -3,6 +3,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_writer.hpp"
+#include "py_contacts.hpp"
 #include "scene/particle_fill.hpp"
 #include "scene/wall_controller.hpp"
 
@@ -406,50 +407,7 @@ void bind_simulation(py::module_& m) {
              return d;
            })
       .def("record_contacts", [](PySimulation& s, bool on) { s.sim().record_contacts(on); })
-      .def("contacts", [](PySimulation& s) {
-        const Simulation& sim = s.sim();
-        const ContactRecord& rec = sim.contact_record();
-        if (!rec.enabled)
-          throw std::runtime_error("contacts are not recorded: call record_contacts(True), then "
-                                   "step");
-        const ParticleStore& p = sim.particles();
-        const NeighborList& list = sim.neighbor_list();
-        std::vector<std::int64_t> a, b;
-        std::vector<std::string> wall;
-        std::vector<double> force, elastic, overlap;
-        const auto keep = [&](std::int64_t ia, std::int64_t ib, const std::string& w, Vec3 f,
-                              double e, double o) {
-          a.push_back(ia), b.push_back(ib), wall.push_back(w);
-          force.insert(force.end(), {f.x, f.y, f.z});
-          elastic.push_back(e), overlap.push_back(o);
-        };
-        for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-          const Vec3 f = rec.pair_force[k];
-          if (f.x == 0 && f.y == 0 && f.z == 0 && rec.pair_elastic[k] == 0) continue;
-          const std::uint32_t i = list.rows[k], j = list.partners[k];
-          keep(p.gid[i], p.gid[j], "", f, rec.pair_elastic[k],
-               p.radius[i] + p.radius[j] - norm(p.x[i] - p.x[j]));
-        }
-        for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
-          const Vec3 f = rec.plane_force[k];
-          if (f.x == 0 && f.y == 0 && f.z == 0 && rec.plane_elastic[k] == 0) continue;
-          const auto& c = list.planes[k];
-          const PlaneWall& w = sim.planes()[c.plane];
-          keep(p.gid[c.particle], -1, w.name, f, rec.plane_elastic[k],
-               p.radius[c.particle] - w.distance(p.x[c.particle], sim.time()));
-        }
-        py::dict d;
-        const auto n = static_cast<py::ssize_t>(a.size());
-        d["id_a"] = py::array_t<std::int64_t>(n, a.data());
-        d["id_b"] = py::array_t<std::int64_t>(n, b.data());
-        d["wall"] = py::module_::import("numpy").attr("array")(py::cast(wall), "dtype"_a = "str");
-        py::array_t<double> fa({n, py::ssize_t{3}});
-        if (n > 0) std::memcpy(fa.mutable_data(), force.data(), force.size() * sizeof(double));
-        d["force"] = fa;
-        d["elastic"] = py::array_t<double>(n, elastic.data());
-        d["overlap"] = py::array_t<double>(n, overlap.data());
-        return d;
-      });
+      .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); });
 }
 
 } // namespace yuxi::python

@@ -85,8 +85,12 @@ region = { shape = "box", lo = [0.2, 0.2, 0.2], hi = [7.8, 7.8, 11.5] }
 """
 
 
-def write_square_stl(path, half, z):
-    """A square of side 2 half at height z, two triangles (binary STL)."""
+def add_square_mesh(scene, folder, name, height, **keys):
+    """Adds a [[mesh]] to the box scene: a square of side 7.8 (two triangles, binary STL)
+    centred over the box at `height`."""
     import yuxi
 
-    yuxi.write_stl(path, yuxi.square(half, z))
+    stl = folder / f"{name}.stl"
+    yuxi.write_stl(stl, yuxi.square(3.9, 0.0))
+    scene.setdefault("mesh", []).append(dict({"name": name, "file": str(stl), "material": "wall",
+                                              "translate": [4.0, 4.0, height]}, **keys))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import yuxi
-from conftest import BOX_TOML, write_square_stl
+from conftest import BOX_TOML, add_square_mesh
 
 
 def run_to_end(scene, out, **kw):
@@ -134,11 +134,8 @@ def test_a_callback_steers_and_stops_the_run(box_scene, tmp_path):
 
 
 def test_a_controlled_wall_moves_at_the_speed_a_callback_sets(box_scene, tmp_path):
-    stl = tmp_path / "piston.stl"
-    write_square_stl(stl, 3.9, 0.0)
-    box_scene["mesh"] = [{"name": "piston", "file": str(stl), "material": "wall",
-                          "translate": [4.0, 4.0, 11.8], "controlled": True,
-                          "servo_axis": [0.0, 0.0, -1.0]}]
+    add_square_mesh(box_scene, tmp_path, "piston", 11.8, controlled=True,
+                    servo_axis=[0.0, 0.0, -1.0])
     sim = yuxi.Simulation(box_scene, output=tmp_path / "out", progress=False)
 
     def push(s):
@@ -165,10 +162,7 @@ def test_a_controlled_wall_moves_at_the_speed_a_callback_sets(box_scene, tmp_pat
 
 
 def test_only_a_controlled_wall_takes_a_speed(box_scene, tmp_path):
-    stl = tmp_path / "lid.stl"
-    write_square_stl(stl, 3.9, 0.0)
-    box_scene["mesh"] = [{"name": "lid", "file": str(stl), "material": "wall",
-                          "translate": [4.0, 4.0, 11.8]}]
+    add_square_mesh(box_scene, tmp_path, "lid", 11.8)
     sim = yuxi.Simulation(box_scene, output=tmp_path / "out", progress=False)
     with pytest.raises(ValueError, match="not a controlled mesh"):
         sim.set_wall_speed("lid", 1.0)
@@ -247,21 +241,6 @@ def test_energy_history_is_a_record_array(box_scene, tmp_path):
     assert h.step[0] == 0 and h.step[-1] == sim.step_count
     assert len(h) == 21
     assert "dissipated" in h.dtype.names
-    sim.close()
-
-
-def test_contacts_come_as_arrays(box_scene, tmp_path):
-    sim = yuxi.Simulation(box_scene, output=tmp_path / "out", progress=False)
-    sim.record_contacts(True)
-    sim.step(1500)
-    c = sim.contacts()
-    n = len(c["id_a"])
-    assert n > 0 and c["force"].shape == (n, 3)
-    assert (c["overlap"] > 0).all()
-    floor = c["wall"] == "box z lo"
-    assert floor.any() and (c["id_b"][floor] == -1).all()
-    # The floor pushes the grains up.
-    assert (c["force"][floor][:, 2] > 0).all()
     sim.close()
 
 

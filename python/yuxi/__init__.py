@@ -418,8 +418,10 @@ class Simulation:
         self._core.record_contacts(on)
 
     def contacts(self):
-        """This rank's touching contacts: partner ids (id_b = -1 and ``wall`` named for a flat
-        wall), force on the first partner, overlap and stored elastic energy."""
+        """This rank's touching contacts at the last step, as arrays: partner ids (id_b = -1 and
+        ``wall`` named for a wall; ``element``: a mesh's triangle or a cylinder's patch), force on
+        the first partner, normal, point, overlap, stored elastic energy, and ``state``: the
+        contact model's state, one array per field (docs/python.md)."""
         return self._core.contacts()
 
     def __repr__(self):

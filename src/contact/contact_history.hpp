@@ -31,6 +31,7 @@
 // listed pair and no allocation per contact; violent runs rebuild every few steps.
 #pragma once
 
+#include "contact/state_columns.hpp"
 #include "core/archive.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/particle_store.hpp"
@@ -119,6 +120,14 @@ public:
   virtual std::size_t memory_bytes() const = 0;
   // The slot of each listed pair (aligned with NeighborList::partners; none: no state).
   virtual const std::uint32_t* pair_slots() const = 0;
+  // The model's state as named columns (contact/state_columns.hpp), for analysis: the fields,
+  // and the values of listed pair p (as seen from its row particle), of grain-plane candidate
+  // k, or of contact c of grain-wall candidate k, appended to `out` (a fresh state's where the
+  // contact holds none).
+  virtual std::vector<StateField> state_fields() const = 0;
+  virtual void pair_state(std::uint32_t p, std::vector<double>& out) const = 0;
+  virtual void plane_state(std::size_t k, std::vector<double>& out) const = 0;
+  virtual void wall_state(std::size_t k, std::size_t c, std::vector<double>& out) const = 0;
 };
 
 inline constexpr std::size_t max_wall_contacts = 6;
@@ -279,6 +288,19 @@ public:
 
   std::size_t stashed() const { return stash_.size(); }
   const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
+
+  std::vector<StateField> state_fields() const override { return yuxi::state_fields<State>(); }
+  void pair_state(std::uint32_t p, std::vector<double>& out) const override {
+    const bool held = p < pair_slot.size() && pair_slot[p] != none;
+    append_state_values(held ? states[pair_slot[p]] : State{}, out);
+  }
+  void plane_state(std::size_t k, std::vector<double>& out) const override {
+    append_state_values(k < plane.size() ? plane[k] : State{}, out);
+  }
+  void wall_state(std::size_t k, std::size_t c, std::vector<double>& out) const override {
+    const bool held = k < wall.size() && c < wall[k].n;
+    append_state_values(held ? wall[k].at[c].state : State{}, out);
+  }
 
   // Migration between ranks: copies of the stashed states of the contacts that the particles
   // `gids` take part in (with either partner, or as the grain of a plane or wall contact),

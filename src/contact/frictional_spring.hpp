@@ -27,6 +27,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <string_view>
 
 namespace yuxi {
 
@@ -48,6 +50,13 @@ struct SliderState {
   // k |s|^2 / 2 after the last step [energy] (computed: the state stays small, 40 bytes, and
   // the pair loop reads less memory)
   double stored() const { return 0.5 * k * norm2(spring); }
+  // Its columns for analysis (contact/state_columns.hpp), named after the degree of freedom.
+  template <class Field> void fields(std::string_view dof, Field&& f) const {
+    const std::string name(dof);
+    f(name + "_spring", spring);
+    f(name + "_sliding", static_cast<double>(sliding));
+    f(name + "_stiffness", k);
+  }
 };
 
 // The springs of a frictional contact: tangential and (optional) rolling.
@@ -61,6 +70,10 @@ struct TangentialRollingState {
     TangentialRollingState m = *this;
     m.tangential.spring = -tangential.spring;
     return m;
+  }
+  template <class Field> void fields(Field&& f) const {
+    tangential.fields("tangential", f);
+    rolling.fields("rolling", f);
   }
 };
 

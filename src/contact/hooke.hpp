@@ -56,6 +56,7 @@ struct Hooke {
   struct State {
     bool operator==(const State&) const = default;
     State mirrored() const { return *this; }
+    template <class Field> void fields(Field&&) const {}
   };
 
   // t_c = pi / sqrt(k_n/m_eff - gamma_n^2/4) [time]; infinite when overdamped.

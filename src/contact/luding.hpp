@@ -81,6 +81,15 @@ struct Luding {
       m.torsion.spring = -torsion.spring;
       return m;
     }
+    template <class Field> void fields(Field&& f) const {
+      f("delta_max", delta_max);
+      f("delta", delta);
+      f("f_hys", f_hys);
+      f("stored_n", stored_n);
+      tangential.fields("tangential", f);
+      rolling.fields("rolling", f);
+      torsion.fields("torsion", f);
+    }
   };
 
   // Half period of the stiffest (unloading) spring with damping: pi / sqrt(kp/m - gamma^2/4).

@@ -103,6 +103,16 @@ struct Thermodynamic {
       m.owed = -owed;
       return m;
     }
+    template <class Field> void fields(Field&& f) const {
+      f("un", un);
+      f("ut", ut);
+      f("w_relax", w_relax);
+      f("stored", stored);
+      f("n_prev", n_prev);
+      f("delta_prev", delta_prev);
+      f("owed", owed);
+      f("owed_energy", owed_energy);
+    }
   };
 
   // The spring constant of (19) for a contact of reduced radius R*: k = (4/3) E* sqrt(R*).

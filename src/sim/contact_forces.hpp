@@ -72,6 +72,7 @@ public:
       record.pair_elastic.assign(list.n_pairs(), 0.0);
       record.plane_force.assign(list.planes.size(), Vec3{});
       record.plane_elastic.assign(list.planes.size(), 0.0);
+      record.wall.clear();
     }
     bool batched = false;
     if constexpr (BatchedModel<Model>) {
@@ -89,10 +90,11 @@ public:
   // whose normals are nearest theirs (within 60 degrees), so a contact's history carries over
   // when its point moves onto another triangle; a previous contact that nothing picks up has
   // opened. `loads` (one per wall) gets what the grains do to each wall, `elements` the force
-  // of each contact on its triangle or patch.
+  // of each contact on its triangle or patch; `record`, where enabled, each contact.
   void compute_walls(ParticleStore& s, const NeighborList& list,
                      const std::vector<ShapedWall>& walls, double t, double dt, ContactTally& tally,
-                     std::vector<WallLoad>& loads, std::vector<ElementForce>& elements) {
+                     std::vector<WallLoad>& loads, std::vector<ElementForce>& elements,
+                     ContactRecord& record) {
     loads.assign(walls.size(), WallLoad{});
     elements.clear();
     if (list.walls.empty()) return;
@@ -165,6 +167,10 @@ public:
         load.work += work;
         ++load.contacts;
         elements.push_back({ref.wall, touch.element, -r.force});
+        if (record.enabled)
+          record.wall.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(c),
+                                 touch.element, touch.point, touch.normal, r.force, r.elastic,
+                                 g.overlap});
         track_overlap(g.overlap, ai, i, tally);
       }
       set.n = static_cast<std::uint8_t>(n);

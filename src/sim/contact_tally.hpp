@@ -35,15 +35,29 @@ struct ElementForce {
   Vec3 force; // on the wall [force]
 };
 
+// One grain's contact with a shaped wall (a mesh or a cylinder) at a force evaluation.
+struct WallContactRecord {
+  std::uint32_t candidate = 0; // index in NeighborList::walls (grain and wall)
+  std::uint32_t contact = 0;   // of that candidate's contacts (the slot of its state)
+  std::uint32_t element = 0;   // triangle of a mesh, patch of a cylinder
+  Vec3 point;                  // the wall's surface point [length]
+  Vec3 normal;                 // unit, from the wall to the grain's centre
+  Vec3 force;                  // on the grain [force]
+  double elastic = 0;          // energy stored in the contact [energy]
+  double overlap = 0;          // [length]
+};
+
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
-// energy analyses): aligned with NeighborList::partners and NeighborList::planes. A contact
-// that does not touch has zero force and energy.
+// energy analyses): aligned with NeighborList::partners and NeighborList::planes, and the
+// contacts with shaped walls as a list. A contact that does not touch has zero force and
+// energy.
 struct ContactRecord {
   bool enabled = false;
   std::vector<Vec3> pair_force;     // force on the row particle i from its partner j
   std::vector<double> pair_elastic; // energy stored in the contact
   std::vector<Vec3> plane_force;    // force on the grain from the flat wall
   std::vector<double> plane_elastic;
+  std::vector<WallContactRecord> wall;
 
   void keep_pair(std::size_t p, const Vec3& force, double elastic) {
     if (!enabled) return;

@@ -355,7 +355,8 @@ void Simulation::compute_forces(bool advance_history) {
     timer.switch_to(timers_.pair);
     std::visit(
         [&](auto& f) {
-          f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_, element_forces_);
+          f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_, element_forces_,
+                          record_);
         },
         forces_);
   }

@@ -144,6 +144,8 @@ public:
   // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
   void record_contacts(bool on) { record_.enabled = on; }
   const ContactRecord& contact_record() const { return record_; }
+  // Every contact's state under the scene's model (aligned with neighbor_list()).
+  const ContactStates& contact_states() const { return *history_; }
   // J w^2 / 2 of owned particle i (0 when its rotation is locked).
   double rotational_energy(std::size_t i) const;
   // Bytes of this rank's simulation data: particles (with ghosts), cells, neighbour list,
