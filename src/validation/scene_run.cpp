@@ -34,10 +34,22 @@ void run_scene(const Scene& scene, const fs::path& folder, bool progress) {
   options.show_progress = progress;
   options.scene_text = resolved_scene_toml(scene);
   // A run of the same scene saved in the folder continues from its newest checkpoint (a long
-  // case goes on across sessions); one that reached the end is only read again.
+  // case goes on across sessions, or further where the scene now ends later); one that reached
+  // the end is only read again.
+  const auto same_run = [&](const std::string& saved_text) {
+    if (saved_text == options.scene_text) return true;
+    try {
+      Scene saved = read_scene_text(saved_text, scene.source); // (paths resolve as the scene's)
+      if (!(saved.run.t_end <= scene.run.t_end)) return false;
+      saved.run.t_end = scene.run.t_end;
+      return resolved_scene_toml(saved) == options.scene_text;
+    } catch (const SceneError&) {
+      return false; // a scene this version no longer reads: run afresh
+    }
+  };
   if (fs::exists(folder / "checkpoints")) {
     const auto saved = CheckpointSet(folder).newest_valid(sim->comm(), nullptr);
-    if (saved && saved->scene_text == options.scene_text) {
+    if (saved && same_run(saved->scene_text)) {
       if (saved->step >= std::llround(scene.run.t_end / scene.sim.dt)) return;
       apply_checkpoint(*saved, *sim);
       options.resumed = true;
