@@ -242,12 +242,10 @@ def main():
               "# basin with the {model} contact model, matched to the linear law at an impact\n"
               "# speed of 1 sigma/tau (same contact time and restitution; see the script).\n")
     os.makedirs(args.out, exist_ok=True)
-    # Each run tracks the highest jet (peaks.csv) every 0.01 tau.
-    track = "track_interval = 0.01      # the antinodes' highest columns (peaks.csv)\n"
     for model, text in (("linear", linear), ("luding", luding), ("hertz", hertz),
                         ("thermo", thermo)):
         with open(os.path.join(args.out, f"basin-small-{model}.toml"), "w") as f:
-            f.write(header.format(model=model) + text.rstrip("\n") + "\n" + track)
+            f.write(header.format(model=model) + text)
 
     print("| model | pair | e at 1 sigma/tau | t_c at 1 sigma/tau [tau] | parameters |")
     print("|---|---|---|---|---|")
