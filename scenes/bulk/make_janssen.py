@@ -88,7 +88,7 @@ def scene(name, diameter, silos, rate, settle, comment):
 (HERE / "janssen.toml").write_text(scene(
     "janssen", 20.0,
     [(0.5, "wall"), (1, "wall"), (2, "wall"), (3, "wall"), (4, "wall"), (6, "wall"),
-     (1, "smooth")], 400.0, 40.0,
+     (1, "smooth")], 400.0, 55.0,
     "Janssen silos: D = 20 d, H = 0.5-6 D with mu_w = 0.5, and 1 D with mu_w = 0."))
 (HERE / "janssen-small.toml").write_text(scene(
     "janssen-small", 10.0, [(1, "wall"), (2, "wall"), (1, "smooth")], 150.0, 30.0,

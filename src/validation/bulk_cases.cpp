@@ -126,11 +126,17 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
   double held = 0;
   for (const Silo& s : silos) held += s.mass;
   res.add_relative("mass in the silos / mass poured", 1.0, held / poured_mass, 1e-9);
-  const double ke = m.last("ke");
-  if (full)
-    add_range(res, "at rest: kinetic energy per grain [m g d] (< 1e-8)", ke, 0.0, 1e-8);
-  else
-    add_range(res, "settled: kinetic energy per grain [m g d] (< 1e-5)", ke, 0.0, 1e-5);
+  if (full) {
+    // At rest: the grains' translation. Their rotation is not a measure of rest: a caged grain
+    // with no contact (a rattler) keeps whatever spin it had, and nothing in a dry packing
+    // damps it; at the end of the full run about ten of them hold nearly all of the
+    // rotational energy (docs/results/bulk/README.md, B2).
+    const double translational = energies.column("translational").back() /
+                                 energies.column("grains").back(); // [m g d]: m = g = d = 1
+    add_range(res, "at rest: translational kinetic energy per grain [m g d] (< 1e-8)",
+              translational, 0.0, 1e-8);
+  } else
+    add_range(res, "settled: kinetic energy per grain [m g d] (< 1e-5)", m.last("ke"), 0.0, 1e-5);
   add_books(res, energies, 0.03);
 
   std::vector<Silo> rough;
