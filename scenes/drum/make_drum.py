@@ -5,7 +5,8 @@ file (atom style sphere: id type diameter density x y z), on a lattice in the lo
 drum, jittered in all three directions (unjittered along the axis, the layers never touch: the
 bed would move as independent flat layers). Reduced units: grain diameter d = 1, mass 1 (density 6/pi), g = 1.
 
-usage: make_drum.py [--radius R] [--length L] [--segments N] [--fill F] [--seed S] OUTDIR
+usage: make_drum.py [--radius R] [--length L] [--segments N] [--fill F] [--seed S]
+                    [--rings K] [--bands B] [--ascii] OUTDIR
 """
 import argparse
 import math
@@ -14,7 +15,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from binary_stl import write_binary_stl  # noqa: E402
+from binary_stl import write_ascii_stl, write_binary_stl  # noqa: E402
 
 
 def drum_triangles(radius, length, segments):
@@ -27,6 +28,34 @@ def drum_triangles(radius, length, segments):
         tris += [(a, b, c), (a, c, d)]                       # the side
         tris.append(((0.0, 0.0, 0.0), b, a))                 # the cap at y = 0
         tris.append(((0.0, length, 0.0), d, c))              # the cap at y = length
+    return tris
+
+
+def fine_drum_triangles(radius, length, segments, rings, bands):
+    """The same closed drum with its side cut into `rings` along the axis and each cap into
+    `bands` concentric annuli (a fan at the centre): triangles of about equal size, as a
+    meshing tool would write them, for large drums."""
+    def ring(r, y):
+        return [(r * math.cos(2 * math.pi * k / segments), y, r * math.sin(2 * math.pi * k / segments))
+                for k in range(segments)]
+    tris = []
+    for j in range(rings):
+        lo, hi = ring(radius, length * j / rings), ring(radius, length * (j + 1) / rings)
+        for k in range(segments):
+            k1 = (k + 1) % segments
+            tris += [(lo[k], lo[k1], hi[k1]), (lo[k], hi[k1], hi[k])]
+    for y, facing in ((0.0, 1), (length, -1)):
+        centre = (0.0, y, 0.0)
+        inner = ring(radius / bands, y)
+        for k in range(segments):
+            a, b = inner[k], inner[(k + 1) % segments]
+            tris.append((centre, b, a) if facing > 0 else (centre, a, b))
+        for band in range(1, bands):
+            i0, i1 = ring(radius * band / bands, y), ring(radius * (band + 1) / bands, y)
+            for k in range(segments):
+                k1 = (k + 1) % segments
+                quad = [(i0[k], i1[k], i1[k1]), (i0[k], i1[k1], i0[k1])]
+                tris += quad if facing > 0 else [(t[0], t[2], t[1]) for t in quad]
     return tris
 
 
@@ -55,11 +84,23 @@ def main():
     p.add_argument("--segments", type=int, default=96)
     p.add_argument("--fill", type=float, default=0.4)
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--rings", type=int, default=1, help="side cut into this many rings")
+    p.add_argument("--bands", type=int, default=1, help="each cap cut into this many annuli")
+    p.add_argument("--ascii", action="store_true",
+                   help="also write the drum as ASCII STL (drum_ascii.stl), as LIGGGHTS reads it")
     p.add_argument("outdir", type=Path)
     a = p.parse_args()
     a.outdir.mkdir(parents=True, exist_ok=True)
-    write_binary_stl(a.outdir / "drum.stl", drum_triangles(a.radius, a.length, a.segments),
-                     "yuxi rotating drum")
+    if a.rings == 1 and a.bands == 1:
+        tris = drum_triangles(a.radius, a.length, a.segments)
+    else:
+        tris = fine_drum_triangles(a.radius, a.length, a.segments, a.rings, a.bands)
+    write_binary_stl(a.outdir / "drum.stl", tris, "yuxi rotating drum")
+    if a.ascii:
+        # Through float32, as the binary file holds them: both files give the same mesh.
+        import struct
+        same = [tuple(struct.unpack("<3f", struct.pack("<3f", *v)) for v in t) for t in tris]
+        write_ascii_stl(a.outdir / "drum_ascii.stl", same, "drum")
     g = grains(a.radius, a.length, a.fill, a.seed)
     density = 6 / math.pi
     with open(a.outdir / "grains.data", "w") as f:
@@ -68,7 +109,7 @@ def main():
         f.write(f"{-a.radius - 1} {a.radius + 1} zlo zhi\n\nAtoms # sphere\n\n")
         for k, (d, x, y, z) in enumerate(g, 1):
             f.write(f"{k} 1 {d:.6f} {density:.12g} {x:.6f} {y:.6f} {z:.6f}\n")
-    print(f"{a.outdir}/drum.stl: {len(drum_triangles(a.radius, a.length, a.segments))} triangles; "
+    print(f"{a.outdir}/drum.stl: {len(tris)} triangles; "
           f"{a.outdir}/grains.data: {len(g)} grains")
 
 
