@@ -14,19 +14,15 @@ mpi "$np" "$yuxi" run "$repo/scenes/bulk/beverloo-Do8.toml" -o yuxi --overwrite 
   --no-plots > yuxi.log 2>&1
 /usr/bin/python3 "$repo/bench/lammps_data_from_dump.py" yuxi/particles.lammpstrj start.data \
   --frame first > /dev/null
-/usr/bin/python3 - <<'PY'
+/usr/bin/python3 - "$repo/scenes" <<'PY'
 import math
+import sys
+sys.path.insert(0, sys.argv[1])
+from binary_stl import write_ascii_stl
 n, radius = 64, 4.5  # the shutter's top: a disc over the orifice at z = 0
-with open("plug.stl", "w") as f:
-    f.write("solid plug\n")
-    for k in range(n):
-        a, b = 2 * math.pi * k / n, 2 * math.pi * (k + 1) / n
-        f.write("facet normal 0 0 1\nouter loop\n")
-        for v in ((0, 0, 0), (radius * math.cos(a), radius * math.sin(a), 0),
-                  (radius * math.cos(b), radius * math.sin(b), 0)):
-            f.write("vertex %.7g %.7g %.7g\n" % v)
-        f.write("endloop\nendfacet\n")
-    f.write("endsolid plug\n")
+ring = [(radius * math.cos(2 * math.pi * k / n), radius * math.sin(2 * math.pi * k / n), 0.0)
+        for k in range(n + 1)]
+write_ascii_stl("plug.stl", [((0.0, 0.0, 0.0), ring[k], ring[k + 1]) for k in range(n)], "plug")
 PY
 mpi "$np" liggghts -in "$repo/bench/in.beverloo.liggghts" -var data start.data \
   -var floor "$repo/scenes/bulk/annulus-Do8.stl" -var plug plug.stl -var thermo 625 \

@@ -18,14 +18,8 @@ if [ ! -f settled.data ]; then
     --segments 160 --rings 45 --bands 8 --ascii . > make.log
 fi
 scene() { # NAME DATA OMEGA T_END SNAPSHOT
-  sed -e "s|^name = .*|name = \"$1\"|" -e "s|^t_end = .*|t_end = $4|" \
-    -e "s|^energy_interval = .*|energy_interval = 1.0|" \
-    -e "s|^snapshot_interval = .*|snapshot_interval = $5|" \
-    -e "s|^lo = \[-11.0, -1.0, -11.0\]|lo = [-$((radius + 1)).0, -1.0, -$((radius + 1)).0]|" \
-    -e "s|^hi = \[11.0, 7.0, 11.0\]|hi = [$((radius + 1)).0, $((length + 1)).0, $((radius + 1)).0]|" \
-    -e "s|^file = \"grains.data\"|file = \"$work/$2\"|" \
-    -e "s|^file = \"drum.stl\"|file = \"$work/drum.stl\"|" -e "s|^omega = .*|omega = $3|" \
-    "$repo/scenes/drum/drum-stl.toml" > "$1.toml"
+  drum_scene stl "$1" "$2" "$3" "$4" -e "s|^energy_interval = .*|energy_interval = 1.0|" \
+    -e "s|^snapshot_interval = .*|snapshot_interval = $5|"
 }
 if [ ! -f settled.data ]; then
   scene settle grains.data 0.0 20.0 20.0

@@ -20,14 +20,7 @@ t_end=$(/usr/bin/python3 -c "print(round(3.2 * $period, 1))")
 steps=$(/usr/bin/python3 -c "print(round($t_end / 0.002))")
 from_step=$(/usr/bin/python3 -c "print(round(0.5 * $period / 0.002))")
 for kind in stl cylinder; do
-  sed -e "s|^name = .*|name = \"drum-$kind\"|" -e "s|^t_end = .*|t_end = $t_end|" \
-    -e "s|^lo = \[-11.0, -1.0, -11.0\]|lo = [-$((radius + 1)).0, -1.0, -$((radius + 1)).0]|" \
-    -e "s|^hi = \[11.0, 7.0, 11.0\]|hi = [$((radius + 1)).0, $((length + 1)).0, $((radius + 1)).0]|" \
-    -e "s|^file = \"grains.data\"|file = \"$work/grains.data\"|" \
-    -e "s|^file = \"drum.stl\"|file = \"$work/drum.stl\"|" \
-    -e "s|^omega = .*|omega = $omega|" -e "s|^radius = 10.0|radius = $radius.0|" \
-    -e "s|^hi = 6.0|hi = $length.0|" \
-    "$repo/scenes/drum/drum-$kind.toml" > "drum-$kind.toml"
+  drum_scene "$kind" "drum-$kind" grains.data "$omega" "$t_end"
 done
 angle() { # DUMP
   /usr/bin/python3 "$repo/bench/drum_repose.py" "$1" --from-step "$from_step" --blocks 5

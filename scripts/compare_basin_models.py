@@ -21,7 +21,7 @@ one) and DIR/basin_models.csv, and prints the table as Markdown.
 import argparse
 import csv
 import os
-import tomllib
+import sys
 
 import numpy as np
 import matplotlib
@@ -29,27 +29,20 @@ import matplotlib
 matplotlib.use("Agg")  # no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def table(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) if r[k] not in ("", "nan") else np.nan for r in rows])
-            if k not in ("quantity", "range", "direction") else np.array([r[k] for r in rows])
-            for k in rows[0]}
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_basin import read_fits, read_resolved_scene, read_table  # noqa: E402
 
 
 def read_run(path, t0):
-    with open(os.path.join(path, "scene.resolved.toml"), "rb") as f:
-        scene = tomllib.load(f)
-    e = table(os.path.join(path, "energies.csv"))
+    scene = read_resolved_scene(path)
+    e = read_table(os.path.join(path, "energies.csv"))
     start = int(np.searchsorted(e["time"], t0 - 1e-9))
     since = {k: e[k] - e[k][start] for k in ("dissipated", "wall_work", "balance", "relaxation")}
-    peaks = table(os.path.join(path, "analysis", "peaks.csv"))
+    peaks = read_table(os.path.join(path, "analysis", "peaks.csv"))
     times = np.unique(peaks["time"])
     highest = np.array([peaks["height"][peaks["time"] == t].max() for t in times])
-    fits = table(os.path.join(path, "analysis", "fits.csv"))
-    slope = {(q, r): (s, fr) for q, r, s, fr in zip(fits["quantity"], fits["range"],
-                                                    fits["slope"], fits["energy_fraction"])}
+    fits = read_fits(os.path.join(path, "analysis"), {})
+    slope = {key: (f["slope"], f["energy_fraction"]) for key, f in fits.items()}
     return {"name": os.path.basename(os.path.normpath(path)), "model": scene["contact"]["model"],
             "dt": scene["run"]["dt"], "e": e, "start": start, "since": since,
             "peak_t": times, "peak_h": highest, "slope": slope}

@@ -29,7 +29,6 @@ every model and pair from 0.01 to 360 sigma/tau (the wall's peak speed). Prints 
 import argparse
 import math
 import os
-import re
 import sys
 import tempfile
 
@@ -41,6 +40,8 @@ sys.path.insert(0, os.path.join(REPO, "build", "release", "python"))
 import yuxi  # noqa: E402
 
 BASE = os.path.join(REPO, "scenes", "basin-small.toml")
+with open(BASE) as _f:
+    BASE_TEXT = _f.read()
 NU = 0.3
 PAIRS = ("grain-grain", "grain-wall")
 M_EFF = {"grain-grain": 0.5, "grain-wall": 1.0}  # reduced masses (a wall particle is fixed)
@@ -49,8 +50,7 @@ GRAIN_RADIUS, WALL_RADIUS = 1.0, 2.0  # basin-small's mean grain and its wall pa
 
 def scene_with(contact, materials="", name="basin-small"):
     """basin-small.toml with another [contact] section (and material tables)."""
-    text = open(BASE).read()
-    head, rest = text.split("[contact]", 1)
+    head, rest = BASE_TEXT.split("[contact]", 1)
     tail = rest[rest.index("[basin]"):]
     head = head.replace('name = "basin-small"', f'name = "{name}"')
     return head + materials + contact + "\n" + tail
@@ -93,7 +93,7 @@ def impact(text, pair, v):
         prev = (sim.time, gap0)
         for _ in range(1000000):
             sim.step()
-            g, rel = state()
+            g, _ = state()
             if t_in is None and g < 0:  # crossing, linearly interpolated
                 t_in = prev[0] + (sim.time - prev[0]) * prev[1] / (prev[1] - g)
             elif t_in is not None and g >= 0:
@@ -111,30 +111,34 @@ def at_one(text, pair):
     return impact(text, pair, 1.0)
 
 
-def luding_contact(p):
-    out = '[contact]\nmodel = "luding"\n'
-    for pair, (k1, kp, phi) in p.items():
-        lin = LINEAR[pair]
-        out += (f'\n[[contact.pair]]\nmaterials = {MATERIALS[pair]}\nk1 = {k1:.6g}\nkp = {kp:.6g}\n'
-                f'phi_f = {phi:.3g}\nk_t = {lin["k_t"]:.6g}\ngamma_t = {lin["gamma_t"]:.6g}\n'
-                f'mu_s = {lin["mu_s"]}\nmu_d = {lin["mu_d"]}\n')
+def contact_section(model, keys):
+    """A [contact] section of `model`: one [[contact.pair]] per pair, with the keys that
+    keys(pair) gives as (name, value as text)."""
+    out = f'[contact]\nmodel = "{model}"\n'
+    for pair in PAIRS:
+        out += f"\n[[contact.pair]]\nmaterials = {MATERIALS[pair]}\n"
+        out += "".join(f"{name} = {value}\n" for name, value in keys(pair))
     return out
+
+
+def luding_contact(p):
+    def keys(pair):
+        k1, kp, phi = p[pair]
+        lin = LINEAR[pair]
+        return [("k1", f"{k1:.6g}"), ("kp", f"{kp:.6g}"), ("phi_f", f"{phi:.3g}"),
+                ("k_t", f"{lin['k_t']:.6g}"), ("gamma_t", f"{lin['gamma_t']:.6g}"),
+                ("mu_s", lin["mu_s"]), ("mu_d", lin["mu_d"])]
+    return contact_section("luding", keys)
 
 
 def hertz_contact(e):
-    out = '[contact]\nmodel = "hertz_mindlin"\n'
-    for pair in PAIRS:
-        out += (f'\n[[contact.pair]]\nmaterials = {MATERIALS[pair]}\nrestitution = {e[pair]:.6g}\n'
-                f'friction = {LINEAR[pair]["mu_d"]}\n')
-    return out
+    return contact_section("hertz_mindlin", lambda pair: [
+        ("restitution", f"{e[pair]:.6g}"), ("friction", LINEAR[pair]["mu_d"])])
 
 
 def thermo_contact(eta):
-    out = '[contact]\nmodel = "thermodynamic"\n'
-    for pair in PAIRS:
-        out += (f'\n[[contact.pair]]\nmaterials = {MATERIALS[pair]}\n'
-                f'friction = {LINEAR[pair]["mu_d"]}\neta_hat = {eta[pair]:.6g}\n')
-    return out
+    return contact_section("thermodynamic", lambda pair: [
+        ("friction", LINEAR[pair]["mu_d"]), ("eta_hat", f"{eta[pair]:.6g}")])
 
 
 def materials(youngs):
@@ -161,15 +165,14 @@ def main():
     ap.add_argument("--out", default=os.path.join(REPO, "scenes", "basin-models"))
     ap.add_argument("--plot")
     args = ap.parse_args()
-    base = open(BASE).read()
     global LINEAR, MATERIALS
     import tomllib
-    scene = tomllib.loads(base)
+    scene = tomllib.loads(BASE_TEXT)
     LINEAR, MATERIALS = {}, {}
     for p in scene["contact"]["pair"]:
         key = "grain-wall" if "wall" in p["materials"] else "grain-grain"
         LINEAR[key], MATERIALS[key] = p, '["' + '", "'.join(p["materials"]) + '"]'
-    target = {pair: at_one(base, pair) for pair in PAIRS}
+    target = {pair: at_one(BASE_TEXT, pair) for pair in PAIRS}
     rows = [("linear", pair, *target[pair], "") for pair in PAIRS]
 
     # Luding: a fully plastic impact at v = 1 (the plastic limit delta_p well inside the overlap).
@@ -236,9 +239,10 @@ def main():
     # and at 1e-4 and 5e-5 the run blows up there (the books diverge) within the first wall
     # strokes; at 2.5e-5 it holds.
     thermo = thermo.replace("dt = 1.0e-4          # tau",
-                            "dt = 2.5e-5          # tau: resolves grains wedged into the wall (see the script)")
-    linear = scene_with(base[base.index("[contact]"):base.index("[basin]")].rstrip() + "\n",
-                        name="basin-small-linear")
+                            "dt = 2.5e-5          # tau: resolves grains wedged into the wall "
+                            "(see the script)")
+    linear_contact = BASE_TEXT[BASE_TEXT.index("[contact]"):BASE_TEXT.index("[basin]")]
+    linear = scene_with(linear_contact.rstrip() + "\n", name="basin-small-linear")
     header = ("# Generated by scripts/match_basin_models.py from scenes/basin-small.toml: the same\n"
               "# basin with the {model} contact model, matched to the linear law at an impact\n"
               "# speed of 1 sigma/tau (same contact time and restitution; see the script).\n")
@@ -259,8 +263,8 @@ def main():
         import matplotlib.pyplot as plt
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
         for ax, pair in zip(axes, PAIRS):
-            for model, text in (("linear", base), ("hertz_mindlin", hertz), ("luding", luding),
-                                ("thermodynamic", thermo)):
+            for model, text in (("linear", BASE_TEXT), ("hertz_mindlin", hertz),
+                                ("luding", luding), ("thermodynamic", thermo)):
                 v = np.logspace(-2, math.log10(360.0), 12)
                 e = [impact(text, pair, s)[0] for s in v]
                 style = dict(lw=5, alpha=0.35) if model == "linear" else dict(ms=3, marker="o")
