@@ -7,6 +7,10 @@
 #   c1                    validation case C1: the LAMMPS chute (scenes/chute-lammps.toml), 100
 #                         steps: energies.csv and the digest at step 100
 #   collide               `yuxi collide` (every model's built-in set): its CSV tables
+#   drum-stl-np1, -np2    scenes/drum/drum-stl.toml (575 grains in a turning 96-facet STL drum)
+#                         to t = 4 tau (2,000 steps) on 1 and 2 ranks: energies.csv, walls.csv
+#                         and the digest of the last frame
+#   drum-cylinder         scenes/drum/drum-cylinder.toml, the same drum as an analytic cylinder
 # usage: references.sh [--update] YUXI MPIEXEC CASE|all WORK_DIR
 # With --update the references are rewritten from this build instead (regenerate them only in a
 # commit that changes the trajectory on purpose, and say so in it):
@@ -67,6 +71,15 @@ run_c1() {
   compare c1 energies.csv state.sha256
 }
 
+run_drum() { # NAME SCENE NP
+  local name=$1 out=$work/$1
+  rm -rf "$out"
+  mpirun "$3" "$yuxi" run "$repo/scenes/drum/$2.toml" --t-end 4 -o "$out" --no-progress \
+    --no-plots > "$work/$name.log" 2>&1 || { cat "$work/$name.log"; exit 1; }
+  digest "$out/particles_000002000.vtu" > "$out/state.sha256"
+  compare "$name" energies.csv walls.csv state.sha256
+}
+
 run_collide() {
   local out=$work/collide
   rm -rf "$out"
@@ -81,7 +94,14 @@ case $case_name in
   basin-np2) run_basin 2 ;;
   c1) run_c1 ;;
   collide) run_collide ;;
-  all) run_basin 1; run_basin 2; run_c1; run_collide ;;
+  drum-stl-np1) run_drum drum-stl-np1 drum-stl 1 ;;
+  drum-stl-np2) run_drum drum-stl-np2 drum-stl 2 ;;
+  drum-cylinder) run_drum drum-cylinder drum-cylinder 1 ;;
+  all)
+    run_basin 1; run_basin 2; run_c1; run_collide
+    run_drum drum-stl-np1 drum-stl 1; run_drum drum-stl-np2 drum-stl 2
+    run_drum drum-cylinder drum-cylinder 1
+    ;;
   *) echo "unknown case $case_name" >&2; exit 2 ;;
 esac
 exit $status
