@@ -3,6 +3,10 @@
 // (friction_cap, tangential_carry) for every pair of materials. The model names it as its
 // `Batch` (sim/contact_forces.hpp takes any model's batch through the same members).
 //
+// Wall contacts (a triangle of a mesh, a cylinder's patch) go through the same lanes with their
+// normal and distance given, since the wall's geometry finds them (set_wall_contact(),
+// evaluate_walls()).
+//
 // The contacts are held as a structure of arrays and the evaluation is one loop without
 // branches (both arms of the Coulomb test are computed and one is selected), so the compiler
 // turns it into SIMD instructions: two or more contacts per instruction instead of one, which
@@ -68,8 +72,10 @@ struct LinearBatch {
   bool uniform = false; // one law for every pair of materials: the lanes hold its coefficients
 
   // Filled by the caller, one lane per contact.
-  alignas(64) double dx[capacity], dy[capacity], dz[capacity];    // x_i - x_j [length]
-  alignas(64) double a_i[capacity], a_j[capacity];                // radii [length]
+  // x_i - x_j [length]; for a wall contact its unit normal
+  alignas(64) double dx[capacity], dy[capacity], dz[capacity];
+  alignas(64) double distance[capacity];           // wall contacts: centre to wall point [length]
+  alignas(64) double a_i[capacity], a_j[capacity]; // radii [length]
   alignas(64) double vx[capacity], vy[capacity], vz[capacity];    // v_i - v_j [length/time]
   alignas(64) double wix[capacity], wiy[capacity], wiz[capacity]; // w_i [1/time]
   alignas(64) double wjx[capacity], wjy[capacity], wjz[capacity]; // w_j [1/time]
@@ -112,6 +118,16 @@ struct LinearBatch {
     s_k[k] = spring.k;
     sliding[k] = spring.sliding ? 1.0 : 0.0;
   }
+  // Fills lane k with a grain's contact with a wall of zero radius, no spin and infinite mass:
+  // unit normal n from the wall's point to the centre, `dist` between them, v = v_i - v_wall.
+  // Lanes filled so are evaluated by evaluate_walls(), which takes n and dist as given: the
+  // results are those of LinearSpringDashpot::evaluate() on the geometry the one-by-one wall
+  // loop builds (against_wall in sim/contact_forces.hpp).
+  void set_wall_contact(std::size_t k, const Vec3& n, double dist, double radius, const Vec3& v,
+                        const Vec3& w_i, double inverse_mass, const State& state) {
+    set_contact(k, n, radius, 0.0, v, w_i, Vec3{}, inverse_mass, state);
+    distance[k] = dist;
+  }
   void set_coeffs(std::size_t k, const Coeffs& c) {
     k_n[k] = c.k_n, k_t[k] = c.k_t;
     gamma_n[k] = c.gamma_n, gamma_t[k] = c.gamma_t;
@@ -134,45 +150,57 @@ struct LinearBatch {
   // place).
   void evaluate(double dt) { evaluate(friction_cap, tangential_carry, dt); }
   // The same with the conventions given.
-  void evaluate(CapOn cap, Carry carry, double dt) {
+  void evaluate(CapOn cap, Carry carry, double dt) { dispatch<false>(cap, carry, dt); }
+  // Lanes filled by set_wall_contact(), with the conventions prepare() took or those given.
+  void evaluate_walls(double dt) { evaluate_walls(friction_cap, tangential_carry, dt); }
+  void evaluate_walls(CapOn cap, Carry carry, double dt) { dispatch<true>(cap, carry, dt); }
+
+private:
+  template <bool walls> void dispatch(CapOn cap, Carry carry, double dt) {
     switch (cap) {
     case CapOn::spring:
-      return carry == Carry::rotate ? run<CapOn::spring, Carry::rotate>(dt)
-                                    : run<CapOn::spring, Carry::project>(dt);
+      return carry == Carry::rotate ? run<CapOn::spring, Carry::rotate, walls>(dt)
+                                    : run<CapOn::spring, Carry::project, walls>(dt);
     case CapOn::total:
-      return carry == Carry::rotate ? run<CapOn::total, Carry::rotate>(dt)
-                                    : run<CapOn::total, Carry::project>(dt);
+      return carry == Carry::rotate ? run<CapOn::total, Carry::rotate, walls>(dt)
+                                    : run<CapOn::total, Carry::project, walls>(dt);
     case CapOn::total_lammps:
-      return carry == Carry::rotate ? run<CapOn::total_lammps, Carry::rotate>(dt)
-                                    : run<CapOn::total_lammps, Carry::project>(dt);
+      return carry == Carry::rotate ? run<CapOn::total_lammps, Carry::rotate, walls>(dt)
+                                    : run<CapOn::total_lammps, Carry::project, walls>(dt);
     }
   }
 
-private:
   // The loop is compiled twice on x86-64: for the baseline instruction set (two lanes per SSE2
   // instruction) and for AVX2 (four), chosen at run time, so a portable build still uses the
   // wider registers where the processor has them. The arithmetic is the same in both (no
   // contraction into FMA: the build is ISO C++, -ffp-contract=off), so are the bits.
-  template <CapOn cap, Carry carry> void run(double dt) {
+  template <CapOn cap, Carry carry, bool walls> void run(double dt) {
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
     static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return run_avx2<cap, carry>(dt);
+    if (avx2) return run_avx2<cap, carry, walls>(dt);
 #endif
-    lanes<cap, carry>(dt);
+    lanes<cap, carry, walls>(dt);
   }
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  template <CapOn cap, Carry carry> __attribute__((target("avx2"))) void run_avx2(double dt) {
-    lanes<cap, carry>(dt);
+  template <CapOn cap, Carry carry, bool walls>
+  __attribute__((target("avx2"))) void run_avx2(double dt) {
+    lanes<cap, carry, walls>(dt);
   }
 #endif
 
-  template <CapOn cap, Carry carry> YUXI_ALWAYS_INLINE void lanes(double dt) {
+  template <CapOn cap, Carry carry, bool walls> YUXI_ALWAYS_INLINE void lanes(double dt) {
     for (std::size_t k = 0; k < size; ++k) {
-      // Geometry: n from j to i, overlap, reduced mass.
-      const double dist = std::sqrt(dx[k] * dx[k] + dy[k] * dy[k] + dz[k] * dz[k]);
-      const double inv_dist = 1.0 / dist;
-      const double nx = dx[k] * inv_dist, ny = dy[k] * inv_dist, nz = dz[k] * inv_dist;
+      // Geometry: n from j to i (given for a wall), overlap, reduced mass.
+      double dist, nx, ny, nz;
+      if constexpr (walls) {
+        dist = distance[k];
+        nx = dx[k], ny = dy[k], nz = dz[k];
+      } else {
+        dist = std::sqrt(dx[k] * dx[k] + dy[k] * dy[k] + dz[k] * dz[k]);
+        const double inv_dist = 1.0 / dist;
+        nx = dx[k] * inv_dist, ny = dy[k] * inv_dist, nz = dz[k] * inv_dist;
+      }
       const double delta = (a_i[k] + a_j[k]) - dist;
       const double m_eff = 1.0 / inv_mass_sum[k];
       // Contact-point velocity v_c = v_i - v_j - (a_i w_i + a_j w_j) x n, split along n.

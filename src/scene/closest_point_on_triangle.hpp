@@ -28,6 +28,9 @@ struct TrianglePoint {
   TriangleFeature feature;
 };
 
+// Without `face_point`, a point on the face is returned as the feature alone (its point and
+// weights unset): a caller that has the triangle's plane needs no more.
+template <bool face_point = true>
 inline TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
                                                const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -54,6 +57,7 @@ inline TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, con
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return {b + w * (c - b), {0, 1 - w, w}, TriangleFeature::edge_bc};
   }
+  if constexpr (!face_point) return {Vec3{}, {0, 0, 0}, TriangleFeature::face};
   const double denom = 1.0 / (va + vb + vc);
   const double v = vb * denom, w = vc * denom;
   return {a + v * ab + w * ac, {1 - v - w, v, w}, TriangleFeature::face};

@@ -4,60 +4,102 @@
 
 namespace yuxi {
 
+namespace {
+
+// The feature a touch lies on, as wall_touch.hpp's rules name it.
+FeatureTouch feature_of(const WallTouch& touch, TriangleFeature feature, std::uint32_t t,
+                        const std::array<std::uint32_t, 3>& tri) {
+  FeatureTouch f;
+  f.touch = touch;
+  switch (feature) {
+  case TriangleFeature::face:
+    f.kind = 0, f.a = t;
+    break;
+  case TriangleFeature::edge_ab:
+  case TriangleFeature::edge_bc:
+  case TriangleFeature::edge_ca: {
+    const int k = static_cast<int>(feature) - static_cast<int>(TriangleFeature::edge_ab);
+    const std::uint32_t va = tri[k], vb = tri[(k + 1) % 3];
+    f.kind = 1, f.a = std::min(va, vb), f.b = std::max(va, vb);
+    break;
+  }
+  default:
+    f.kind = 2;
+    f.a = tri[static_cast<int>(feature) - static_cast<int>(TriangleFeature::vertex_a)];
+    break;
+  }
+  return f;
+}
+
+} // namespace
+
 void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> triangles,
                        std::vector<FeatureTouch>& scratch, std::vector<std::uint32_t>& order,
                        WallTouches& out) const {
-  scratch.clear();
+  // The first touch is written straight into out.at[0] (most grains touch one triangle, and
+  // need no rules); from a second on, every touch goes to `scratch` with its feature.
+  std::size_t found = 0;
+  TriangleFeature first_feature = TriangleFeature::face;
+  std::uint32_t first_triangle = 0;
   const double r2 = r * r;
   const bool still = !moves(); // every vertex velocity zero
+  const bool conveyor = surface_velocity != Vec3{};
   for (const std::uint32_t t : triangles) {
-    const auto& tri = mesh.triangles[t];
-    const Vec3 &a = x[tri[0]], &b = x[tri[1]], &cc = x[tri[2]];
-    const TrianglePoint q = closest_point_on_triangle(c, a, b, cc);
-    const Vec3 d = c - q.point;
-    const double d2 = norm2(d);
-    if (!(d2 < r2)) continue;
-    FeatureTouch f;
-    f.touch.distance = std::sqrt(d2);
-    if (f.touch.distance > 0.0) {
-      f.touch.normal = d * (1.0 / f.touch.distance);
-    } else { // the centre on the triangle: the face normal
-      f.touch.normal = normalized(cross(b - a, cc - a));
+    const PlacedTriangle& p = placed[t];
+    // A triangle whose plane is out of reach cannot be touched.
+    const double above = dot(p.normal, c - p.a); // signed distance from the plane
+    if (!(above * above < r2)) continue;
+    // The face's point and weights come from the plane (below) unless the mesh moves.
+    const TrianglePoint q = still ? closest_point_on_triangle<false>(c, p.a, p.b, p.c)
+                                  : closest_point_on_triangle<true>(c, p.a, p.b, p.c);
+    WallTouch touch;
+    if (q.feature == TriangleFeature::face) {
+      // On the face the contact is the plane's: the distance |above| along the normal, with
+      // no square root and no round-off in its direction.
+      touch.distance = std::abs(above);
+      touch.normal = above < 0.0 ? -p.normal : p.normal;
+      touch.point = c - above * p.normal;
+    } else {
+      const Vec3 d = c - q.point;
+      const double d2 = norm2(d);
+      if (!(d2 < r2)) continue;
+      touch.distance = std::sqrt(d2);
+      // (The centre on an edge or a vertex: the face normal.)
+      touch.normal = touch.distance > 0.0 ? d * (1.0 / touch.distance) : p.normal;
+      touch.point = q.point;
     }
-    f.touch.point = q.point;
+    const auto& tri = mesh.triangles[t];
     Vec3 vel = still ? Vec3{}
                      : q.weight[0] * v[tri[0]] + q.weight[1] * v[tri[1]] + q.weight[2] * v[tri[2]];
-    if (surface_velocity != Vec3{})
-      vel += surface_velocity - dot(surface_velocity, f.touch.normal) * f.touch.normal;
-    f.touch.velocity = vel;
-    f.touch.element = t;
-    switch (q.feature) {
-    case TriangleFeature::face:
-      f.kind = 0, f.a = t;
-      break;
-    case TriangleFeature::edge_ab:
-    case TriangleFeature::edge_bc:
-    case TriangleFeature::edge_ca: {
-      const int k = static_cast<int>(q.feature) - static_cast<int>(TriangleFeature::edge_ab);
-      const std::uint32_t va = tri[k], vb = tri[(k + 1) % 3];
-      f.kind = 1, f.a = std::min(va, vb), f.b = std::max(va, vb);
-      break;
+    if (conveyor) vel += surface_velocity - dot(surface_velocity, touch.normal) * touch.normal;
+    touch.velocity = vel;
+    touch.element = t;
+    if (found == 0) {
+      out.at[0] = touch;
+      first_feature = q.feature, first_triangle = t;
+    } else {
+      if (found == 1)
+        scratch.assign(1, feature_of(out.at[0], first_feature, first_triangle,
+                                     mesh.triangles[first_triangle]));
+      scratch.push_back(feature_of(touch, q.feature, t, tri));
     }
-    default:
-      f.kind = 2;
-      f.a = tri[static_cast<int>(q.feature) - static_cast<int>(TriangleFeature::vertex_a)];
-      break;
-    }
-    scratch.push_back(f);
+    ++found;
   }
-  if (scratch.size() <= 1) { // (the rules keep a lone touch)
-    out.n = scratch.size();
-    out.dropped = 0;
-    if (out.n == 1) out.at[0] = scratch[0].touch;
+  out.dropped = 0;
+  if (found <= 1) { // (the rules keep a lone touch)
+    out.n = found;
     return;
   }
   select_touches(
       scratch, cos_merge_, [&](std::uint32_t t) { return mesh.triangles[t]; }, order, out);
+}
+
+bool MeshWall::within(const Vec3& c, double reach, std::uint32_t t) const {
+  const PlacedTriangle& p = placed[t];
+  const double above = dot(p.normal, c - p.a), reach2 = reach * reach;
+  if (!(above * above < reach2)) return false;
+  const TrianglePoint q = closest_point_on_triangle(c, p.a, p.b, p.c);
+  return q.feature == TriangleFeature::face || norm2(c - q.point) < reach2;
 }
 
 } // namespace yuxi

@@ -51,6 +51,12 @@ struct MeshWall {
 
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;
+  // Each triangle as placed last: its corners and its unit normal, along (b - a) x (c - a),
+  // side by side, so that the contact search reads one record per candidate.
+  struct PlacedTriangle {
+    Vec3 a, b, c, normal;
+  };
+  std::vector<PlacedTriangle> placed;
 
   // Moves every vertex to time t (and takes the cosine of the merge angle).
   void place(double t) {
@@ -64,6 +70,27 @@ struct MeshWall {
       x[k] = p.position + shift;
       v[k] = p.velocity + push;
     }
+    // The normals: those at rest, turned with a rigid motion (no square root per triangle);
+    // a deforming mesh's from its placed corners.
+    if (rest_normals_.size() != mesh.triangles.size()) {
+      rest_normals_.resize(mesh.triangles.size());
+      for (std::size_t k = 0; k < rest_normals_.size(); ++k) {
+        const auto& tri = mesh.triangles[k];
+        const Vec3& a = mesh.vertices[tri[0]];
+        rest_normals_[k] = normalized(cross(mesh.vertices[tri[1]] - a, mesh.vertices[tri[2]] - a));
+      }
+    }
+    const auto* rigid = std::get_if<RigidMotion::AtTime>(&now);
+    const bool deforms = !rigid && !at_rest(now);
+    const bool turns = rigid && !rigid->at_rest();
+    placed.resize(mesh.triangles.size());
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      const auto& tri = mesh.triangles[k];
+      PlacedTriangle& p = placed[k];
+      p.a = x[tri[0]], p.b = x[tri[1]], p.c = x[tri[2]];
+      p.normal = deforms ? normalized(cross(p.b - p.a, p.c - p.a))
+                         : (turns ? rigid->turn(rest_normals_[k]) : rest_normals_[k]);
+    }
   }
   bool moves() const { return controller || !std::holds_alternative<StaticMotion>(motion); }
 
@@ -73,8 +100,12 @@ struct MeshWall {
                std::vector<FeatureTouch>& scratch, std::vector<std::uint32_t>& order,
                WallTouches& out) const;
 
+  // Whether triangle t, as placed last, comes closer than `reach` to the point c.
+  bool within(const Vec3& c, double reach, std::uint32_t t) const;
+
 private:
-  double cos_merge_ = 1.0; // of merge_degrees, at the last place()
+  double cos_merge_ = 1.0;         // of merge_degrees, at the last place()
+  std::vector<Vec3> rest_normals_; // of the triangles at rest (taken at the first place())
 };
 
 } // namespace yuxi

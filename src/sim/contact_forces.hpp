@@ -18,6 +18,7 @@
 #include "scene/plane_wall.hpp"
 #include "scene/shaped_wall.hpp"
 #include "sim/contact_tally.hpp"
+#include "sim/near_wall_elements.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,8 +91,10 @@ public:
   // whose normals are nearest theirs (within 60 degrees), so a contact's history carries over
   // when its point moves onto another triangle; a previous contact that nothing picks up has
   // opened. `loads` (one per wall) gets what the grains do to each wall, `elements` the force
-  // of each contact on its triangle or patch; `record`, where enabled, each contact.
-  void compute_walls(ParticleStore& s, const NeighborList& list,
+  // of each contact on its triangle or patch; `record`, where enabled, each contact. `near`,
+  // where given, stands for the list's candidate triangles (the same touches). Where the model
+  // has SIMD lanes, the contacts are evaluated in batches, with the same bits.
+  void compute_walls(ParticleStore& s, const NeighborList& list, const NearWallElements* near,
                      const std::vector<ShapedWall>& walls, double t, double dt, ContactTally& tally,
                      std::vector<WallLoad>& loads, std::vector<ElementForce>& elements,
                      ContactRecord& record) {
@@ -104,23 +107,29 @@ public:
       torque_points[w] = torque_point(walls[w]);
       active[w] = wall_active(walls[w], t) ? 1 : 0;
     }
+    bool batched = false;
+    if constexpr (BatchedModel<Model>) batched = batch_ != nullptr;
+    WallBooks books{loads, elements, record, tally, torque_points};
+    batch_releases_.clear();
     WallTouches touches;
     for (std::size_t k = 0; k < list.walls.size(); ++k) {
       const WallContactRef ref = list.walls[k];
       const std::uint32_t i = ref.particle;
       const ShapedWall& wall = walls[ref.wall];
-      const auto& coeffs = law_.coeffs(s.material[i], wall_material(wall));
-      const double ai = s.radius[i];
       touches.n = 0;
       if (active[ref.wall]) {
         if (const auto* mesh = std::get_if<MeshWall>(&wall))
-          mesh->touches(s.x[i], ai, {list.wall_elements.data() + ref.first, ref.count}, scratch_,
-                        order_, touches);
+          mesh->touches(s.x[i], s.radius[i],
+                        near ? near->of(k)
+                             : std::span<const std::uint32_t>{list.wall_elements.data() + ref.first,
+                                                              ref.count},
+                        scratch_, order_, touches);
         else
-          std::get<CylinderWall>(wall).touches(s.x[i], ai, touches);
+          std::get<CylinderWall>(wall).touches(s.x[i], s.radius[i], touches);
       }
       WallContactSet<State>& set = history.wall[k];
       if (touches.n == 0 && set.n == 0) continue;
+      const auto& coeffs = law_.coeffs(s.material[i], wall_material(wall));
       // Each new contact (deepest first) takes the free previous state of nearest normal.
       const std::size_t n = std::min(touches.n, max_wall_contacts);
       int match[max_wall_contacts];
@@ -135,49 +144,150 @@ public:
         if (match[c] >= 0) taken[match[c]] = true;
       }
       for (std::size_t m = 0; m < set.n; ++m)
-        if (!taken[m]) tally.dissipated += Model::release(coeffs, set.at[m].state);
-      // Contact c's state to slot c, by swaps (no copy of the whole set).
-      int slot_of[max_wall_contacts], held_by[max_wall_contacts];
-      for (int m = 0; m < static_cast<int>(max_wall_contacts); ++m) slot_of[m] = held_by[m] = m;
-      for (std::size_t c = 0; c < n; ++c) {
-        if (match[c] < 0) continue;
-        const int from = slot_of[match[c]], here = static_cast<int>(c);
-        if (from == here) continue;
-        std::swap(set.at[c], set.at[from]);
-        const int displaced = held_by[here];
-        held_by[here] = match[c], held_by[from] = displaced;
-        slot_of[match[c]] = here, slot_of[displaced] = from;
-      }
+        if (!taken[m]) {
+          const double released = Model::release(coeffs, set.at[m].state);
+          if constexpr (BatchedModel<Model>) {
+            if (batched) { // booked in its place among the batch's contacts (flush_walls)
+              batch_releases_.push_back({batch_->lanes.size, released});
+              continue;
+            }
+          }
+          tally.dissipated += released;
+        }
+      if (n > 1 || set.n > 1) move_matched_states(set, match, n);
       for (std::size_t c = 0; c < n; ++c) {
         const WallTouch& touch = touches.at[c];
         State& state = set.at[c].state;
         if (match[c] < 0) state = State{};
         set.at[c].normal = touch.normal;
+        const WallSite site{i, ref.wall, static_cast<std::uint32_t>(k),
+                            static_cast<std::uint32_t>(c), &touch};
+        if constexpr (BatchedModel<Model>) {
+          if (batched) {
+            queue_wall_contact(s, site, coeffs, state, dt, books);
+            continue;
+          }
+        }
         const ContactGeometry g =
             against_wall(s, i, touch.normal, touch.distance, touch.velocity, dt);
         const ContactResult r = Model::evaluate(g, coeffs, state);
         s.f[i] += r.force;
         s.torque[i] += r.torque_i;
         book(r, tally);
-        const double work = dot(r.force, touch.velocity) * dt;
-        tally.wall_work += work;
-        WallLoad& load = loads[ref.wall];
-        load.force -= r.force;
-        load.torque -= cross(touch.point - torque_points[ref.wall], r.force);
-        load.work += work;
-        ++load.contacts;
-        elements.push_back({ref.wall, touch.element, -r.force});
-        if (record.enabled)
-          record.wall.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(c),
-                                 touch.element, touch.point, touch.normal, r.force, r.elastic,
-                                 g.overlap});
-        track_overlap(g.overlap, ai, i, tally);
+        book_wall_contact(s, site, r.force, r.elastic, g.overlap, dt, books);
       }
       set.n = static_cast<std::uint8_t>(n);
     }
+    if constexpr (BatchedModel<Model>)
+      if (batched) flush_walls(s, dt, books);
   }
 
 private:
+  // Where compute_walls() books what a wall contact does.
+  struct WallBooks {
+    std::vector<WallLoad>& loads;
+    std::vector<ElementForce>& elements;
+    ContactRecord& record;
+    ContactTally& tally;
+    const std::vector<Vec3>& torque_points;
+  };
+  // One wall contact: grain i, its wall, its place in the list (candidate k, contact c), and
+  // where it touches.
+  struct WallSite {
+    std::uint32_t i, wall, k, c;
+    const WallTouch* touch;
+  };
+  // A wall contact in the batch: its site, with what the booking needs of its touch copied
+  // (the touches are the grain's; the normal stays in the lanes).
+  struct QueuedWall {
+    std::uint32_t i, wall, k, c, element;
+    Vec3 point, velocity;
+    State* state;
+  };
+
+  // Moves the state that wall contact c matched (match[c], -1 for none) to slot c, by swaps
+  // (no copy of the whole set).
+  static void move_matched_states(WallContactSet<State>& set, const int* match, std::size_t n) {
+    int slot_of[max_wall_contacts], held_by[max_wall_contacts];
+    for (int m = 0; m < static_cast<int>(max_wall_contacts); ++m) slot_of[m] = held_by[m] = m;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (match[c] < 0) continue;
+      const int from = slot_of[match[c]], here = static_cast<int>(c);
+      if (from == here) continue;
+      std::swap(set.at[c], set.at[from]);
+      const int displaced = held_by[here];
+      held_by[here] = match[c], held_by[from] = displaced;
+      slot_of[match[c]] = here, slot_of[displaced] = from;
+    }
+  }
+
+  // What follows the force on the grain and the energies: the wall's work, load and element
+  // force, the record and the deepest overlap.
+  static void book_wall_contact(const ParticleStore& s, const WallSite& site, const Vec3& force,
+                                double elastic, double overlap, double dt, WallBooks& books) {
+    const WallTouch& touch = *site.touch;
+    const double work = dot(force, touch.velocity) * dt;
+    books.tally.wall_work += work;
+    WallLoad& load = books.loads[site.wall];
+    load.force -= force;
+    load.torque -= cross(touch.point - books.torque_points[site.wall], force);
+    load.work += work;
+    ++load.contacts;
+    books.elements.push_back({site.wall, touch.element, -force});
+    if (books.record.enabled)
+      books.record.wall.push_back(
+          {site.k, site.c, touch.element, touch.point, touch.normal, force, elastic, overlap});
+    track_overlap(overlap, s.radius[site.i], site.i, books.tally);
+  }
+
+  // Puts a wall contact in the batch's lanes (flushed when full).
+  void queue_wall_contact(ParticleStore& s, const WallSite& site,
+                          const typename Model::Coeffs& coeffs, State& state, double dt,
+                          WallBooks& books) {
+    Lanes& lanes = batch_->lanes;
+    const std::size_t k = lanes.size++;
+    const WallTouch& touch = *site.touch;
+    lanes.set_wall_contact(k, touch.normal, touch.distance, s.radius[site.i],
+                           s.v[site.i] - touch.velocity, s.w[site.i], s.inv_mass[site.i], state);
+    if (!lanes.uniform) lanes.set_coeffs(k, coeffs);
+    queued_walls_[k] = {site.i,        site.wall,   site.k,         site.c,
+                        touch.element, touch.point, touch.velocity, &state};
+    if (lanes.full()) flush_walls(s, dt, books);
+  }
+
+  // Evaluates the batch of wall contacts and books each as the one-by-one loop does, in the
+  // same order, with the states released before each (the same bits whichever path runs).
+  void flush_walls(ParticleStore& s, double dt, WallBooks& books) {
+    Lanes& lanes = batch_->lanes;
+    if (lanes.size > 0) lanes.evaluate_walls(dt);
+    std::size_t released = 0;
+    for (std::size_t k = 0; k < lanes.size; ++k) {
+      for (; released < batch_releases_.size() && batch_releases_[released].first == k; ++released)
+        books.tally.dissipated += batch_releases_[released].second;
+      const QueuedWall& q = queued_walls_[k];
+      const Vec3 force{lanes.fx[k], lanes.fy[k], lanes.fz[k]};
+      const Vec3 nxf{lanes.nxf_x[k], lanes.nxf_y[k], lanes.nxf_z[k]};
+      s.f[q.i] += force;
+      s.torque[q.i] -= lanes.a_i[k] * nxf;
+      books.tally.elastic += lanes.elastic[k];
+      books.tally.dissipated += lanes.dissipated[k];
+      ++books.tally.touching;
+      WallTouch touch;
+      touch.normal = {lanes.dx[k], lanes.dy[k], lanes.dz[k]}; // (as set_wall_contact() put it)
+      touch.distance = lanes.distance[k];
+      touch.point = q.point;
+      touch.velocity = q.velocity;
+      touch.element = q.element;
+      book_wall_contact(s, {q.i, q.wall, q.k, q.c, &touch}, force, lanes.elastic[k],
+                        lanes.overlap[k], dt, books);
+      lanes.save_state(k, *q.state);
+    }
+    for (; released < batch_releases_.size(); ++released) // after the batch's last contact
+      books.tally.dissipated += batch_releases_[released].second;
+    batch_releases_.clear();
+    lanes.size = 0;
+  }
+
   // The geometry of grain i against a wall (a plane, a triangle, a cylinder's patch) of zero
   // radius and infinite mass: unit normal n from the wall to the centre, the centre at
   // `distance` from the wall's point, which moves with `v_wall`.
@@ -419,6 +529,10 @@ private:
   ContactLaw<Model> law_;
   std::vector<FeatureTouch> scratch_; // a mesh's candidate touches of one grain
   std::vector<std::uint32_t> order_;
+  // The wall contacts in the batch, and the energies of wall contacts released while it filled,
+  // each with the lane it came before.
+  QueuedWall queued_walls_[Lanes::capacity];
+  std::vector<std::pair<std::size_t, double>> batch_releases_;
   std::unique_ptr<Batch> batch_;    // null where the law needs the one-by-one loop
   bool walls_still_ = false;        // of the step being computed
   PairSet set_ = PairSet::all;      // of the call being computed

@@ -275,7 +275,7 @@ double Simulation::imbalance() const {
 
 std::size_t Simulation::memory_bytes() const {
   return store_.memory_bytes() + grid_.memory_bytes() + list_.memory_bytes() +
-         near_.memory_bytes() + history_->memory_bytes();
+         near_.memory_bytes() + near_walls_.memory_bytes() + history_->memory_bytes();
 }
 
 void Simulation::settle_energy_books() {
@@ -355,8 +355,9 @@ void Simulation::compute_forces(bool advance_history) {
     timer.switch_to(timers_.pair);
     std::visit(
         [&](auto& f) {
-          f.compute_walls(store_, list_, walls_, time_, dt, tally_, wall_loads_, element_forces_,
-                          record_);
+          f.compute_walls(store_, list_,
+                          near_.hold() && near_walls_.picked ? &near_walls_ : nullptr, walls_,
+                          time_, dt, tally_, wall_loads_, element_forces_, record_);
         },
         forces_);
   }
@@ -366,6 +367,7 @@ void Simulation::compute_forces(bool advance_history) {
 void Simulation::refresh_near_pairs() {
   if (near_.hold()) return;
   near_.picked = false;
+  near_walls_.picked = false;
   // The margin leaves room for about `lasting` steps at the last step's pace (a pick costs
   // about one scan of the whole list; a dense packing has many pairs just short of touching,
   // so a wider margin keeps many more), and at most a fraction of the skin. Near pairs that
@@ -376,6 +378,7 @@ void Simulation::refresh_near_pairs() {
   if (!(margin > 0.0) || 2.0 * min_steps * pace >= margin) return;
   pick_near_pairs(store_.x.data(), store_.radius.data(), list_, history_->pair_slots(), margin,
                   near_);
+  if (!list_.walls.empty()) pick_near_wall_elements(store_, list_, walls_, margin, near_walls_);
 }
 
 void Simulation::check_health() {

@@ -27,6 +27,7 @@
 #include "scene/wall_motion.hpp"
 #include "sim/contact_forces.hpp"
 #include "sim/energy_books.hpp"
+#include "sim/near_wall_elements.hpp"
 #include "sim/phase_times.hpp"
 
 #include <array>
@@ -136,6 +137,8 @@ public:
   const Halo& halo() const { return halo_; }
   // The pairs the last force evaluation scanned, where they held (core/near_pairs.hpp).
   const NearPairs& near_pairs() const { return near_; }
+  // The meshes' near triangles picked with them (sim/near_wall_elements.hpp).
+  const NearWallElements& near_wall_elements() const { return near_walls_; }
   const CellGrid& grid() const { return grid_; }
   // The energy books, summed over the ranks. Collective.
   EnergyBooks energies() const;
@@ -454,6 +457,7 @@ private:
   std::size_t owned_grains_ = 0; // owned particles [0, owned_grains_) are grains, the rest walls
   NeighborList list_;
   NearPairs near_;
+  NearWallElements near_walls_;     // picked with near_ (sim/near_wall_elements.hpp)
   double moved2_ = 0.0;             // largest squared displacement of a particle this step
   double last_displacement_ = 0.0;  // largest displacement of a particle in the last step
   double position_round_off_ = 0.0; // bound on the round-off of one step's displacement

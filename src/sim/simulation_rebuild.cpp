@@ -72,6 +72,7 @@ void Simulation::rebuild(BuildAfter after) {
   // (compute_forces()).
   list_.index_ghost_pairs(halo_.sends_to_other_ranks());
   near_.picked = false; // (they index the old list)
+  near_walls_.picked = false;
   list_.planes.clear();
   for (std::uint32_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;

@@ -109,7 +109,10 @@ void Simulation::list_wall_candidates() {
           const double out = p < lo[a] ? lo[a] - p : (p > hi[a] ? p - hi[a] : 0.0);
           d2 += out * out;
         }
-        if (d2 < within * within) list_.wall_elements.push_back(t);
+        if (!(d2 < within * within)) continue;
+        const auto& placed = mesh.placed[t]; // and to its plane
+        const double above = dot(placed.normal, store_.x[i] - placed.a);
+        if (above * above < within * within) list_.wall_elements.push_back(t);
       }
       const auto count = static_cast<std::uint32_t>(list_.wall_elements.size()) - first;
       if (count > 0) list_.walls.push_back({i, w, first, count});

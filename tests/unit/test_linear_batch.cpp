@@ -136,6 +136,73 @@ TEST_P(LinearBatchMatches, TheOneByOneLawBitForBit) {
   }
 }
 
+// Wall contacts (a mesh's triangle, a cylinder's patch) go through the lanes with their normal
+// and distance given: the same bits as the law on the geometry the one-by-one wall loop builds
+// (a wall of zero radius, no spin and infinite mass, moving with its own velocity).
+TEST_P(LinearBatchMatches, WallContactsBitForBit) {
+  const auto [cap, carry] = GetParam();
+  const double dt = 1e-4;
+  Random r(11);
+  const std::size_t n = 21;
+  std::array<Contact, LinearBatch::capacity> contacts;
+  std::array<Law::State, LinearBatch::capacity> states{};
+  std::array<Vec3, LinearBatch::capacity> normal;
+  std::array<double, LinearBatch::capacity> distance;
+  for (std::size_t k = 0; k < n; ++k) {
+    contacts[k] = random_contact(r, cap, carry);
+    const Vec3 dir = random_vec(r, 1.0);
+    normal[k] = dir * (1.0 / norm(dir));
+    distance[k] = contacts[k].a_i - r.uniform(1e-4, 1e-2);
+  }
+  LinearBatch batch;
+  std::size_t slid = 0, stuck = 0;
+  for (int step = 0; step < 40; ++step) {
+    batch.size = n;
+    for (std::size_t k = 0; k < n; ++k) {
+      const Contact& c = contacts[k];
+      batch.set_wall_contact(k, normal[k], distance[k], c.a_i, c.v_rel, c.w_i, c.inv_m_i,
+                             states[k]);
+      batch.set_coeffs(k, c.c);
+    }
+    batch.evaluate_walls(cap, carry, dt);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Contact& c = contacts[k];
+      ContactGeometry g;
+      g.n = normal[k];
+      g.overlap = c.a_i - distance[k];
+      g.distance = distance[k];
+      g.v_rel = c.v_rel;
+      g.w_i = c.w_i;
+      g.w_j = Vec3{};
+      g.a_i = c.a_i;
+      g.a_j = 0.0;
+      g.m_eff = 1.0 / c.inv_m_i;
+      g.r_eff = c.a_i;
+      g.dt = dt;
+      const ContactResult ref = Law::evaluate(g, c.c, states[k]);
+      SCOPED_TRACE(testing::Message() << "wall contact " << k << ", step " << step);
+      EXPECT_EQ(batch.fx[k], ref.force.x);
+      EXPECT_EQ(batch.fy[k], ref.force.y);
+      EXPECT_EQ(batch.fz[k], ref.force.z);
+      const Vec3 nxf{batch.nxf_x[k], batch.nxf_y[k], batch.nxf_z[k]};
+      EXPECT_EQ(Vec3{} - c.a_i * nxf, ref.torque_i);
+      EXPECT_EQ(batch.overlap[k], g.overlap);
+      EXPECT_EQ(batch.elastic[k], ref.elastic);
+      EXPECT_EQ(batch.dissipated[k], ref.dissipated);
+      EXPECT_EQ(batch.spring(k), states[k].tangential);
+      (states[k].tangential.sliding ? slid : stuck) += 1;
+      // The contact turns and slides on.
+      const Vec3 turned = normal[k] + random_vec(r, 2e-3);
+      normal[k] = turned * (1.0 / norm(turned));
+      distance[k] += r.uniform(-2e-4, 2e-4);
+      contacts[k].v_rel += random_vec(r, 0.2);
+      contacts[k].w_i += random_vec(r, 0.5);
+    }
+  }
+  EXPECT_GT(slid, 0u);
+  EXPECT_GT(stuck, 0u);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryConvention, LinearBatchMatches,
                          testing::Combine(testing::Values(CapOn::spring, CapOn::total,
                                                           CapOn::total_lammps),
