@@ -234,9 +234,8 @@ private:
     load.work += work;
     ++load.contacts;
     books.elements.push_back({site.wall, touch.element, -force});
-    if (books.record.enabled)
-      books.record.wall.push_back(
-          {site.k, site.c, touch.element, touch.point, touch.normal, force, elastic, overlap});
+    books.record.keep_wall(
+        {site.k, site.c, touch.element, touch.point, touch.normal, force, elastic, overlap});
     track_overlap(overlap, s.radius[site.i], site.i, books.tally);
   }
 

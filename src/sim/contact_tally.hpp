@@ -69,6 +69,9 @@ struct ContactRecord {
     plane_force[k] = force;
     plane_elastic[k] = elastic;
   }
+  void keep_wall(const WallContactRecord& r) {
+    if (enabled) wall.push_back(r);
+  }
 };
 
 } // namespace yuxi

@@ -67,6 +67,21 @@ ContactGeometry geometry_of(const Contact& k, double dt) {
   return g;
 }
 
+// Lane k of an evaluated batch against the one-by-one law's result `ref` for the same contact
+// (radii a_i, a_j; `spring`: the state the law left): force, both torques, energies, spring.
+void expect_lane_is(const LinearBatch& batch, std::size_t k, const ContactResult& ref, double a_i,
+                    double a_j, const SliderState& spring) {
+  EXPECT_EQ(batch.fx[k], ref.force.x);
+  EXPECT_EQ(batch.fy[k], ref.force.y);
+  EXPECT_EQ(batch.fz[k], ref.force.z);
+  const Vec3 nxf{batch.nxf_x[k], batch.nxf_y[k], batch.nxf_z[k]};
+  EXPECT_EQ(Vec3{} - a_i * nxf, ref.torque_i);
+  EXPECT_EQ(Vec3{} - a_j * nxf, ref.torque_j);
+  EXPECT_EQ(batch.elastic[k], ref.elastic);
+  EXPECT_EQ(batch.dissipated[k], ref.dissipated);
+  EXPECT_EQ(batch.spring(k), spring);
+}
+
 class LinearBatchMatches : public testing::TestWithParam<std::tuple<CapOn, Carry>> {};
 
 // The conventions by name in ctest's list, not as bytes.
@@ -111,18 +126,8 @@ TEST_P(LinearBatchMatches, TheOneByOneLawBitForBit) {
         const ContactResult ref =
             Law::evaluate(geometry_of(contacts[k], dt), contacts[k].c, states[k]);
         SCOPED_TRACE(testing::Message() << "contact " << k << ", step " << step);
-        EXPECT_EQ(batch.fx[k], ref.force.x);
-        EXPECT_EQ(batch.fy[k], ref.force.y);
-        EXPECT_EQ(batch.fz[k], ref.force.z);
-        const Vec3 nxf{batch.nxf_x[k], batch.nxf_y[k], batch.nxf_z[k]};
-        const Vec3 torque_i = Vec3{} - contacts[k].a_i * nxf;
-        const Vec3 torque_j = Vec3{} - contacts[k].a_j * nxf;
-        EXPECT_EQ(torque_i, ref.torque_i);
-        EXPECT_EQ(torque_j, ref.torque_j);
-        EXPECT_EQ(batch.elastic[k], ref.elastic);
-        EXPECT_EQ(batch.dissipated[k], ref.dissipated);
+        expect_lane_is(batch, k, ref, contacts[k].a_i, contacts[k].a_j, states[k].tangential);
         const SliderState& s = states[k].tangential;
-        EXPECT_EQ(batch.spring(k), s);
         (s.sliding ? slid : stuck) += 1;
         // The contact moves on: it turns and its velocities change, so the spring is carried.
         Contact& c = contacts[k];
@@ -181,15 +186,8 @@ TEST_P(LinearBatchMatches, WallContactsBitForBit) {
       g.dt = dt;
       const ContactResult ref = Law::evaluate(g, c.c, states[k]);
       SCOPED_TRACE(testing::Message() << "wall contact " << k << ", step " << step);
-      EXPECT_EQ(batch.fx[k], ref.force.x);
-      EXPECT_EQ(batch.fy[k], ref.force.y);
-      EXPECT_EQ(batch.fz[k], ref.force.z);
-      const Vec3 nxf{batch.nxf_x[k], batch.nxf_y[k], batch.nxf_z[k]};
-      EXPECT_EQ(Vec3{} - c.a_i * nxf, ref.torque_i);
+      expect_lane_is(batch, k, ref, c.a_i, 0.0, states[k].tangential);
       EXPECT_EQ(batch.overlap[k], g.overlap);
-      EXPECT_EQ(batch.elastic[k], ref.elastic);
-      EXPECT_EQ(batch.dissipated[k], ref.dissipated);
-      EXPECT_EQ(batch.spring(k), states[k].tangential);
       (states[k].tangential.sliding ? slid : stuck) += 1;
       // The contact turns and slides on.
       const Vec3 turned = normal[k] + random_vec(r, 2e-3);
