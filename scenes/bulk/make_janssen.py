@@ -7,11 +7,17 @@ that walls.csv and measurements.csv give every silo's bottom and side forces apa
                         with mu_w = 0 (about 125,000 grains; the long suite)
     janssen-small.toml  D = 10 d, 1 and 2 D with mu_w = 0.5, 1 D with mu_w = 0 (3,600 grains;
                         the default tests)
+    janssen-lowered.toml  janssen.toml's silos, their floors then lowered by 0.2 d at 0.02 d/tau
+                        and the beds left to settle again; branched from janssen.toml's settled
+                        state (yuxi run janssen-lowered.toml --from <janssen's run folder>)
 
 Units: d = 1 (radii uniform in 0.45-0.55), grain density 6/pi (m = 1 for d = 1), g = 1.
 Each silo is poured in stages of one diameter of height: stage j pours its grains from a region
 2-12 d above the height the stage fills to, so that no grain falls more than D + 12 d. The grains
-then settle; Janssen's wall friction is mobilised by the grains settling along the wall.
+then settle; Janssen's wall friction is mobilised by the grains settling along the wall. Settling
+leaves it little mobilised near the top of a bed, so the lowered variant then sinks every floor a
+little, as silo experiments do (Vanel & Clement, Eur. Phys. J. B 11 (1999) 525): the whole bed
+slides down along the wall and its friction is mobilised everywhere.
 
 usage: make_janssen.py  (writes both files beside this script)
 """
@@ -24,7 +30,9 @@ GRAIN_VOLUME = 4 / 3 * math.pi * R_MEAN_CUBE
 PHI = 0.6  # the settled packing fraction the counts aim at
 
 
-def scene(name, diameter, silos, rate, settle, comment):
+def scene(name, diameter, silos, rate, settle, comment, lowered=None):
+    """lowered: (speed, travel, settle) of the floors, which start sinking at the end of the
+    pour-and-settle run; None for that run itself."""
     radius = diameter / 2
     pitch = diameter + 2.0
     columns = min(4, len(silos))
@@ -35,6 +43,12 @@ def scene(name, diameter, silos, rate, settle, comment):
     stages = max(math.ceil(c / per_stage) for c in counts)
     top = (stages + 1) * diameter + 14
     t_end = round(stages * per_stage / rate + settle)
+    motion = []
+    if lowered:
+        speed, travel, again = lowered
+        t0, t1 = t_end, t_end + travel / speed
+        t_end = round(t1 + again)
+        motion = [f"velocity = [0.0, 0.0, {-speed}]", f"t0 = {t0}", f"t1 = {t1:.6g}"]
     out = [f"# {comment}", "# Written by make_janssen.py; docs/models/validation.md (B2).", ""]
     out += ['materials = ["grain", "wall", "smooth"]', "", "[material.grain]",
             "density = 1.909859317 # m = 1 for d = 1", "",
@@ -61,7 +75,7 @@ def scene(name, diameter, silos, rate, settle, comment):
                 "[[cylinder]]", f'name = "{tag}_floor"', f"center = [{x}, {y}, 0.0]",
                 f"radius = {radius + 0.5}", 'grains = "outside"', "lo = -1.0", "hi = 0.0",
                 'material = "wall"',
-                ]
+                ] + motion
         for j in range(math.ceil(count / per_stage)):
             n = min(per_stage, count - j * per_stage)
             level = (j + 1) * diameter
@@ -90,6 +104,12 @@ def scene(name, diameter, silos, rate, settle, comment):
     [(0.5, "wall"), (1, "wall"), (2, "wall"), (3, "wall"), (4, "wall"), (6, "wall"),
      (1, "smooth")], 400.0, 55.0,
     "Janssen silos: D = 20 d, H = 0.5-6 D with mu_w = 0.5, and 1 D with mu_w = 0."))
+(HERE / "janssen-lowered.toml").write_text(scene(
+    "janssen-lowered", 20.0,
+    [(0.5, "wall"), (1, "wall"), (2, "wall"), (3, "wall"), (4, "wall"), (6, "wall"),
+     (1, "smooth")], 400.0, 55.0,
+    "Janssen silos of janssen.toml, their floors then lowered by 0.2 d to mobilise the wall "
+    "friction.", lowered=(0.02, 0.2, 15.0)))
 (HERE / "janssen-small.toml").write_text(scene(
     "janssen-small", 10.0, [(1, "wall"), (2, "wall"), (1, "smooth")], 150.0, 30.0,
     "Janssen silos, small: D = 10 d, H = 1 and 2 D with mu_w = 0.5, and 1 D with mu_w = 0."))

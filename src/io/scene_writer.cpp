@@ -15,19 +15,25 @@ toml::array vec(const Vec3& v) {
   return toml::array{v.x, v.y, v.z};
 }
 
+// The drift and the oscillation of a rigid motion, and its times, as keys of a wall's table.
+void write_carrying(const RigidMotion& r, toml::table& t) {
+  t.insert("velocity", vec(r.drift));
+  if (r.amplitude != 0.0) {
+    t.insert("oscillate_amplitude", r.amplitude);
+    t.insert("oscillate_direction", vec(r.direction));
+    t.insert("oscillate_omega", r.frequency);
+  }
+  t.insert("t0", r.t0);
+  if (std::isfinite(r.t1)) t.insert("t1", r.t1);
+}
+
 // The motion of a mesh as the keys of its [[mesh]] table.
 void write_motion(const WallMotion& motion, toml::table& t) {
   if (const auto* r = std::get_if<RigidMotion>(&motion)) {
     t.insert("omega", r->omega);
     t.insert("axis", vec(r->axis));
     t.insert("axis_point", vec(r->center));
-    t.insert("velocity", vec(r->drift));
-    if (r->amplitude != 0.0) {
-      t.insert("oscillate_amplitude", r->amplitude);
-      t.insert("oscillate_direction", vec(r->direction));
-      t.insert("oscillate_omega", r->frequency);
-    }
-    t.insert("t0", r->t0);
+    write_carrying(*r, t);
   } else if (const auto* m = std::get_if<RadialCosineMotion>(&motion)) {
     t.insert("radial_mode", m->mode);
     t.insert("radial_amplitude", m->amplitude);
@@ -253,6 +259,7 @@ void write_shaped_walls(const Scene& s, toml::table& doc) {
                     {"material", s.materials[c.material]}};
       if (std::isfinite(c.lo)) t.insert("lo", c.lo);
       if (std::isfinite(c.hi)) t.insert("hi", c.hi);
+      if (c.moves()) write_carrying(c.carried, t);
       write_window(c.active, t);
       cylinders.push_back(t);
     }

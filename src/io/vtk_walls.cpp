@@ -32,11 +32,12 @@ void WallSurface::add_mesh(const MeshWall& mesh, std::span<const Vec3> forces,
 void WallSurface::add_cylinder(const CylinderWall& c, const Box& box, double t,
                                std::int32_t wall_index, int segments) {
   // Heights along the axis: the ends, an infinite one where the axis leaves the box.
+  const Vec3 center = c.placed_center();
   double h_min = std::numeric_limits<double>::infinity(), h_max = -h_min;
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 p{corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
                  corner & 4 ? box.hi.z : box.lo.z};
-    const double h = dot(p - c.center, c.axis);
+    const double h = dot(p - center, c.axis);
     h_min = std::min(h_min, h);
     h_max = std::max(h_max, h);
   }
@@ -52,8 +53,7 @@ void WallSurface::add_cylinder(const CylinderWall& c, const Box& box, double t,
   for (const double h : {lo, hi})
     for (std::uint32_t j = 0; j < n; ++j) {
       const double phi = c.omega * t + 2.0 * std::numbers::pi * j / n;
-      points.push_back(c.center + h * c.axis +
-                       c.radius * (std::cos(phi) * e1 + std::sin(phi) * e2));
+      points.push_back(center + h * c.axis + c.radius * (std::cos(phi) * e1 + std::sin(phi) * e2));
     }
   const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t d) {
     triangles.push_back({a, b, d});
@@ -68,12 +68,12 @@ void WallSurface::add_cylinder(const CylinderWall& c, const Box& box, double t,
   if (!c.capped) return;
   if (std::isfinite(c.lo)) {
     const auto centre = static_cast<std::uint32_t>(points.size());
-    points.push_back(c.center + c.lo * c.axis);
+    points.push_back(center + c.lo * c.axis);
     for (std::uint32_t j = 0; j < n; ++j) add(centre, ring_lo + (j + 1) % n, ring_lo + j);
   }
   if (std::isfinite(c.hi)) {
     const auto centre = static_cast<std::uint32_t>(points.size());
-    points.push_back(c.center + c.hi * c.axis);
+    points.push_back(center + c.hi * c.axis);
     for (std::uint32_t j = 0; j < n; ++j) add(centre, ring_hi + j, ring_hi + (j + 1) % n);
   }
 }

@@ -19,6 +19,20 @@ ActiveWindow read_window(TomlReader& t) {
   return w;
 }
 
+// The part of a rigid motion that carries a wall without turning it: the drift and the
+// oscillation, between t0 and t1.
+void read_carrying(TomlReader& t, RigidMotion& m) {
+  m.drift = t.vec3("velocity", Vec3{});
+  m.amplitude = t.number("oscillate_amplitude", 0.0);
+  if (m.amplitude != 0.0) {
+    m.direction = unit_vector(t, "oscillate_direction", Vec3{0, 0, 1});
+    m.frequency = t.positive("oscillate_omega");
+  }
+  m.t0 = t.number("t0", 0.0);
+  m.t1 = t.number("t1", HUGE_VAL);
+  if (!(m.t1 > m.t0)) t.fail("t1", "the motion must stop (t1) after it starts (t0)");
+}
+
 // The motion of a mesh's vertices: rigid (a turn, a drift, an oscillation, summed) or the
 // basin's radial mode, from t0.
 WallMotion read_motion(TomlReader& t) {
@@ -41,13 +55,7 @@ WallMotion read_motion(TomlReader& t) {
   m.omega = t.number("omega", 0.0);
   m.axis = unit_vector(t, "axis", Vec3{0, 0, 1});
   m.center = t.vec3("axis_point", Vec3{});
-  m.drift = t.vec3("velocity", Vec3{});
-  m.amplitude = t.number("oscillate_amplitude", 0.0);
-  if (m.amplitude != 0.0) {
-    m.direction = unit_vector(t, "oscillate_direction", Vec3{0, 0, 1});
-    m.frequency = t.positive("oscillate_omega");
-  }
-  m.t0 = t.number("t0", 0.0);
+  read_carrying(t, m);
   return m;
 }
 
@@ -136,6 +144,7 @@ void read_cylinder(Scene& scene, TomlReader& t, std::size_t index) {
   if (!(c.lo < c.hi)) t.fail("hi", "must be above lo");
   c.capped = t.choice("ends", {"capped", "open"}, "capped") == "capped";
   c.omega = t.number("omega", 0.0);
+  read_carrying(t, c.carried);
   c.material = material_of(scene, t, "material");
   c.active = read_window(t);
   t.finish();

@@ -7,7 +7,8 @@ namespace yuxi {
 void CylinderWall::touches(const Vec3& x, double r, WallTouches& out) const {
   out.n = 0;
   out.dropped = 0;
-  const Vec3 d = x - center;
+  const Vec3 c = placed_center();
+  const Vec3 d = x - c;
   const double h = dot(d, axis);
   const Vec3 radial = d - h * axis;
   const double rho = norm(radial);
@@ -37,14 +38,14 @@ void CylinderWall::touches(const Vec3& x, double r, WallTouches& out) const {
   const bool within = h >= lo && h <= hi;
   const bool over_cap = rho <= radius;
   if (within) {
-    const Vec3 point = center + h * axis + radius * e;
+    const Vec3 point = c + h * axis + radius * e;
     if (inside)
       add(radius - rho, -e, point, 0);
     else
       add(rho - radius, e, point, 0);
   }
   if (capped && over_cap) {
-    const Vec3 foot_lo = center + lo * axis + radial, foot_hi = center + hi * axis + radial;
+    const Vec3 foot_lo = c + lo * axis + radial, foot_hi = c + hi * axis + radial;
     if (inside) {
       if (std::isfinite(lo)) add(h - lo, axis, foot_lo, 1);
       if (std::isfinite(hi)) add(hi - h, -axis, foot_hi, 2);
@@ -57,7 +58,7 @@ void CylinderWall::touches(const Vec3& x, double r, WallTouches& out) const {
   if (!within && !(capped && over_cap)) {
     const double end = h < lo ? lo : hi;
     if (std::isfinite(end)) {
-      const Vec3 point = center + end * axis + radius * e;
+      const Vec3 point = c + end * axis + radius * e;
       const Vec3 gap = x - point;
       const double dist = norm(gap);
       if (dist > 0.0) add(dist, gap * (1.0 / dist), point, h < lo ? 3 : 4);

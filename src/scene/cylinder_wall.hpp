@@ -1,7 +1,10 @@
 // An analytic cylinder wall: grains inside it (a drum, a silo) or outside it (a post), about
 // any axis, infinite or between two heights along the axis, where a finite one has flat end
 // caps or open rims. It may turn about its own axis (a rotating drum): its surface then moves
-// with omega k x (p - c) and its shape stays.
+// with omega k x (p - c) and its shape stays. It may also be carried without turning, by the
+// drift and oscillation of a rigid motion (rigid_motion.hpp, between t0 and t1: a floor lowered
+// under a silo's bed, a shaken tube); c is then the centre carried to the time of the last
+// place(), and the surface moves with omega k x (p - c) + the carrying velocity.
 //
 // For a grain at centre x, with h = (x - c).k its height along the axis and rho its distance
 // from the axis (docs/walls.md section 3):
@@ -20,6 +23,7 @@
 
 #include "core/vec3.hpp"
 #include "scene/active_window.hpp"
+#include "scene/rigid_motion.hpp"
 #include "scene/wall_touch.hpp"
 
 #include <cstdint>
@@ -40,6 +44,19 @@ struct CylinderWall {
   double omega = 0.0;  // turning rate about k [rad/time]
   std::uint8_t material = 0;
   ActiveWindow active;
+  RigidMotion carried; // drift and oscillation only (omega 0), of the whole cylinder
+  // Where the carrying motion has taken the centre, and its velocity, at the last place().
+  Vec3 shift, shift_velocity;
+
+  bool moves() const { return norm2(carried.drift) > 0.0 || carried.amplitude != 0.0; }
+  // Carries the cylinder to time t.
+  void place(double t) {
+    const RigidMotion::AtTime now = carried.at_time(t);
+    shift = now.shift;
+    shift_velocity = now.velocity;
+  }
+  // The point of the axis that `center` names, as carried now.
+  Vec3 placed_center() const { return center + shift; }
 
   bool finite() const {
     return lo > -std::numeric_limits<double>::infinity() ||
@@ -49,7 +66,9 @@ struct CylinderWall {
   // The contacts of a sphere (centre x, radius r): at most a side, a cap and a rim.
   void touches(const Vec3& x, double r, WallTouches& out) const;
   // The wall's velocity at surface point p.
-  Vec3 velocity_at(const Vec3& p) const { return cross(omega * axis, p - center); }
+  Vec3 velocity_at(const Vec3& p) const {
+    return cross(omega * axis, p - placed_center()) + shift_velocity;
+  }
 };
 
 } // namespace yuxi

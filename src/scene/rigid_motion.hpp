@@ -5,8 +5,9 @@
 //   v(p, t) = omega k x R(omega tau) (p - c) + u + A Omega cos(Omega tau) e
 // where R(theta) turns by theta about the unit axis k through c (right-handed, Rodrigues'
 // formula), u is the drift velocity and e the unit direction of the oscillation; at rest
-// before t0. The velocity field is affine in position, so the velocity anywhere on a
-// triangle is the barycentric mean of its corners' velocities.
+// before t0. At t1 the motion stops: from then on the wall holds the place it had at t1
+// (tau = t1 - t0) with zero velocity. The velocity field is affine in position, so the
+// velocity anywhere on a triangle is the barycentric mean of its corners' velocities.
 #pragma once
 
 #include "core/vec3.hpp"
@@ -25,6 +26,7 @@ struct RigidMotion {
   double amplitude = 0; // A [length]
   double frequency = 0; // Omega [rad/time]
   double t0 = 0.0;      // start [time]
+  double t1 = HUGE_VAL; // stop [time]
 
   struct AtTime {
     bool moving = false;
@@ -48,15 +50,17 @@ struct RigidMotion {
   AtTime at_time(double t) const {
     AtTime m;
     if (t < t0 || (omega == 0.0 && norm2(drift) == 0.0 && amplitude == 0.0)) return m;
-    const double tau = t - t0;
+    const bool going = t < t1; // (after t1: held where it was at t1, still)
+    const double tau = (going ? t : t1) - t0;
+    const double rate = going ? 1.0 : 0.0;
     m.moving = true;
     m.center = center;
-    m.axis_omega = omega * axis;
+    m.axis_omega = (rate * omega) * axis;
     m.shift = tau * drift;
-    m.velocity = drift;
+    m.velocity = rate * drift;
     if (amplitude != 0.0) {
       m.shift += (amplitude * std::sin(frequency * tau)) * direction;
-      m.velocity += (amplitude * frequency * std::cos(frequency * tau)) * direction;
+      m.velocity += (rate * amplitude * frequency * std::cos(frequency * tau)) * direction;
     }
     if (omega != 0.0) {
       // Rodrigues: R = cos(theta) I + sin(theta) [k]x + (1 - cos(theta)) k k^T

@@ -19,10 +19,10 @@ inline std::uint8_t wall_material(const ShapedWall& w) {
   return std::visit([](const auto& wall) { return wall.material; }, w);
 }
 // The point about which walls.csv gives a wall's torque: a mesh's stated point, a cylinder's
-// axis point.
+// axis point (where its carrying motion has taken it).
 inline Vec3 torque_point(const ShapedWall& w) {
   if (const auto* m = std::get_if<MeshWall>(&w)) return m->torque_point;
-  return std::get<CylinderWall>(w).center;
+  return std::get<CylinderWall>(w).placed_center();
 }
 inline bool wall_active(const ShapedWall& w, double t) {
   return std::visit([t](const auto& wall) { return wall.active.at(t); }, w);

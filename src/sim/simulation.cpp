@@ -118,7 +118,7 @@ void Simulation::refresh() {
 
 bool Simulation::place_walls(double t, bool every_one, double* moved2) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
-  bool moved_far = place_meshes(t, every_one);
+  bool moved_far = place_shaped_walls(t, every_one);
   std::vector<WallMotionAtTime> now;
   std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
   now.reserve(motions_.size());

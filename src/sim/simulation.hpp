@@ -302,9 +302,9 @@ private:
   // `every_one` false skips those of a motion at rest: placed before, they stay there.
   // `moved2`, if given, gets the largest squared displacement of a wall particle.
   bool place_walls(double t, bool every_one = false, double* moved2 = nullptr);
-  // Meshes to their place at t; true if a vertex moved more than half the skin since the last
-  // list build (simulation_walls.cpp).
-  bool place_meshes(double t, bool every_one);
+  // Meshes and cylinders to their place at t; true if a vertex or a cylinder moved more than
+  // half the skin since the last list build (simulation_walls.cpp).
+  bool place_shaped_walls(double t, bool every_one);
   // The grain-wall candidates of a list build, from the triangles binned on the cells.
   void list_wall_candidates();
   // Servo-controlled meshes: each controller is told the grains' force on its wall (summed
@@ -351,6 +351,10 @@ private:
     ar.value(next_gid_);
     ar.vector(insert_progress_);
     ar.vector(outlet_part_);
+    if constexpr (Archive::loading) {
+      saved_poured_ = 0;
+      for (const InsertProgress& p : insert_progress_) saved_poured_ += p.grains;
+    }
     if constexpr (Archive::loading)
       if (insert_progress_.size() != inserts_.size() || outlet_part_.size() != outlets_.size()) {
         // A branch may bring other sources: they start afresh.
@@ -445,8 +449,9 @@ private:
     std::array<int, 3> dims{};
   };
   std::vector<MeshBins> mesh_bins_;
-  std::vector<std::vector<Vec3>> mesh_x_build_; // each moving mesh's vertices at the last build
-  double walls_built_at_ = 0.0;                 // time of the last list build
+  // Each moving mesh's vertices, or moving cylinder's shift, at the last build.
+  std::vector<std::vector<Vec3>> mesh_x_build_;
+  double walls_built_at_ = 0.0; // time of the last list build
   AnyContactLaw law_;
   Forces forces_;
   ContactStates* history_;  // the contact states of forces_ (per-rebuild operations)
@@ -495,6 +500,7 @@ private:
     double mass = 0;
   };
   std::vector<InsertProgress> insert_progress_;
+  std::int64_t saved_poured_ = 0; // grains the loaded run's inserts had poured (for a branch)
   std::vector<OutletPart> outlet_part_;
   GlobalId next_gid_ = 0;      // of the next inserted grain (the same on every rank)
   std::function<void()> edit_; // the change of edit_particles(), made in its list build

@@ -146,20 +146,25 @@ void Simulation::check_branched_particles(const BranchCheck& check) const {
   const auto grains = static_cast<std::size_t>(totals[0]);
   const auto walls = static_cast<std::size_t>(totals[1]);
   const double highest = comm_.max(static_cast<double>(top));
+  // Grains the saved run's sources poured are its own, beyond those the scene builds (their ids
+  // follow the built particles').
+  const auto poured = static_cast<std::size_t>(comm_.max(static_cast<double>(saved_poured_)));
   std::string error = comm_.first_error(outside);
   if (error.empty() && walls != check.walls)
     error = fmt::format("the checkpoint holds {} wall particles, this scene builds {}: the "
                         "branch must keep the walls of the run it starts from",
                         walls, check.walls);
-  if (error.empty() && grains > check.grains)
-    error = fmt::format("the checkpoint holds {} grains, this scene builds {}: the branch must "
+  const std::string poured_too =
+      poured > 0 ? fmt::format(" and the {} grains its run poured", poured) : "";
+  if (error.empty() && grains > check.grains + poured)
+    error = fmt::format("the checkpoint holds {} grains, this scene builds {}{}: the branch must "
                         "have the particles of the run it starts from",
-                        grains, check.grains);
-  if (error.empty() && highest >= static_cast<double>(check.walls + check.grains))
+                        grains, check.grains, poured_too);
+  if (error.empty() && highest >= static_cast<double>(check.walls + check.grains + poured))
     error = fmt::format("the checkpoint's particle ids reach {}, beyond the {} particles this "
-                        "scene builds: the branch must have the particles of the run it starts "
+                        "scene builds{}: the branch must have the particles of the run it starts "
                         "from",
-                        static_cast<std::int64_t>(highest), check.walls + check.grains);
+                        static_cast<std::int64_t>(highest), check.walls + check.grains, poured_too);
   if (!error.empty()) throw std::invalid_argument(error);
 }
 
@@ -247,12 +252,12 @@ void Simulation::rebuild_after_load(bool as_saved) {
     // whatever step it was saved at (a checkpoint leaves the trajectory untouched).
     // The meshes likewise stand where they stood at that build while it is made again.
     const double built = walls_built_at_;
-    place_meshes(built, true);
+    place_shaped_walls(built, true);
     std::swap(store_.x, store_.x_build);
     rebuild(BuildAfter::load_at_last_build);
     std::swap(store_.x, store_.x_build);
     walls_built_at_ = built;
-    place_meshes(time_, true);
+    place_shaped_walls(time_, true);
     halo_.forward(store_, comm_);
   }
   rebuilds_ = counted;

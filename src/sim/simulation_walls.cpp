@@ -1,6 +1,6 @@
-// Shaped walls in the simulation: placing the meshes at each step, binning their triangles on
-// the linked cells at a list build, and listing which grains may touch which wall (and which
-// of its triangles) before the next build.
+// Shaped walls in the simulation: placing the meshes and cylinders at each step, binning the
+// meshes' triangles on the linked cells at a list build, and listing which grains may touch
+// which wall (and which of its triangles) before the next build.
 //
 // A mesh's triangles are binned into every cell that their box, grown by the largest grain
 // radius and the skin, overlaps; a grain then reads the triangles of its own cell only, so the
@@ -15,17 +15,23 @@
 
 namespace yuxi {
 
-bool Simulation::place_meshes(double t, bool every_one) {
+bool Simulation::place_shaped_walls(double t, bool every_one) {
   const double limit2 = 0.25 * config_.skin * config_.skin;
   bool moved_far = false;
   for (std::size_t w = 0; w < walls_.size(); ++w) {
-    auto* mesh = std::get_if<MeshWall>(&walls_[w]);
-    if (!mesh || (!every_one && !mesh->moves())) continue;
-    mesh->place(t);
     const auto& built = mesh_x_build_[w];
-    if (built.size() != mesh->x.size()) continue; // not built yet
+    if (auto* cylinder = std::get_if<CylinderWall>(&walls_[w])) {
+      if (!every_one && !cylinder->moves()) continue;
+      cylinder->place(t);
+      if (built.size() == 1 && !(norm2(cylinder->shift - built[0]) <= limit2)) moved_far = true;
+      continue;
+    }
+    auto& mesh = std::get<MeshWall>(walls_[w]);
+    if (!every_one && !mesh.moves()) continue;
+    mesh.place(t);
+    if (built.size() != mesh.x.size()) continue; // not built yet
     for (std::size_t k = 0; k < built.size(); ++k)
-      if (!(norm2(mesh->x[k] - built[k]) <= limit2)) {
+      if (!(norm2(mesh.x[k] - built[k]) <= limit2)) {
         moved_far = true;
         break;
       }
@@ -45,6 +51,7 @@ void Simulation::list_wall_candidates() {
   const Vec3 g_hi{g_lo.x + dims[0] * edge.x, g_lo.y + dims[1] * edge.y, g_lo.z + dims[2] * edge.z};
   for (std::uint32_t w = 0; w < walls_.size(); ++w) {
     if (const auto* cylinder = std::get_if<CylinderWall>(&walls_[w])) {
+      if (cylinder->moves()) mesh_x_build_[w].assign(1, cylinder->shift);
       WallTouches near;
       for (std::uint32_t i = 0; i < owned_grains_; ++i) {
         cylinder->touches(store_.x[i], store_.radius[i] + range_, near);

@@ -3,7 +3,10 @@
 #  1. the same grains come in and leave: inflow.csv and outflow.csv are the same bytes on 1 and
 #     2 ranks, and the energies agree to 1e-6 (relative);
 #  2. the books close: |balance| < 1 % of the inserted energy;
-#  3. resumed half way on 2 ranks, the run ends in the same bytes as the straight one.
+#  3. resumed half way on 2 ranks, the run ends in the same bytes as the straight one;
+#  4. branched from the poured run's end (its grains are its sources', not the scene's), with
+#     the silo then lifted along its axis: the branch runs, the lifting silo does work on the
+#     grains through friction, and the books still close.
 # usage: pour.sh YUXI MPIEXEC WORK_DIR
 set -euo pipefail
 yuxi=$1
@@ -51,6 +54,18 @@ last=$(ls np2/checkpoints | tail -1)
 for f in "checkpoints/$last" energies.csv inflow.csv outflow.csv; do
   cmp -s "np2/$f" "halves/$f" || fail "resumed on 2 ranks, $f differs from the straight run's"
 done
+
+# 4. a branch of the poured run, the silo lifted at 0.5 from t = 3.1 to 3.5
+sed -e 's/^t_end = 3.0/t_end = 4.0/' \
+  -e '/^name = "silo"/a velocity = [0.0, 0.0, 0.5]\nt0 = 3.1\nt1 = 3.5' "$scene" > lifted.toml
+on 1 run lifted.toml --from np1 -o lifted > lifted.log 2>&1 ||
+  fail "the branch of the poured run failed: $(tail -3 lifted.log)"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "work") w = i }
+         $3 == "silo" && $2 > 3.5 { work = $w } END { exit !(work > 0) }' lifted/walls.csv ||
+  fail "the lifted silo did no work on the grains: $(grep silo lifted/walls.csv | tail -1)"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "balance") b = i; if ($i == "inserted") s = i } }
+         END { d = $b; if (d < 0) d = -d; exit !(s > 0 && d < 0.01 * $s) }' lifted/energies.csv ||
+  fail "the lifted branch's books do not close: $(tail -1 lifted/energies.csv)"
 
 if ((failures > 0)); then
   echo "$failures check(s) failed"

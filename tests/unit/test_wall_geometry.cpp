@@ -194,6 +194,14 @@ TEST(RigidMotion, VelocityIsTheDerivativeOfPosition) {
     EXPECT_NEAR(norm(cross(p - m.center, m.axis)), norm(cross(rest - m.center, m.axis)), 1e-12);
   }
   EXPECT_EQ(m.at_time(0.2).place(rest).position, rest);
+  // Stopped at t1: held where it was then, at rest.
+  m.t1 = 2.0;
+  const PlacedState at_stop = m.at_time(2.0 - 1e-12).place(rest);
+  for (double t : {2.0, 3.0, 40.0}) {
+    const PlacedState held = m.at_time(t).place(rest);
+    EXPECT_LT(norm(held.position - at_stop.position), 1e-10);
+    EXPECT_EQ(held.velocity, Vec3{});
+  }
 }
 
 } // namespace

@@ -102,6 +102,48 @@ TEST(WallScene, ShippedWallScenesReadAndEchoBack) {
   EXPECT_EQ(std::get<RigidMotion>(mesh.motion).omega, 0.1);
 }
 
+TEST(WallScene, ACarriedCylinderAndAStopTimeReadAndEchoBack) {
+  Folder f;
+  f.write("square.stl", square_stl);
+  const Scene a = f.read(scene_with(R"([[cylinder]]
+name = "floor"
+center = [5.0, 5.0, 0.5]
+radius = 4.0
+grains = "outside"
+lo = -0.5
+hi = 0.0
+material = "wall"
+velocity = [0.0, 0.0, -0.1]
+t0 = 0.002
+t1 = 0.004
+[[mesh]]
+file = "square.stl"
+material = "wall"
+velocity = [0.0, 0.0, 0.5]
+t1 = 0.003
+)"));
+  const auto& floor = std::get<CylinderWall>(a.walls[1]); // (meshes first)
+  EXPECT_TRUE(floor.moves());
+  EXPECT_EQ(floor.carried.drift, (Vec3{0, 0, -0.1}));
+  EXPECT_EQ(floor.carried.t1, 0.004);
+  EXPECT_EQ(std::get<RigidMotion>(std::get<MeshWall>(a.walls[0]).motion).t1, 0.003);
+  const std::string echo = resolved_scene_toml(a);
+  const Scene b = f.read(echo);
+  EXPECT_EQ(resolved_scene_toml(b), echo);
+  EXPECT_EQ(std::get<CylinderWall>(b.walls[1]).carried.t0, 0.002);
+  // a motion that stops before it starts
+  EXPECT_NE(error_of(f, scene_with(R"([[cylinder]]
+center = [5.0, 5.0, 0.5]
+radius = 4.0
+material = "wall"
+velocity = [0.0, 0.0, -0.1]
+t0 = 0.002
+t1 = 0.001
+)"))
+                .find("t1"),
+            std::string::npos);
+}
+
 TEST(WallScene, MeshMistakesNameTheFileAndThePlace) {
   const Folder f;
   f.write("square.stl", square_stl);

@@ -10,7 +10,9 @@
 //    carries m g / 2 of the weight;
 //  - passive meshes and cylinders never add energy, over a sweep of angles, spins and models;
 //  - a servo piston compresses a bed to its target force and holds it there (to 1 %), with the
-//    energy books closing.
+//    energy books closing;
+//  - a cylinder carried down (a silo's floor lowered) takes the grains resting on it down by
+//    exactly its travel, holds at t1, and books the work m g delta it took from them.
 #include "core/random.hpp"
 #include "core/units.hpp"
 #include "validation/impact_probe.hpp"
@@ -206,6 +208,17 @@ double kinetic(const Vec3& v, const Vec3& w, double m, double r) {
   return 0.5 * m * norm2(v) + 0.5 * 0.4 * m * r * r * norm2(w);
 }
 
+// A box with walls on every face, under g = 9.81, with dt = 1e-4 and a skin of 0.05.
+SimulationConfig walled_box(const Vec3& lo, const Vec3& hi) {
+  SimulationConfig cfg;
+  cfg.box = {lo, hi};
+  cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
+  cfg.gravity = {0, 0, -9.81};
+  cfg.dt = 1e-4;
+  cfg.skin = 0.05;
+  return cfg;
+}
+
 TEST(MeshWalls, PassiveMeshesAndCylindersNeverAddEnergy) {
   int impacts = 0;
   for (const AnyContactLaw& law : example_laws())
@@ -245,12 +258,7 @@ TEST(MeshWalls, AServoPistonHoldsItsTargetForce) {
   // 64 grains in a 4.2 x 4.2 box with walls; a square lid comes down on them until they push
   // back with 300 (the weight of the bed is 628, carried by the floor).
   LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 50.0, 20.0, 0.3, 0.3};
-  SimulationConfig cfg;
-  cfg.box = {{0, 0, 0}, {4.2, 4.2, 8}};
-  cfg.box.boundary = {Boundary::wall, Boundary::wall, Boundary::wall};
-  cfg.gravity = {0, 0, -9.81};
-  cfg.dt = 1e-4;
-  cfg.skin = 0.05;
+  const SimulationConfig cfg = walled_box({0, 0, 0}, {4.2, 4.2, 8});
   ParticleStore store;
   GlobalId id = 0;
   for (int k = 0; k < 4; ++k)
@@ -279,6 +287,60 @@ TEST(MeshWalls, AServoPistonHoldsItsTargetForce) {
   const auto books = sim.energies();
   EXPECT_GT(books.wall_work, 0.0); // the lid did work on the bed
   EXPECT_LT(std::abs(books.balance() - start), 0.02 * (books.dissipated + books.wall_work));
+}
+
+TEST(MeshWalls, ACarriedFloorLowersTheGrainsOnItAndHolds) {
+  // Four grains, apart, at rest on the top of a puck (a cylinder with grains outside, its top
+  // cap at z = 0); from t0 = 1 to t1 = 3 the puck sinks at 0.25 (delta = 0.5, ten times the
+  // skin, so the grains' wall candidates must follow it). At rest again, each grain stands
+  // delta lower on the same overlap m g / k_n, and the books close on the floor's work.
+  LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 50.0, 20.0, 0.5, 0.5};
+  const SimulationConfig cfg = walled_box({-4, -4, -4}, {4, 4, 4});
+  ParticleStore store;
+  GlobalId id = 0;
+  for (const Vec3 at :
+       {Vec3{-1.2, -1.2, 0.5}, Vec3{1.2, -1.2, 0.5}, Vec3{-1.2, 1.2, 0.5}, Vec3{1.2, 1.2, 0.5}}) {
+    ParticleSpec sp;
+    sp.position = at;
+    sp.radius = 0.5;
+    sp.mass = 1.0;
+    store.add(sp, id++);
+  }
+  CylinderWall floor;
+  floor.name = "floor";
+  floor.radius = 2.5;
+  floor.inside = false;
+  floor.lo = -1, floor.hi = 0, floor.capped = true;
+  const double speed = 0.25, t0 = 1.0, t1 = 3.0, delta = speed * (t1 - t0);
+  floor.carried.drift = {0, 0, -speed};
+  floor.carried.t0 = t0, floor.carried.t1 = t1;
+  Simulation sim(cfg, std::move(store), {}, {}, validation::linear_law(c, 1), Comm::self(),
+                 {floor});
+  const double start = sim.energies().balance();
+  sim.run(9000); // t = 0.9: settled, before the floor moves
+  std::vector<double> before(4);
+  for (std::size_t i = 0; i < 4; ++i) before[i] = sim.particles().x[i].z;
+  EXPECT_NEAR(before[0], 0.5 - 9.81 / 1e5, 1e-6); // resting on its overlap m g / k_n
+  const double work_before = sim.energies().wall_work;
+  const double dissipated_before = sim.energies().dissipated;
+  sim.run(31000); // t = 4: the floor stopped at t = 3
+  const auto& held = std::get<CylinderWall>(sim.walls()[0]);
+  EXPECT_EQ(held.shift.z, -delta);
+  EXPECT_EQ(held.shift_velocity.z, 0.0);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(sim.particles().x[i].z, before[i] - delta, 1e-9) << "grain " << i;
+    EXPECT_NEAR(sim.particles().v[i].z, 0.0, 1e-9);
+  }
+  // The floor's work: the grains' potential energy, -m g delta each, less what the two jumps of
+  // its velocity dissipate. Each jump leaves a grain moving at v relative to the floor until it
+  // catches up or is stopped, and that relative kinetic energy, m v^2 / 2, is dissipated: m v^2
+  // per grain in all.
+  const auto books = sim.energies();
+  const double dissipated = books.dissipated - dissipated_before;
+  EXPECT_NEAR(dissipated, 4 * speed * speed, 0.02 * 4 * speed * speed);
+  EXPECT_NEAR(books.wall_work - work_before, -4 * 9.81 * delta + dissipated,
+              1e-4 * 4 * 9.81 * delta);
+  EXPECT_LT(std::abs(books.balance() - start), 1e-4 * 4 * 9.81 * delta);
 }
 
 } // namespace
