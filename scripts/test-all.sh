@@ -2,7 +2,9 @@
 # The whole test suite: installs what is missing, builds everything in Release (warnings are
 # errors), checks formatting, builds the sanitizer tier (clang, AddressSanitizer +
 # UndefinedBehaviorSanitizer, with the libFuzzer targets in the same build), runs the unit,
-# validation, CLI, crash and MPI tests there (but those labelled heavy, minutes each there), then
+# validation, CLI and MPI tests there (but those labelled heavy, minutes each there; the crash
+# and resume runs labelled reliability run in Release, and their checkpoint code under the
+# sanitizers through the unit tests and the checkpoint fuzzer), then
 # each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every test
 # in Release, the Python module's (pytest, with the examples' short forms) among them. Long
 # validation cases: ctest --preset long.
@@ -18,7 +20,7 @@ scripts/check-layers.sh
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null
 cmake --build --preset asan
-ctest --test-dir build/asan -L "unit|validation|cli|reliability|mpi" -LE "heavy|long" -j 2 \
+ctest --test-dir build/asan -L "unit|validation|cli|mpi" -LE "heavy|long|reliability" -j 2 \
   --output-on-failure
 
 echo "== fuzzers (bounded)"

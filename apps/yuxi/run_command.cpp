@@ -175,6 +175,18 @@ int run_command(const RunCommandOptions& o) {
   const double all_copies = sim->comm().sum(copies), most_copies = sim->comm().max(copies);
   const auto inflow = sim->inflow();
   const auto outflow = sim->outflow(); // collective
+  // Of each still mesh, a rank holds only the triangles near its sub-domain.
+  std::vector<std::string> held_meshes;
+  for (const ShapedWall& w : sim->walls())
+    if (const auto* mesh = std::get_if<MeshWall>(&w)) {
+      const double held = static_cast<double>(mesh->mesh.n_triangles());
+      const double most = sim->comm().max(held), least = -sim->comm().max(-held);
+      if (least < static_cast<double>(mesh->whole_mesh().n_triangles()))
+        held_meshes.push_back(fmt::format("mesh '{}': each rank holds {:.0f} to {:.0f} of its {} "
+                                          "triangles",
+                                          mesh->name, least, most,
+                                          mesh->whole_mesh().n_triangles()));
+    }
   if (!sim->comm().root())
     return s.failed ? 3 : (s.interrupted ? 128 + static_cast<int>(stop_signal) : 0);
   spdlog::info("{} steps in {:.2f} s: {:.0f} steps/s, {:.3g} particle-steps/s", s.steps,
@@ -200,6 +212,7 @@ int run_command(const RunCommandOptions& o) {
                data_bytes / std::max(n_particles, 1.0), listed_pairs,
                listed_pairs / std::max(n_particles, 1.0), ghosts,
                100 * ghosts / std::max(n_particles, 1.0), ghosts - all_copies, all_copies);
+  for (const std::string& line : held_meshes) spdlog::info("{}", line);
   if (all_copies > 0)
     spdlog::info("halo: a step brings the rank with most copies of other ranks' particles {:.0f} "
                  "of them ({:.1f} kB of positions and velocities) and sends {:.1f} kB of their "

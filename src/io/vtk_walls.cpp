@@ -17,12 +17,14 @@ namespace yuxi {
 void WallSurface::add_mesh(const MeshWall& mesh, std::span<const Vec3> forces,
                            std::int32_t wall_index) {
   const auto base = static_cast<std::uint32_t>(points.size());
+  // The whole mesh, where a rank holds a part of it (a still mesh: at rest where it stands).
+  const TriangleMesh& whole = mesh.whole_mesh();
   const std::vector<Vec3>& at =
-      mesh.x.size() == mesh.mesh.vertices.size() ? mesh.x : mesh.mesh.vertices;
+      mesh.held.empty() && mesh.x.size() == whole.vertices.size() ? mesh.x : whole.vertices;
   points.insert(points.end(), at.begin(), at.end());
-  const bool loaded = forces.size() == mesh.mesh.n_triangles();
-  for (std::size_t k = 0; k < mesh.mesh.n_triangles(); ++k) {
-    const auto& t = mesh.mesh.triangles[k];
+  const bool loaded = forces.size() == whole.n_triangles();
+  for (std::size_t k = 0; k < whole.n_triangles(); ++k) {
+    const auto& t = whole.triangles[k];
     triangles.push_back({base + t[0], base + t[1], base + t[2]});
     force.push_back(loaded ? forces[k] : Vec3{});
     wall.push_back(wall_index);

@@ -2,6 +2,9 @@
 
 #include "scene/closest_point_on_triangle.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace yuxi {
 
 namespace {
@@ -73,7 +76,7 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
                      : q.weight[0] * v[tri[0]] + q.weight[1] * v[tri[1]] + q.weight[2] * v[tri[2]];
     if (conveyor) vel += surface_velocity - dot(surface_velocity, touch.normal) * touch.normal;
     touch.velocity = vel;
-    touch.element = t;
+    touch.element = element_of(t);
     if (found == 0) {
       out.at[0] = touch;
       first_feature = q.feature, first_triangle = t;
@@ -100,6 +103,35 @@ bool MeshWall::within(const Vec3& c, double reach, std::uint32_t t) const {
   if (!(above * above < reach2)) return false;
   const TrianglePoint q = closest_point_on_triangle(c, p.a, p.b, p.c);
   return q.feature == TriangleFeature::face || norm2(c - q.point) < reach2;
+}
+
+std::size_t MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
+  if (!whole) whole = std::make_shared<const TriangleMesh>(std::move(mesh));
+  const TriangleMesh& all = *whole;
+  held.clear();
+  for (std::uint32_t t = 0; t < all.n_triangles(); ++t) {
+    bool near = true;
+    for (int a = 0; a < 3 && near; ++a) {
+      double t_lo = HUGE_VAL, t_hi = -HUGE_VAL;
+      for (const std::uint32_t k : all.triangles[t]) {
+        t_lo = std::min(t_lo, all.vertices[k][a]);
+        t_hi = std::max(t_hi, all.vertices[k][a]);
+      }
+      near = t_hi >= lo[a] - reach && t_lo <= hi[a] + reach;
+    }
+    if (near) held.push_back(t);
+  }
+  if (held.size() == all.n_triangles()) {
+    // (all of it: the whole mesh again, numbered as it is)
+    mesh = all;
+    held.clear();
+  } else {
+    mesh = all.subset(held);
+  }
+  rest_normals_.clear();
+  x.clear();
+  place(0.0); // (still: the same at any time)
+  return mesh.n_triangles();
 }
 
 } // namespace yuxi

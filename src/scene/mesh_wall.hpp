@@ -49,6 +49,19 @@ struct MeshWall {
   double servo_offset = 0.0; // [length]
   double servo_speed = 0.0;  // [length/time]
 
+  // A rank may hold only a part of a still mesh, the triangles near its sub-domain: `mesh` is
+  // then that part, `held` the index in the whole mesh of each of its triangles (ascending),
+  // and `whole` the whole mesh at rest, from which the part is chosen again when the
+  // sub-domain changes, and which the snapshots draw. With `held` empty, `mesh` is whole.
+  std::shared_ptr<const TriangleMesh> whole;
+  std::vector<std::uint32_t> held;
+  const TriangleMesh& whole_mesh() const { return whole ? *whole : mesh; }
+  // The whole mesh's index of triangle t of `mesh` (a contact's element).
+  std::uint32_t element_of(std::uint32_t t) const { return held.empty() ? t : held[t]; }
+  // Holds only the triangles whose box comes within `reach` of the box [lo, hi] (a still
+  // mesh; the held part is placed). Returns how many it holds.
+  std::size_t hold_near(const Vec3& lo, const Vec3& hi, double reach);
+
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;
   // Each triangle as placed last: its corners and its unit normal, along (b - a) x (c - a),

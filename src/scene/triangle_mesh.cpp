@@ -77,4 +77,22 @@ std::size_t TriangleMesh::non_manifold_edges() const {
   return n;
 }
 
+TriangleMesh TriangleMesh::subset(std::span<const std::uint32_t> kept) const {
+  constexpr std::uint32_t unused = ~std::uint32_t{0};
+  std::vector<std::uint32_t> renumbered(vertices.size(), unused);
+  for (const std::uint32_t t : kept)
+    for (const std::uint32_t v : triangles[t]) renumbered[v] = 0;
+  TriangleMesh part;
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    if (renumbered[v] != unused) {
+      renumbered[v] = static_cast<std::uint32_t>(part.vertices.size());
+      part.vertices.push_back(vertices[v]);
+    }
+  part.triangles.reserve(kept.size());
+  for (const std::uint32_t t : kept)
+    part.triangles.push_back(
+        {renumbered[triangles[t][0]], renumbered[triangles[t][1]], renumbered[triangles[t][2]]});
+  return part;
+}
+
 } // namespace yuxi

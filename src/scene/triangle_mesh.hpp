@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace yuxi {
@@ -21,6 +22,11 @@ struct TriangleMesh {
   // Scales by `scale` about the origin, then turns by `degrees` about the unit `axis` through
   // the origin, then shifts by `shift`.
   void transform(double scale, const Vec3& axis, double degrees, const Vec3& shift);
+
+  // The listed triangles (ascending indices), in that order, with the vertices they use, in
+  // the order of their indices here: a part of the mesh whose edges and vertices keep their
+  // identity, and whose triangles and vertices keep their relative order.
+  TriangleMesh subset(std::span<const std::uint32_t> kept) const;
 
   std::size_t n_triangles() const { return triangles.size(); }
   // Every vertex's coordinates finite (a transform cannot make them otherwise unless huge).

@@ -447,6 +447,9 @@ private:
     double reach = 0.0;
     Vec3 origin;
     std::array<int, 3> dims{};
+    // The cells' box and the reach for which a still mesh's held triangles were chosen.
+    Vec3 held_lo, held_hi;
+    double held_reach = -1.0;
   };
   std::vector<MeshBins> mesh_bins_;
   // Each moving mesh's vertices, or moving cylinder's shift, at the last build.

@@ -5,8 +5,9 @@
 // A mesh's triangles are binned into every cell that their box, grown by the largest grain
 // radius and the skin, overlaps; a grain then reads the triangles of its own cell only, so the
 // cost per grain does not grow with the size of the mesh, and triangles far from every grain
-// cost nothing per step. A still mesh keeps its bins while the cells stay the same (a rank
-// bins only the triangles near its own sub-domain).
+// cost nothing per step. A still mesh keeps its bins while the cells stay the same, and a rank
+// holds (places, bins, searches) only the triangles near its own sub-domain, chosen again from
+// the whole mesh at rest when its cells move (MeshWall::hold_near).
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -60,6 +61,16 @@ void Simulation::list_wall_candidates() {
       continue;
     }
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
+    MeshBins& bins = mesh_bins_[w];
+    // Of a still mesh, this rank holds only the triangles its cells can reach: chosen again
+    // when the cells move (a balancing, a load) or the reach grows.
+    if (!mesh.moves() &&
+        (bins.held_reach < reach || bins.held_lo != g_lo || bins.held_hi != g_hi)) {
+      bins.held_reach = std::max(reach, cell_edge_ + range_);
+      bins.held_lo = g_lo, bins.held_hi = g_hi;
+      mesh.hold_near(g_lo, g_hi, bins.held_reach);
+      bins.valid = false;
+    }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
     if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves away from it)
     // Each triangle's box, as placed now.
@@ -73,7 +84,6 @@ void Simulation::list_wall_candidates() {
         }
       return std::pair{lo, hi};
     };
-    MeshBins& bins = mesh_bins_[w];
     if (mesh.moves() || !bins.valid || bins.reach < reach || bins.dims != dims ||
         bins.origin != g_lo) {
       // Counting sort of (cell, triangle) by cell; triangles ascend within a cell.
@@ -208,7 +218,7 @@ void Simulation::steer_servo_walls() {
 
 std::vector<Vec3> Simulation::triangle_forces(std::size_t wall) const {
   const auto* mesh = std::get_if<MeshWall>(&walls_.at(wall));
-  std::vector<Vec3> f(mesh ? mesh->mesh.n_triangles() : 0);
+  std::vector<Vec3> f(mesh ? mesh->whole_mesh().n_triangles() : 0);
   for (const ElementForce& e : element_forces_)
     if (e.wall == wall && e.element < f.size()) f[e.element] += e.force;
   if (!f.empty()) comm_.sum(&f[0].x, static_cast<int>(3 * f.size()));

@@ -4,6 +4,7 @@
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "run/run_driver.hpp"
+#include "run/run_opening.hpp"
 #include "run/scene_builder.hpp"
 
 #include <cmath>
@@ -27,8 +28,8 @@ fs::path run_folder(const std::string& name) {
   return dir;
 }
 
-void run_scene(const Scene& scene, const fs::path& folder, bool progress) {
-  auto sim = build_simulation(scene, false);
+void run_scene(const Scene& scene, const fs::path& folder, bool progress, const fs::path& from) {
+  std::unique_ptr<Simulation> sim;
   RunOptions options;
   options.output_dir = folder;
   options.show_progress = progress;
@@ -48,9 +49,10 @@ void run_scene(const Scene& scene, const fs::path& folder, bool progress) {
     }
   };
   if (fs::exists(folder / "checkpoints")) {
-    const auto saved = CheckpointSet(folder).newest_valid(sim->comm(), nullptr);
+    const auto saved = CheckpointSet(folder).newest_valid(Comm::world(), nullptr);
     if (saved && same_run(saved->scene_text)) {
       if (saved->step >= std::llround(scene.run.t_end / scene.sim.dt)) return;
+      sim = build_simulation(scene, false);
       apply_checkpoint(*saved, *sim);
       options.resumed = true;
     } else {
@@ -58,6 +60,8 @@ void run_scene(const Scene& scene, const fs::path& folder, bool progress) {
       fs::create_directories(folder);
     }
   }
+  if (!sim)
+    sim = from.empty() ? build_simulation(scene, false) : open_branch(scene, from, false).sim;
   const RunSummary s = run_to_end(scene, *sim, options);
   if (s.failed)
     throw std::runtime_error(fmt::format("{}: the run failed: {}", scene.source, s.failure));

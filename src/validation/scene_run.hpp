@@ -18,9 +18,11 @@ std::filesystem::path run_folder(const std::string& name);
 
 // Runs `scene` to its end into `folder` (progress on stderr when
 // `progress`): from the newest checkpoint there when it holds a run of the same scene (and not
-// at all when that run has ended), else from the start. Throws std::runtime_error naming the
-// scene if it fails.
-void run_scene(const Scene& scene, const std::filesystem::path& folder, bool progress);
+// at all when that run has ended), else from the start, or, where `from` names another run's
+// folder, from that run's newest checkpoint (a branch, `yuxi run SCENE --from FOLDER`).
+// Throws std::runtime_error naming the scene if it fails.
+void run_scene(const Scene& scene, const std::filesystem::path& folder, bool progress,
+               const std::filesystem::path& from = {});
 
 // A CSV table: its columns by name, each a column of numbers (a cell that is not a number, such
 // as a name, reads as NaN; the names of a text column are in `text`).

@@ -432,7 +432,7 @@ TEST(Mpi, ThermodynamicModelMatchesTheSerialRun) {
 // with them, and the run agrees with the serial one (1000 steps; grains tumble against the
 // turning wall, so the tolerances are those of the other chaotic runs here: 6000 steps,
 // positions to 1e-9, velocities to 1e-7, the wall's work and the books to 1e-8 and 1e-10).
-Simulation rotating_drum(bool meshed, Comm comm) {
+Simulation rotating_drum(bool meshed, Comm comm, double omega = 0.5) {
   SimulationConfig cfg;
   cfg.box = {{-6, -0.5, -6}, {6, 3.5, 6}};
   cfg.gravity = {0, 0, -9.81};
@@ -466,8 +466,8 @@ Simulation rotating_drum(bool meshed, Comm comm) {
     m.mesh = TriangleMesh::weld(soup);
     RigidMotion turn;
     turn.axis = {0, 1, 0};
-    turn.omega = 0.5;
-    m.motion = turn;
+    turn.omega = omega;
+    if (omega != 0.0) m.motion = turn;
     walls.push_back(m);
   } else {
     CylinderWall c;
@@ -475,7 +475,7 @@ Simulation rotating_drum(bool meshed, Comm comm) {
     c.axis = {0, 1, 0};
     c.radius = R;
     c.lo = 0, c.hi = L, c.capped = true;
-    c.omega = 0.5;
+    c.omega = omega;
     walls.push_back(c);
   }
   return Simulation(cfg, test::store_of(grains), {}, {},
@@ -500,6 +500,43 @@ TEST(Mpi, RotatingDrumMatchesTheSerialRun) {
                   1e-10 * std::abs(b.energies.balance()));
       expect_same(a, b, 1e-9, 1e-7);
     }
+  }
+}
+
+// The drum's mesh standing still, the bed settling in it: each rank holds only the triangles
+// near its part of the drum (fewer than the whole on more than one rank, every one of them on
+// some rank), and the run, its wall force on each triangle included, agrees with the serial one
+// (the tolerances of the turning drum above).
+TEST(Mpi, AStillMeshIsHeldInPartsAndTheRunMatchesTheSerialOne) {
+  const Comm world = Comm::world();
+  Simulation parallel = rotating_drum(true, world, 0.0);
+  parallel.run(4000);
+  const Snapshot a = snapshot(parallel);
+  const auto& mesh = std::get<MeshWall>(parallel.walls()[0]);
+  const double whole = static_cast<double>(mesh.whole_mesh().n_triangles());
+  const double held = static_cast<double>(mesh.mesh.n_triangles());
+  if (world.size() > 1) {
+    EXPECT_LT(held, whole) << "rank " << world.rank();
+  }
+  std::vector<double> covered(static_cast<std::size_t>(whole), 0.0);
+  for (std::uint32_t t = 0; t < mesh.mesh.n_triangles(); ++t) covered[mesh.element_of(t)] = 1.0;
+  world.max(covered.data(), static_cast<int>(covered.size()));
+  for (std::size_t t = 0; t < covered.size(); ++t) EXPECT_EQ(covered[t], 1.0) << "triangle " << t;
+  const std::vector<Vec3> forces = parallel.triangle_forces(0); // collective
+  if (world.rank() == 0) {
+    Simulation serial = rotating_drum(true, Comm::self(), 0.0);
+    serial.run(4000);
+    const std::vector<Vec3> expected = serial.triangle_forces(0);
+    ASSERT_EQ(forces.size(), expected.size());
+    double loaded = 0;
+    for (std::size_t t = 0; t < forces.size(); ++t) {
+      EXPECT_LT(norm(forces[t] - expected[t]), 1e-7 * (1 + norm(expected[t]))) << "triangle " << t;
+      loaded += norm(expected[t]) > 0 ? 1 : 0;
+    }
+    EXPECT_GE(loaded, 4); // the bed presses on several triangles
+    EXPECT_NEAR(a.energies.balance(), snapshot(serial).energies.balance(),
+                1e-10 * std::abs(snapshot(serial).energies.balance()));
+    expect_same(a, snapshot(serial), 1e-9, 1e-7);
   }
 }
 
