@@ -485,6 +485,16 @@ StiffestContact Simulation::stiffest_contact() const {
   }
   for (const auto& p : planes_)
     if (p.material < n_mat) on_wall[p.material] = true;
+  for (const ShapedWall& w : walls_)
+    if (wall_material(w) < n_mat) on_wall[wall_material(w)] = true;
+  // The grains that inserts will pour: the smallest their size distribution gives.
+  for (const InsertSpec& insert : inserts_) {
+    const auto k = insert.grains.material;
+    if (k >= n_mat) continue;
+    const double r = insert.grains.size.smallest();
+    m_min[k] = std::min(m_min[k], insert.grains.mass_of(r));
+    r_min[k] = std::min(r_min[k], r);
+  }
   for (std::size_t k = 0; k < n_mat; ++k) { // over all ranks
     m_min[k] = -comm_.max(-m_min[k]);
     r_min[k] = -comm_.max(-r_min[k]);

@@ -156,6 +156,8 @@ public:
   std::size_t memory_bytes() const;
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
+  // The contact of the shortest duration t_c among the materials present: grains (those inserts
+  // will pour included) with each other and with wall particles, planes, meshes and cylinders.
   StiffestContact stiffest_contact() const;
 
   // Saves or loads the whole dynamic state: time, step, particles in the order of the last list

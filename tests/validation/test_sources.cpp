@@ -3,6 +3,7 @@
 // outlet takes grains out with their mass and energy booked; a run with a pour resumed from a
 // checkpoint reaches the uninterrupted run's state byte for byte.
 #include "core/archive.hpp"
+#include "core/units.hpp"
 #include "io/scene_reader.hpp"
 #include "run/scene_builder.hpp"
 
@@ -136,6 +137,22 @@ TEST(Sources, AnOutletThatHoldsTheWholeBedIsRefused) {
   build_simulation(read_scene_text(bed_and_outlet(5.0), "pour.toml"), false, &report);
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("of the 50 grains"), std::string::npos) << report.warnings[0];
+}
+
+TEST(Sources, ATimeStepTooLargeForThePouredGrainsIsRefused) {
+  // The box starts empty: the stiffest contact is that of the smallest grain the pour can
+  // bring (r = 0.4, m = 0.512) with another, t_c = pi sqrt(m_eff / k_n) = 0.01124.
+  BuildReport report;
+  build_simulation(read_scene_text(pour_scene(""), "pour.toml"), false, &report);
+  EXPECT_NEAR(report.stiffest.contact_time, pi * std::sqrt(0.256 / 2.0e4), 1e-4);
+  std::string text = pour_scene("");
+  text.replace(text.find("dt = 1.0e-3"), 11, "dt = 5.0e-3");
+  try {
+    build_simulation(read_scene_text(text, "pour.toml"), false);
+    FAIL() << "dt = t_c / 2 was accepted for the poured grains";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("run.dt: 0.005 is"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Sources, APourResumesByteForByte) {
