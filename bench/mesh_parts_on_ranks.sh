@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# How much of a still mesh each rank holds: a flat STL plate of 2 x CELLS^2 triangles under a
+# 40 x 40 d floor of 2,500 grains, run for 1,000 steps on each number of ranks given, and the
+# log's line "mesh 'plate': each rank holds A to B of its N triangles" (docs/walls.md section 5).
+# usage: bench/mesh_parts_on_ranks.sh [YUXI] [MPIEXEC] [CELLS] [RANKS...]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+yuxi=${1:-$here/../build/release/apps/yuxi/yuxi}
+mpiexec=${2:-mpirun}
+cells=${3:-200}
+shift $(($# < 3 ? $# : 3))
+ranks=("$@")
+((${#ranks[@]} > 0)) || ranks=(1 2 4)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# The plate: binary STL, each cell of the 40 x 40 square at z = 0 cut into two triangles.
+/usr/bin/python3 - "$work/plate.stl" "$cells" <<'PY'
+import struct, sys
+path, n = sys.argv[1], int(sys.argv[2])
+h = 40.0 / n
+with open(path, "wb") as f:
+    f.write(b"\0" * 80 + struct.pack("<I", 2 * n * n))
+    for j in range(n):
+        for i in range(n):
+            a, b = (i * h, j * h, 0.0), ((i + 1) * h, j * h, 0.0)
+            c, d = ((i + 1) * h, (j + 1) * h, 0.0), (i * h, (j + 1) * h, 0.0)
+            for tri in ((a, b, c), (a, c, d)):
+                f.write(struct.pack("<3f", 0, 0, 1))
+                for v in tri:
+                    f.write(struct.pack("<3f", *v))
+                f.write(b"\0\0")
+PY
+cat > "$work/plate.toml" <<'TOML'
+materials = ["grain", "wall"]
+[material.grain]
+density = 1.909859317
+[run]
+name = "plate"
+dt = 5.0e-4
+t_end = 0.5
+[domain]
+lo = [0.0, 0.0, -1.0]
+hi = [40.0, 40.0, 10.0]
+boundary = ["wall", "wall", "wall"]
+gravity = [0.0, 0.0, -1.0]
+wall_material = "wall"
+[contact]
+model = "linear"
+[[contact.pair]]
+materials = ["grain", "grain"]
+k_n = 2.0e4
+[[contact.pair]]
+materials = ["grain", "wall"]
+k_n = 2.0e4
+[[mesh]]
+name = "plate"
+file = "plate.stl"
+material = "wall"
+[[fill]]
+material = "grain"
+count = 2500
+size = { distribution = "uniform", min = 0.45, max = 0.55 }
+region = { shape = "box", lo = [1.0, 1.0, 1.0], hi = [39.0, 39.0, 6.0] }
+seed = 1
+TOML
+for np in "${ranks[@]}"; do
+  line=$("$mpiexec" --allow-run-as-root --oversubscribe -np "$np" "$yuxi" run "$work/plate.toml" \
+    -o "$work/np$np" --no-progress --no-plots 2>&1 | grep -o "mesh 'plate': .*" || true)
+  echo "$np rank(s): ${line:-every rank holds the whole mesh}"
+done
