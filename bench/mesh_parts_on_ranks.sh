@@ -13,22 +13,21 @@ ranks=("$@")
 ((${#ranks[@]} > 0)) || ranks=(1 2 4)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# The plate: binary STL, each cell of the 40 x 40 square at z = 0 cut into two triangles.
-/usr/bin/python3 - "$work/plate.stl" "$cells" <<'PY'
-import struct, sys
-path, n = sys.argv[1], int(sys.argv[2])
+# The plate: binary STL (scenes/binary_stl.py), each cell of the 40 x 40 square at z = 0 cut
+# into two triangles.
+/usr/bin/python3 - "$work/plate.stl" "$cells" "$here/../scenes" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[3])
+from binary_stl import write_binary_stl
+n = int(sys.argv[2])
 h = 40.0 / n
-with open(path, "wb") as f:
-    f.write(b"\0" * 80 + struct.pack("<I", 2 * n * n))
-    for j in range(n):
-        for i in range(n):
-            a, b = (i * h, j * h, 0.0), ((i + 1) * h, j * h, 0.0)
-            c, d = ((i + 1) * h, (j + 1) * h, 0.0), (i * h, (j + 1) * h, 0.0)
-            for tri in ((a, b, c), (a, c, d)):
-                f.write(struct.pack("<3f", 0, 0, 1))
-                for v in tri:
-                    f.write(struct.pack("<3f", *v))
-                f.write(b"\0\0")
+tris = []
+for j in range(n):
+    for i in range(n):
+        a, b = (i * h, j * h, 0.0), ((i + 1) * h, j * h, 0.0)
+        c, d = ((i + 1) * h, (j + 1) * h, 0.0), (i * h, (j + 1) * h, 0.0)
+        tris += [(a, b, c), (a, c, d)]
+write_binary_stl(sys.argv[1], tris, "yuxi plate")
 PY
 cat > "$work/plate.toml" <<'TOML'
 materials = ["grain", "wall"]

@@ -105,20 +105,14 @@ bool MeshWall::within(const Vec3& c, double reach, std::uint32_t t) const {
   return q.feature == TriangleFeature::face || norm2(c - q.point) < reach2;
 }
 
-std::size_t MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
+void MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
   if (!whole) whole = std::make_shared<const TriangleMesh>(std::move(mesh));
   const TriangleMesh& all = *whole;
   held.clear();
   for (std::uint32_t t = 0; t < all.n_triangles(); ++t) {
+    const auto [t_lo, t_hi] = all.box_of(t, all.vertices);
     bool near = true;
-    for (int a = 0; a < 3 && near; ++a) {
-      double t_lo = HUGE_VAL, t_hi = -HUGE_VAL;
-      for (const std::uint32_t k : all.triangles[t]) {
-        t_lo = std::min(t_lo, all.vertices[k][a]);
-        t_hi = std::max(t_hi, all.vertices[k][a]);
-      }
-      near = t_hi >= lo[a] - reach && t_lo <= hi[a] + reach;
-    }
+    for (int a = 0; a < 3; ++a) near = near && t_hi[a] >= lo[a] - reach && t_lo[a] <= hi[a] + reach;
     if (near) held.push_back(t);
   }
   if (held.size() == all.n_triangles()) {
@@ -131,7 +125,6 @@ std::size_t MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
   rest_normals_.clear();
   x.clear();
   place(0.0); // (still: the same at any time)
-  return mesh.n_triangles();
 }
 
 } // namespace yuxi

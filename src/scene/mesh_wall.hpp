@@ -59,8 +59,8 @@ struct MeshWall {
   // The whole mesh's index of triangle t of `mesh` (a contact's element).
   std::uint32_t element_of(std::uint32_t t) const { return held.empty() ? t : held[t]; }
   // Holds only the triangles whose box comes within `reach` of the box [lo, hi] (a still
-  // mesh; the held part is placed). Returns how many it holds.
-  std::size_t hold_near(const Vec3& lo, const Vec3& hi, double reach);
+  // mesh; the held part is placed).
+  void hold_near(const Vec3& lo, const Vec3& hi, double reach);
 
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;

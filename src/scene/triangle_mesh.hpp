@@ -4,9 +4,11 @@
 
 #include "core/vec3.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace yuxi {
@@ -29,6 +31,17 @@ struct TriangleMesh {
   TriangleMesh subset(std::span<const std::uint32_t> kept) const;
 
   std::size_t n_triangles() const { return triangles.size(); }
+  // The box of triangle t with its corners at `at` (the vertices, or where they were placed).
+  std::pair<Vec3, Vec3> box_of(std::size_t t, const std::vector<Vec3>& at) const {
+    const auto& tri = triangles[t];
+    Vec3 lo = at[tri[0]], hi = lo;
+    for (int k = 1; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], at[tri[k]][a]);
+        hi[a] = std::max(hi[a], at[tri[k]][a]);
+      }
+    return {lo, hi};
+  }
   // Every vertex's coordinates finite (a transform cannot make them otherwise unless huge).
   bool finite() const;
   // Edges shared by more than two triangles (a non-manifold mesh works, but rule 1 of

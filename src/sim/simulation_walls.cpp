@@ -74,16 +74,7 @@ void Simulation::list_wall_candidates() {
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
     if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves away from it)
     // Each triangle's box, as placed now.
-    const auto box_of = [&](std::uint32_t t) {
-      const auto& tri = mesh.mesh.triangles[t];
-      Vec3 lo = mesh.x[tri[0]], hi = lo;
-      for (int k = 1; k < 3; ++k)
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = std::min(lo[a], mesh.x[tri[k]][a]);
-          hi[a] = std::max(hi[a], mesh.x[tri[k]][a]);
-        }
-      return std::pair{lo, hi};
-    };
+    const auto box_of = [&](std::uint32_t t) { return mesh.mesh.box_of(t, mesh.x); };
     if (mesh.moves() || !bins.valid || bins.reach < reach || bins.dims != dims ||
         bins.origin != g_lo) {
       // Counting sort of (cell, triangle) by cell; triangles ascend within a cell.
