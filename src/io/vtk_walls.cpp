@@ -17,10 +17,10 @@ namespace yuxi {
 void WallSurface::add_mesh(const MeshWall& mesh, std::span<const Vec3> forces,
                            std::int32_t wall_index) {
   const auto base = static_cast<std::uint32_t>(points.size());
-  // The whole mesh, where a rank holds a part of it (a still mesh: at rest where it stands).
+  // The whole mesh, placed, where a rank holds a part of it.
   const TriangleMesh& whole = mesh.whole_mesh();
-  const std::vector<Vec3>& at =
-      mesh.held.empty() && mesh.x.size() == whole.vertices.size() ? mesh.x : whole.vertices;
+  const std::vector<Vec3> at =
+      mesh.holds_whole() && mesh.x.size() == whole.vertices.size() ? mesh.x : mesh.placed_whole();
   points.insert(points.end(), at.begin(), at.end());
   const bool loaded = forces.size() == whole.n_triangles();
   for (std::size_t k = 0; k < whole.n_triangles(); ++k) {

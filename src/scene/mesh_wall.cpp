@@ -105,26 +105,58 @@ bool MeshWall::within(const Vec3& c, double reach, std::uint32_t t) const {
   return q.feature == TriangleFeature::face || norm2(c - q.point) < reach2;
 }
 
-void MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
-  if (!whole) whole = std::make_shared<const TriangleMesh>(std::move(mesh));
+std::vector<Vec3> MeshWall::placed_whole() const {
+  const TriangleMesh& all = whole_mesh();
+  const WallMotionAtTime now = at_time(motion, placed_at);
+  const Vec3 shift = servo_offset * servo_axis;
+  std::vector<Vec3> at(all.vertices.size());
+  for (std::size_t k = 0; k < at.size(); ++k)
+    at[k] = yuxi::place(now, all.vertices[k]).position + shift;
+  return at;
+}
+
+std::array<Vec3, 8> MeshWall::placed_box_corners() const {
+  const WallMotionAtTime now = at_time(motion, placed_at);
+  const Vec3 shift = servo_offset * servo_axis;
+  std::array<Vec3, 8> corners;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p{k & 1 ? rest_hi_.x : rest_lo_.x, k & 2 ? rest_hi_.y : rest_lo_.y,
+                 k & 4 ? rest_hi_.z : rest_lo_.z};
+    corners[k] = yuxi::place(now, p).position + shift;
+  }
+  return corners;
+}
+
+bool MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
+  const std::vector<Vec3> at = placed_whole();
+  if (!whole) {
+    whole = std::make_shared<const TriangleMesh>(std::move(mesh));
+    rest_lo_ = rest_hi_ = whole->vertices.empty() ? Vec3{} : whole->vertices[0];
+    for (const Vec3& p : whole->vertices)
+      for (int a = 0; a < 3; ++a) {
+        rest_lo_[a] = std::min(rest_lo_[a], p[a]);
+        rest_hi_[a] = std::max(rest_hi_[a], p[a]);
+      }
+  }
   const TriangleMesh& all = *whole;
-  held.clear();
+  std::vector<std::uint32_t> near;
   for (std::uint32_t t = 0; t < all.n_triangles(); ++t) {
-    const auto [t_lo, t_hi] = all.box_of(t, all.vertices);
-    bool near = true;
-    for (int a = 0; a < 3; ++a) near = near && t_hi[a] >= lo[a] - reach && t_lo[a] <= hi[a] + reach;
-    if (near) held.push_back(t);
+    const auto [t_lo, t_hi] = all.box_of(t, at);
+    bool is_near = true;
+    for (int a = 0; a < 3; ++a)
+      is_near = is_near && t_hi[a] >= lo[a] - reach && t_lo[a] <= hi[a] + reach;
+    if (is_near) near.push_back(t);
   }
-  if (held.size() == all.n_triangles()) {
-    // (all of it: the whole mesh again, numbered as it is)
-    mesh = all;
-    held.clear();
-  } else {
-    mesh = all.subset(held);
-  }
+  const bool all_near = near.size() == all.n_triangles();
+  if (all_near) near.clear(); // (all of it: the whole mesh again, numbered as it is)
+  if (near == held && mesh.n_triangles() == (all_near ? all.n_triangles() : near.size()))
+    return false;
+  mesh = all_near ? all : all.subset(near);
+  held = std::move(near);
   rest_normals_.clear();
   x.clear();
-  place(0.0); // (still: the same at any time)
+  place(placed_at);
+  return true;
 }
 
 } // namespace yuxi

@@ -11,6 +11,7 @@
 #include "scene/wall_motion.hpp"
 #include "scene/wall_touch.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -49,21 +50,37 @@ struct MeshWall {
   double servo_offset = 0.0; // [length]
   double servo_speed = 0.0;  // [length/time]
 
-  // A rank may hold only a part of a still mesh, the triangles near its sub-domain: `mesh` is
-  // then that part, `held` the index in the whole mesh of each of its triangles (ascending),
-  // and `whole` the whole mesh at rest, from which the part is chosen again when the
-  // sub-domain changes, and which the snapshots draw. With `held` empty, `mesh` is whole.
+  // A rank may hold only a part of a mesh that stands still or moves rigidly, the triangles
+  // near its sub-domain: `mesh` is then that part, `held` the index in the whole mesh of each
+  // of its triangles (ascending), and `whole` the whole mesh at rest, from which the part is
+  // chosen again when the sub-domain changes or, for a moving mesh, at every list build, and
+  // which the snapshots draw. With `held` empty, `mesh` is whole (or nothing is near).
   std::shared_ptr<const TriangleMesh> whole;
   std::vector<std::uint32_t> held;
   const TriangleMesh& whole_mesh() const { return whole ? *whole : mesh; }
+  bool holds_whole() const { return !whole || mesh.n_triangles() == whole->n_triangles(); }
   // The whole mesh's index of triangle t of `mesh` (a contact's element).
   std::uint32_t element_of(std::uint32_t t) const { return held.empty() ? t : held[t]; }
-  // Holds only the triangles whose box comes within `reach` of the box [lo, hi] (a still
-  // mesh; the held part is placed).
-  void hold_near(const Vec3& lo, const Vec3& hi, double reach);
+  // Whether a rank may hold only a part: a still or rigidly moved mesh. A deforming mesh
+  // (whose vertices move apart) and a servo-controlled one (whose place at a past time is
+  // not known again after a resume) are held whole.
+  bool may_hold_part() const {
+    return !controller && !std::holds_alternative<RadialCosineMotion>(motion);
+  }
+  // Holds only the triangles whose box, placed as at the last place(), comes within `reach`
+  // of the box [lo, hi], and places them; returns whether the held part changed.
+  bool hold_near(const Vec3& lo, const Vec3& hi, double reach);
+  // The whole mesh's vertices placed at the time of the last place().
+  std::vector<Vec3> placed_whole() const;
+  // The corners of the whole mesh's box at rest, placed as at the last place(). Under a rigid
+  // motion no point of the mesh moves farther than the farthest of them: a point's
+  // displacement is an affine map of the point, and its length, a convex function, is largest
+  // at a corner of any box around the mesh.
+  std::array<Vec3, 8> placed_box_corners() const;
 
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;
+  double placed_at = 0.0;
   // Each triangle as placed last: its corners and its unit normal, along (b - a) x (c - a),
   // side by side, so that the contact search reads one record per candidate.
   struct PlacedTriangle {
@@ -73,6 +90,7 @@ struct MeshWall {
 
   // Moves every vertex to time t (and takes the cosine of the merge angle).
   void place(double t) {
+    placed_at = t;
     cos_merge_ = std::cos(merge_degrees * std::numbers::pi / 180.0);
     x.resize(mesh.vertices.size());
     v.resize(mesh.vertices.size());
@@ -119,6 +137,7 @@ struct MeshWall {
 private:
   double cos_merge_ = 1.0;         // of merge_degrees, at the last place()
   std::vector<Vec3> rest_normals_; // of the triangles at rest (taken at the first place())
+  Vec3 rest_lo_, rest_hi_;         // the whole mesh's box at rest (taken with `whole`)
 };
 
 } // namespace yuxi

@@ -5,14 +5,16 @@
 // A mesh's triangles are binned into every cell that their box, grown by the largest grain
 // radius and the skin, overlaps; a grain then reads the triangles of its own cell only, so the
 // cost per grain does not grow with the size of the mesh, and triangles far from every grain
-// cost nothing per step. A still mesh keeps its bins while the cells stay the same, and a rank
-// holds (places, bins, searches) only the triangles near its own sub-domain, chosen again from
-// the whole mesh at rest when its cells move (MeshWall::hold_near).
+// cost nothing per step. A still mesh keeps its bins while the cells stay the same. A rank
+// holds (places, bins, searches) only the triangles of a still or rigidly moving mesh that lie
+// near its own sub-domain, chosen again from the whole mesh when its cells move, or at every
+// build if the mesh moves (MeshWall::hold_near).
 #include "sim/simulation.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
 #include <limits>
+#include <span>
 
 namespace yuxi {
 
@@ -30,12 +32,18 @@ bool Simulation::place_shaped_walls(double t, bool every_one) {
     auto& mesh = std::get<MeshWall>(walls_[w]);
     if (!every_one && !mesh.moves()) continue;
     mesh.place(t);
-    if (built.size() != mesh.x.size()) continue; // not built yet
-    for (std::size_t k = 0; k < built.size(); ++k)
-      if (!(norm2(mesh.x[k] - built[k]) <= limit2)) {
-        moved_far = true;
-        break;
-      }
+    // Its vertices, or where this rank holds a part of it, its box's corners: no point of the
+    // mesh moves farther (MeshWall::placed_box_corners).
+    const auto moved_beyond = [&](std::span<const Vec3> now) {
+      if (built.size() != now.size()) return false; // not built yet
+      for (std::size_t k = 0; k < built.size(); ++k)
+        if (!(norm2(now[k] - built[k]) <= limit2)) return true;
+      return false;
+    };
+    if (mesh.holds_whole())
+      moved_far = moved_far || moved_beyond(mesh.x);
+    else
+      moved_far = moved_far || moved_beyond(mesh.placed_box_corners());
   }
   return moved_far;
 }
@@ -62,17 +70,25 @@ void Simulation::list_wall_candidates() {
     }
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
     MeshBins& bins = mesh_bins_[w];
-    // Of a still mesh, this rank holds only the triangles its cells can reach: chosen again
-    // when the cells move (a balancing, a load) or the reach grows.
-    if (!mesh.moves() &&
-        (bins.held_reach < reach || bins.held_lo != g_lo || bins.held_hi != g_hi)) {
+    // Of a still or rigidly moving mesh, this rank holds only the triangles its cells can
+    // reach: chosen again, where it stands now, at every build if it moves, else when the
+    // cells move (a balancing, a load) or the reach grows. Between builds no point of the
+    // mesh moves more than half the skin (place_shaped_walls).
+    if (mesh.may_hold_part() &&
+        (mesh.moves() || bins.held_reach < reach || bins.held_lo != g_lo || bins.held_hi != g_hi)) {
       bins.held_reach = std::max(reach, cell_edge_ + range_);
       bins.held_lo = g_lo, bins.held_hi = g_hi;
-      mesh.hold_near(g_lo, g_hi, bins.held_reach);
-      bins.valid = false;
+      if (mesh.hold_near(g_lo, g_hi, bins.held_reach)) bins.valid = false;
     }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
-    if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves away from it)
+    if (mesh.moves()) { // (a still mesh never moves away from where it was built)
+      if (mesh.holds_whole()) {
+        mesh_x_build_[w] = mesh.x;
+      } else {
+        const auto corners = mesh.placed_box_corners();
+        mesh_x_build_[w].assign(corners.begin(), corners.end());
+      }
+    }
     // Each triangle's box, as placed now.
     const auto box_of = [&](std::uint32_t t) { return mesh.mesh.box_of(t, mesh.x); };
     if (mesh.moves() || !bins.valid || bins.reach < reach || bins.dims != dims ||
