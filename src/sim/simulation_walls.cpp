@@ -32,18 +32,25 @@ bool Simulation::place_shaped_walls(double t, bool every_one) {
     auto& mesh = std::get<MeshWall>(walls_[w]);
     if (!every_one && !mesh.moves()) continue;
     mesh.place(t);
-    // Its vertices, or where this rank holds a part of it, its box's corners: no point of the
-    // mesh moves farther (MeshWall::placed_box_corners).
-    const auto moved_beyond = [&](std::span<const Vec3> now) {
-      if (built.size() != now.size()) return false; // not built yet
-      for (std::size_t k = 0; k < built.size(); ++k)
-        if (!(norm2(now[k] - built[k]) <= limit2)) return true;
+    // Its vertices; where this rank holds a part of it, the held vertices, and the corners of
+    // its box, which bound every point's displacement (MeshWall::placed_box_corners): a
+    // triangle left out lay a cell edge beyond the reach, and comes within it only after the
+    // corners have moved that much farther than half the skin.
+    const auto moved_beyond = [](std::span<const Vec3> then, std::span<const Vec3> now,
+                                 double most2) {
+      for (std::size_t k = 0; k < then.size(); ++k)
+        if (!(norm2(now[k] - then[k]) <= most2)) return true;
       return false;
     };
-    if (mesh.holds_whole())
-      moved_far = moved_far || moved_beyond(mesh.x);
-    else
-      moved_far = moved_far || moved_beyond(mesh.placed_box_corners());
+    if (mesh.holds_whole()) {
+      if (built.size() == mesh.x.size())
+        moved_far = moved_far || moved_beyond(built, mesh.x, limit2);
+    } else if (built.size() == mesh.x.size() + 8) { // (else not built yet)
+      const double far = 0.5 * config_.skin + cell_edge_;
+      moved_far = moved_far ||
+                  moved_beyond(std::span(built).first(mesh.x.size()), mesh.x, limit2) ||
+                  moved_beyond(std::span(built).last(8), mesh.placed_box_corners(), far * far);
+    }
   }
   return moved_far;
 }
@@ -71,22 +78,22 @@ void Simulation::list_wall_candidates() {
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
     MeshBins& bins = mesh_bins_[w];
     // Of a still or rigidly moving mesh, this rank holds only the triangles its cells can
-    // reach: chosen again, where it stands now, at every build if it moves, else when the
-    // cells move (a balancing, a load) or the reach grows. Between builds no point of the
-    // mesh moves more than half the skin (place_shaped_walls).
+    // reach: chosen again, where it stands now, at every build if it moves (a cell edge
+    // farther, see place_shaped_walls), else when the cells move (a balancing, a load) or the
+    // reach grows.
     if (mesh.may_hold_part() &&
         (mesh.moves() || bins.held_reach < reach || bins.held_lo != g_lo || bins.held_hi != g_hi)) {
       bins.held_reach = std::max(reach, cell_edge_ + range_);
       bins.held_lo = g_lo, bins.held_hi = g_hi;
-      if (mesh.hold_near(g_lo, g_hi, bins.held_reach)) bins.valid = false;
+      const double spare = mesh.moves() ? cell_edge_ : 0.0; // (see place_shaped_walls)
+      if (mesh.hold_near(g_lo, g_hi, bins.held_reach + spare)) bins.valid = false;
     }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
     if (mesh.moves()) { // (a still mesh never moves away from where it was built)
-      if (mesh.holds_whole()) {
-        mesh_x_build_[w] = mesh.x;
-      } else {
+      mesh_x_build_[w] = mesh.x;
+      if (!mesh.holds_whole()) {
         const auto corners = mesh.placed_box_corners();
-        mesh_x_build_[w].assign(corners.begin(), corners.end());
+        mesh_x_build_[w].insert(mesh_x_build_[w].end(), corners.begin(), corners.end());
       }
     }
     // Each triangle's box, as placed now.
