@@ -87,9 +87,16 @@ def beverloo(folders, out):
 def heap(folder, out):
     by = {r["scene"]: (float(r["angle"]), float(r["r2"])) for r in rows(folder / "heap.csv")}
     fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.8))
-    mus = [(float(n[len("heap-mu"):]), by[n][0]) for n in by if n.count("-") == 1]
-    mus.sort()
-    a.plot([m for m, _ in mus], [t for _, t in mus], "C0o-", label="k_n = 2e4, e = 0.68")
+    # each heap of the mu_s series (three random floors and pours a mu_s), and their means
+    singles = sorted((float(n[len("heap-mu"):].split("-")[0]), by[n][0]) for n in by
+                     if n.count("-") == 1 or "-seed" in n)
+    a.plot([m for m, _ in singles], [t for _, t in singles], "C0.", alpha=0.6,
+           label="each heap, k_n = 2e4, e = 0.68")
+    if (folder / "heap_mu.csv").exists():
+        means = rows(folder / "heap_mu.csv")
+        a.errorbar([float(r["mu"]) for r in means], [float(r["mean"]) for r in means],
+                   yerr=[2 * float(r["standard_error"]) for r in means], fmt="C0o-", capsize=3,
+                   label="mean, 2 standard errors")
     for name, marker, label in (("heap-mu0.5-stiff", "s", "k_n x 10"),
                                 ("heap-mu0.5-e0.5", "v", "e = 0.5"),
                                 ("heap-mu0.5-e0.9", "^", "e = 0.9")):

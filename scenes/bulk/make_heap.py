@@ -5,6 +5,8 @@ of repose is the slope of a line fitted to the free surface against the distance
 ([[measure]] quantity = "angle"). Grains that roll off the floor's edge fall into an outlet.
 
     heap-mu<mu>.toml          N = 4000 on a floor of radius 22 d, mu_s = mu_d = 0.1, 0.3, 0.5, 1.0  (the long suite)
+    heap-mu<mu>-seed<k>.toml  the same with other random floors and pours, k = 2, 3: the angle
+                              against mu_s is compared by the mean of three heaps
     heap-mu0.5-stiff.toml     k_n x 10 (dt / sqrt(10))
     heap-mu0.5-e0.5.toml, heap-mu0.5-e0.9.toml   restitution 0.5 and 0.9 (else about 0.68)
     heap-mu0.5-mur<mu_r>.toml rolling resistance mu_r = 0.05, 0.1, 0.2 (k_r = k_t / 2)
@@ -26,7 +28,7 @@ def gamma_for(e, k, m):
     return 2 * math.sqrt(k / m) * -le / math.sqrt(math.pi**2 + le**2)
 
 
-def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
+def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1):
     k_n = 2.0e4 * stiff
     gamma_n = 50.0 * math.sqrt(stiff) if e is None else gamma_for(e, k_n, 0.5)
     dt = 8.0e-4 / math.sqrt(stiff)
@@ -37,7 +39,8 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
     # reach it (a capped apex would fix the angle at atan(apex / floor radius))
     source_top = floor * math.tan(math.radians(40)) + 6
     out = [f"# Heap: {grains} grains poured onto a rough floor of radius {floor} d; mu_s = mu_d = "
-           f"{mu}, k_n = {k_n:g}, gamma_n = {gamma_n:.4g}, mu_r = {mu_r}.",
+           f"{mu}, k_n = {k_n:g}, gamma_n = {gamma_n:.4g}, mu_r = {mu_r}"
+           + (f"; random floor and pour {seed}." if seed != 1 else "."),
            "# Written by make_heap.py; docs/models/validation.md (B1).", "",
            'materials = ["grain", "floor"]', "", "[material.grain]",
            "density = 1.909859317 # m = 1 for d = 1", "",
@@ -59,12 +62,17 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
     out += ["",
             "# the rough floor: fixed wall particles on a jittered lattice",
             "[[fill]]", 'kind = "wall"', 'material = "floor"', "radius = 0.5",
-            'placement = "lattice"', "jitter = 0.1", "packing_fraction = 0.25",
+            'placement = "lattice"', "jitter = 0.1", "packing_fraction = 0.25"]
+    # (seed 1: the sources' default streams; another seed, other streams for both)
+    out += [f"seed = {2008 + 100 * seed}"] if seed != 1 else []
+    out += [
             f'region = {{ shape = "cylinder", center = [0.0, 0.0, 0.0], radius = {floor}, '
             "lo = -0.61, hi = 0.61 }", "",
             "[[insert]]", 'name = "pour"', 'material = "grain"', f"rate = {rate}",
             f"total = {grains}", "interval = 0.08", "velocity = [0.0, 0.0, -2.0]",
-            "velocity_spread = 0.3", 'size = { distribution = "uniform", min = 0.45, max = 0.55 }',
+            "velocity_spread = 0.3", 'size = { distribution = "uniform", min = 0.45, max = 0.55 }']
+    out += [f"seed = {3008 + 100 * seed}"] if seed != 1 else []
+    out += [
             f'region = {{ shape = "cylinder", center = [0.0, 0.0, {source_top - 4}], '
             "radius = 3.0, lo = 0.0, hi = 4.0 }", "",
             "[[outlet]]", 'name = "off_the_floor"',
@@ -84,6 +92,8 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0):
 
 for mu in (0.1, 0.3, 0.5, 1.0):
     scene(f"heap-mu{mu}", 4000, 22.0, mu=mu)
+    for seed in (2, 3):
+        scene(f"heap-mu{mu}-seed{seed}", 4000, 22.0, mu=mu, seed=seed)
 scene("heap-mu0.5-stiff", 4000, 22.0, stiff=10.0)
 for e in (0.5, 0.9):
     scene(f"heap-mu0.5-e{e}", 4000, 22.0, e=e)
