@@ -66,7 +66,8 @@ BENCHMARK(BM_DenseStep)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
 
 // A 64 x 64 layer of grains (radius 0.5, spacing 1.2) under gravity, at their resting overlap
 // on what `support` puts beneath them: 0 nothing (gravity off), 1 a fixed sphere each, 2 a flat
-// mesh of 2 triangles per grain, 3 that mesh and a million-triangle mesh 30 above.
+// mesh of 2 triangles per grain, 3 that mesh and a million-triangle mesh 30 above, 4 that mesh
+// and a million-triangle square 30 above, turning slowly about the vertical through its centre.
 void BM_GrainsOn(benchmark::State& st) {
   const int support = static_cast<int>(st.range(0));
   constexpr int side = 64;
@@ -98,12 +99,12 @@ void BM_GrainsOn(benchmark::State& st) {
         s.kind = Kind::wall;
         p.add(s, id++);
       }
-  const auto plane = [](int n, double edge, double z) {
+  const auto plane = [](int n, double edge, double z, double from = 0.0) {
     std::vector<std::array<Vec3, 3>> soup;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
-        const Vec3 a{i * edge, j * edge, z}, b{(i + 1) * edge, j * edge, z},
-            c{(i + 1) * edge, (j + 1) * edge, z}, d{i * edge, (j + 1) * edge, z};
+        const double x0 = from + i * edge, x1 = x0 + edge, y0 = from + j * edge, y1 = y0 + edge;
+        const Vec3 a{x0, y0, z}, b{x1, y0, z}, c{x1, y1, z}, d{x0, y1, z};
         soup.push_back({a, b, c});
         soup.push_back({a, c, d});
       }
@@ -114,13 +115,23 @@ void BM_GrainsOn(benchmark::State& st) {
   std::vector<ShapedWall> walls;
   if (support >= 2) walls.push_back(plane(side, spacing, 0.0));
   if (support == 3) walls.push_back(plane(707, side * spacing / 707, 30.0));
+  if (support == 4) { // (a 50 x 50 square about the layer's centre: its corners stay inside)
+    const double middle = 0.5 * side * spacing;
+    MeshWall turning = plane(707, 50.0 / 707, 30.0, middle - 25.0);
+    RigidMotion turn;
+    turn.axis = {0, 0, 1};
+    turn.center = {middle, middle, 0};
+    turn.omega = 0.01;
+    turning.motion = turn;
+    walls.push_back(std::move(turning));
+  }
   ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(1)};
   law.coeffs.set(0, 0, {k_n, 2.0 / 7.0 * k_n, 20.0, 10.0, 0.5, 0.5});
   Simulation sim(cfg, std::move(p), {}, {}, law, Comm::self(), walls);
   for (auto _ : st) sim.step();
   st.counters["contacts"] = static_cast<double>(sim.last_tally().touching);
 }
-BENCHMARK(BM_GrainsOn)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GrainsOn)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMicrosecond);
 
 } // namespace
 } // namespace yuxi

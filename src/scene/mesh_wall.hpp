@@ -51,10 +51,11 @@ struct MeshWall {
   double servo_speed = 0.0;  // [length/time]
 
   // A rank may hold only a part of a mesh that stands still or moves rigidly, the triangles
-  // near its sub-domain: `mesh` is then that part, `held` the index in the whole mesh of each
-  // of its triangles (ascending), and `whole` the whole mesh at rest, from which the part is
-  // chosen again when the sub-domain changes or, for a moving mesh, at every list build, and
-  // which the snapshots draw. With `held` empty, `mesh` is whole (or nothing is near).
+  // near its grains: `mesh` is then that part, `held` the index in the whole mesh of each of
+  // its triangles (ascending), and `whole` the whole mesh at rest, from which the part is
+  // chosen again when the grains leave the box it was chosen for or, for a moving mesh, at
+  // every list build (Simulation::list_wall_candidates), and which the snapshots draw. With
+  // `held` empty, `mesh` is whole (or nothing is near).
   std::shared_ptr<const TriangleMesh> whole;
   std::vector<std::uint32_t> held;
   const TriangleMesh& whole_mesh() const { return whole ? *whole : mesh; }

@@ -449,7 +449,8 @@ private:
     double reach = 0.0;
     Vec3 origin;
     std::array<int, 3> dims{};
-    // The cells' box and the reach for which a still mesh's held triangles were chosen.
+    // The box (the grains' grown by a cell edge) and the reach for which a mesh's held
+    // triangles were chosen.
     Vec3 held_lo, held_hi;
     double held_reach = -1.0;
   };

@@ -7,8 +7,8 @@
 // cost per grain does not grow with the size of the mesh, and triangles far from every grain
 // cost nothing per step. A still mesh keeps its bins while the cells stay the same. A rank
 // holds (places, bins, searches) only the triangles of a still or rigidly moving mesh that lie
-// near its own sub-domain, chosen again from the whole mesh when its cells move, or at every
-// build if the mesh moves (MeshWall::hold_near).
+// near its own grains, chosen again from the whole mesh when the grains leave the box they were
+// chosen for, or at every build if the mesh moves (MeshWall::hold_near).
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -34,8 +34,9 @@ bool Simulation::place_shaped_walls(double t, bool every_one) {
     mesh.place(t);
     // Its vertices; where this rank holds a part of it, the held vertices, and the corners of
     // its box, which bound every point's displacement (MeshWall::placed_box_corners): a
-    // triangle left out lay a cell edge beyond the reach, and comes within it only after the
-    // corners have moved that much farther than half the skin.
+    // triangle left out lay a cell edge beyond the reach of the grains' box at the build
+    // (list_wall_candidates), and comes within it only after the corners have moved that much
+    // farther than half the skin.
     const auto moved_beyond = [](std::span<const Vec3> then, std::span<const Vec3> now,
                                  double most2) {
       for (std::size_t k = 0; k < then.size(); ++k)
@@ -59,8 +60,17 @@ void Simulation::list_wall_candidates() {
   list_.walls.clear();
   list_.wall_elements.clear();
   if (walls_.empty()) return;
+  // The largest radius, and the box of the grains' centres (empty without grains).
   double largest = 0.0;
-  for (std::size_t i = 0; i < owned_grains_; ++i) largest = std::max(largest, store_.radius[i]);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Vec3 grains_lo{inf, inf, inf}, grains_hi{-inf, -inf, -inf};
+  for (std::size_t i = 0; i < owned_grains_; ++i) {
+    largest = std::max(largest, store_.radius[i]);
+    for (int a = 0; a < 3; ++a) {
+      grains_lo[a] = std::min(grains_lo[a], store_.x[i][a]);
+      grains_hi[a] = std::max(grains_hi[a], store_.x[i][a]);
+    }
+  }
   const double reach = largest + range_;
   const Vec3 g_lo = grid_.origin(), edge = grid_.edge();
   const auto dims = grid_.dims();
@@ -77,16 +87,20 @@ void Simulation::list_wall_candidates() {
     }
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
     MeshBins& bins = mesh_bins_[w];
-    // Of a still or rigidly moving mesh, this rank holds only the triangles its cells can
-    // reach: chosen again, where it stands now, at every build if it moves (a cell edge
-    // farther, see place_shaped_walls), else when the cells move (a balancing, a load) or the
-    // reach grows.
-    if (mesh.may_hold_part() &&
-        (mesh.moves() || bins.held_reach < reach || bins.held_lo != g_lo || bins.held_hi != g_hi)) {
-      bins.held_reach = std::max(reach, cell_edge_ + range_);
-      bins.held_lo = g_lo, bins.held_hi = g_hi;
-      const double spare = mesh.moves() ? cell_edge_ : 0.0; // (see place_shaped_walls)
-      if (mesh.hold_near(g_lo, g_hi, bins.held_reach + spare)) bins.valid = false;
+    // Of a still or rigidly moving mesh, this rank holds only the triangles its grains can
+    // reach: those within the reach of the grains' box grown by a cell edge. Chosen again,
+    // where the mesh stands now, at every build if it moves (see place_shaped_walls), else
+    // when the grains leave that box or the reach grows.
+    if (mesh.may_hold_part()) {
+      bool inside = bins.held_reach >= reach;
+      for (int a = 0; a < 3; ++a)
+        inside = inside && grains_lo[a] >= bins.held_lo[a] && grains_hi[a] <= bins.held_hi[a];
+      if (mesh.moves() || !inside) {
+        bins.held_reach = std::max(reach, cell_edge_ + range_);
+        bins.held_lo = grains_lo - Vec3{cell_edge_, cell_edge_, cell_edge_};
+        bins.held_hi = grains_hi + Vec3{cell_edge_, cell_edge_, cell_edge_};
+        if (mesh.hold_near(bins.held_lo, bins.held_hi, bins.held_reach)) bins.valid = false;
+      }
     }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
     if (mesh.moves()) { // (a still mesh never moves away from where it was built)
