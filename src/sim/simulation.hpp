@@ -455,8 +455,8 @@ private:
     double held_reach = -1.0;
   };
   std::vector<MeshBins> mesh_bins_;
-  // Each moving mesh's vertices (or, where a rank holds a part of it, its box's corners), or
-  // moving cylinder's shift, at the last build.
+  // Each moving mesh's vertices (where a rank holds a part of it, the held vertices, then the
+  // eight corners of its box), or moving cylinder's shift, at the last build.
   std::vector<std::vector<Vec3>> mesh_x_build_;
   double walls_built_at_ = 0.0; // time of the last list build
   AnyContactLaw law_;
