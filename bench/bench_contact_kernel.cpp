@@ -103,7 +103,8 @@ void BM_GrainsOn(benchmark::State& st) {
     std::vector<std::array<Vec3, 3>> soup;
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
-        const double x0 = from + i * edge, x1 = x0 + edge, y0 = from + j * edge, y1 = y0 + edge;
+        const double x0 = from + i * edge, x1 = from + (i + 1) * edge;
+        const double y0 = from + j * edge, y1 = from + (j + 1) * edge;
         const Vec3 a{x0, y0, z}, b{x1, y0, z}, c{x1, y1, z}, d{x0, y1, z};
         soup.push_back({a, b, c});
         soup.push_back({a, c, d});
