@@ -47,6 +47,19 @@ void add_range(CaseResult& res, const std::string& what, double measured, double
   res.add(what, 0.5 * (lo + hi), measured, 0.5 * (hi - lo));
 }
 
+// The mean of `values`, and sum (v - mean)^2 / divisor: their variance with divisor n, the
+// sample variance with n - 1.
+struct MeanAndVariance {
+  double mean = 0, variance = 0;
+};
+MeanAndVariance mean_and_variance(const std::vector<double>& values, double divisor) {
+  MeanAndVariance m;
+  const double n = static_cast<double>(values.size());
+  for (const double v : values) m.mean += v / n;
+  for (const double v : values) m.variance += (v - m.mean) * (v - m.mean) / divisor;
+  return m;
+}
+
 // The books: the drift of the balance (conserved by the exact dynamics) against the energy
 // that came in (inserted) or was turned over (dissipated).
 void add_books(CaseResult& res, const CsvTable& energies, double share) {
@@ -348,10 +361,9 @@ CaseResult heaps(const Paths& paths) {
       m.angles.push_back(by[name].angle);
     }
     const double n = static_cast<double>(m.angles.size());
-    for (const double a : m.angles) m.mean += a / n;
-    double var = 0;
-    for (const double a : m.angles) var += (a - m.mean) * (a - m.mean) / (n - 1);
-    m.error = std::sqrt(var / n);
+    const MeanAndVariance angle = mean_and_variance(m.angles, n - 1);
+    m.mean = angle.mean;
+    m.error = std::sqrt(angle.variance / n);
     means.push_back(m);
   }
   for (const char* name : {"heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9",
@@ -410,10 +422,9 @@ Drum drum(const Paths& paths, const std::string& name, CaseResult& res, bool pro
   std::vector<double> late;
   for (std::size_t i = 0; i < t.size(); ++i)
     if (t[i] >= 0.5 * scene.run.t_end) late.push_back(angle[i]);
-  for (double a : late) d.angle += a / static_cast<double>(late.size());
-  for (double a : late)
-    d.spread += (a - d.angle) * (a - d.angle) / static_cast<double>(late.size());
-  d.spread = std::sqrt(d.spread);
+  const MeanAndVariance late_angle = mean_and_variance(late, static_cast<double>(late.size()));
+  d.angle = late_angle.mean;
+  d.spread = std::sqrt(late_angle.variance);
   return d;
 }
 
