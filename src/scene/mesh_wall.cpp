@@ -50,11 +50,29 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
   for (const std::uint32_t t : triangles) {
     const PlacedTriangle& p = placed[t];
     // A triangle whose plane is out of reach cannot be touched.
-    const double above = dot(p.normal, c - p.a); // signed distance from the plane
+    const Vec3 from_a = c - p.a;
+    const double above = dot(p.normal, from_a); // signed distance from the plane
     if (!(above * above < r2)) continue;
-    // The face's point and weights come from the plane (below) unless the mesh moves.
-    const TrianglePoint q = still ? closest_point_on_triangle<false>(c, p.a, p.b, p.c)
-                                  : closest_point_on_triangle<true>(c, p.a, p.b, p.c);
+    // A quick look, whose outcome is the closest point's (docs/walls.md section 1): the
+    // barycentric weights (u, v, w) of the centre's projection tell a centre well inside the
+    // face (by more than their round-off, `slack`), and a triangle out of reach: the
+    // projection lies at least -u times the altitude from a beyond the edge bc (and so on),
+    // so the triangle is no closer than sqrt(above^2 + that^2).
+    constexpr double slack = 1e-9;
+    const double bv = dot(p.e1, from_a), bw = dot(p.e2, from_a), bu = 1.0 - bv - bw;
+    TrianglePoint q{};
+    if (still && bu > slack && bv > slack && bw > slack) {
+      q.feature = TriangleFeature::face; // (a still mesh's face needs no point or weights)
+    } else {
+      double beyond2 = 0.0; // a lower bound on the squared distance in the plane
+      const double beyond[3] = {-bu - slack, -bv - slack, -bw - slack};
+      for (int k = 0; k < 3; ++k)
+        if (beyond[k] > 0.0) beyond2 = std::max(beyond2, beyond[k] * beyond[k] * p.altitude2[k]);
+      if (above * above + beyond2 > r2 * (1.0 + slack)) continue;
+      // The face's point and weights come from the plane (below) unless the mesh moves.
+      q = still ? closest_point_on_triangle<false>(c, p.a, p.b, p.c)
+                : closest_point_on_triangle<true>(c, p.a, p.b, p.c);
+    }
     WallTouch touch;
     if (q.feature == TriangleFeature::face) {
       // On the face the contact is the plane's: the distance |above| along the normal, with

@@ -83,9 +83,15 @@ struct MeshWall {
   std::vector<Vec3> x, v;
   double placed_at = 0.0;
   // Each triangle as placed last: its corners and its unit normal, along (b - a) x (c - a),
-  // side by side, so that the contact search reads one record per candidate.
+  // side by side, so that the contact search reads one record per candidate. With them, what
+  // the search's quick look needs (touches(), docs/walls.md section 1): the dual vectors e1,
+  // e2 that give a point's barycentric weights of b and c, v = e1.(x - a) and w = e2.(x - a)
+  // (dimensionless), and the squared altitudes from a, b and c [length^2]. A sliver (an angle
+  // below about 0.06 degrees) gets zeros, and the search gives it no quick look.
   struct PlacedTriangle {
     Vec3 a, b, c, normal;
+    Vec3 e1, e2;
+    double altitude2[3];
   };
   std::vector<PlacedTriangle> placed;
 
@@ -122,6 +128,7 @@ struct MeshWall {
       p.a = x[tri[0]], p.b = x[tri[1]], p.c = x[tri[2]];
       p.normal = deforms ? normalized(cross(p.b - p.a, p.c - p.a))
                          : (turns ? rigid->turn(rest_normals_[k]) : rest_normals_[k]);
+      set_quick_look(p);
     }
   }
   bool moves() const { return controller || !std::holds_alternative<StaticMotion>(motion); }
@@ -136,6 +143,22 @@ struct MeshWall {
   bool within(const Vec3& c, double reach, std::uint32_t t) const;
 
 private:
+  // The dual vectors and squared altitudes of a placed triangle (PlacedTriangle above):
+  // with n = ab x ac, e1 = (ac x n) / |n|^2 and e2 = (n x ab) / |n|^2, so that e1.ab = 1,
+  // e1.ac = 0, e2.ab = 0, e2.ac = 1; the altitude from a is |n| / |bc|, and so on.
+  static void set_quick_look(PlacedTriangle& p) {
+    const Vec3 ab = p.b - p.a, ac = p.c - p.a, n = cross(ab, ac);
+    const double n2 = norm2(n), ab2 = norm2(ab), ac2 = norm2(ac), bc2 = norm2(p.c - p.b);
+    if (!(n2 > 1e-6 * ab2 * ac2)) { // (sin^2 of the angle at a below 1e-6, or not finite)
+      p.e1 = p.e2 = Vec3{};
+      p.altitude2[0] = p.altitude2[1] = p.altitude2[2] = 0.0;
+      return;
+    }
+    p.e1 = cross(ac, n) * (1.0 / n2);
+    p.e2 = cross(n, ab) * (1.0 / n2);
+    p.altitude2[0] = n2 / bc2, p.altitude2[1] = n2 / ac2, p.altitude2[2] = n2 / ab2;
+  }
+
   double cos_merge_ = 1.0;         // of merge_degrees, at the last place()
   std::vector<Vec3> rest_normals_; // of the triangles at rest (taken at the first place())
   Vec3 rest_lo_, rest_hi_;         // the whole mesh's box at rest (taken with `whole`)
