@@ -61,6 +61,67 @@ TEST(ClosestPointOnTriangle, IsNoFartherThanAnyPointOfTheTriangle) {
   }
 }
 
+// The quick look of MeshWall::touches (docs/walls.md section 1) settles most triangles by their
+// barycentric weights, with a slack for round-off: its answer must be the region test's, to the
+// bit. Each grain here is placed where the two could part: its foot near an edge or a corner
+// (within 1e-6 to 1e-15 of the triangle's edge length, on either side), with its surface near the
+// closest point (within as little), on well-shaped triangles, slivers and large triangles
+// under small grains.
+TEST(MeshTouches, TheQuickLookAgreesWithTheRegionTestToTheBit) {
+  Random rng(11);
+  const auto any = [&] { return Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}; };
+  int touched = 0, missed = 0, faces = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double size = trial % 3 == 0 ? 100.0 : 1.0;
+    Vec3 a = size * any(), b = size * any(), c = size * any();
+    if (trial % 5 == 0) c = a + (b - a) * rng.uniform(0.1, 0.9) + 1e-5 * size * any(); // sliver
+    if (norm2(cross(b - a, c - a)) == 0.0) continue;
+    const MeshWall w = mesh_of({{{a, b, c}}});
+    if (w.mesh.n_triangles() != 1) continue;
+    const auto& tri = w.mesh.triangles[0];
+    const Vec3 pa = w.mesh.vertices[tri[0]], pb = w.mesh.vertices[tri[1]],
+               pc = w.mesh.vertices[tri[2]];
+    // a foot on an edge or at a corner, pushed in or out by a tiny step, and a grain above it
+    const double t = rng.uniform() < 0.3 ? 0.0 : rng.uniform();
+    const Vec3 ends[3][2] = {{pa, pb}, {pb, pc}, {pc, pa}};
+    const int e = static_cast<int>(rng.uniform() * 3) % 3;
+    const Vec3 on_edge = ends[e][0] + t * (ends[e][1] - ends[e][0]);
+    const Vec3 centroid = (pa + pb + pc) * (1.0 / 3.0);
+    const double step = std::pow(10.0, -rng.uniform(6, 15)) * (rng.uniform() < 0.5 ? 1 : -1);
+    const Vec3 foot = on_edge + step * (centroid - on_edge);
+    const Vec3 n = w.placed[0].normal;
+    const double height = rng.uniform(0.0, 0.5) * (trial % 3 == 0 ? 0.02 : 1.0) * size;
+    const Vec3 centre = foot + height * n + 1e-3 * height * any();
+    const TrianglePoint q = closest_point_on_triangle(centre, pa, pb, pc);
+    const double above = dot(n, centre - pa);
+    const double reach =
+        q.feature == TriangleFeature::face ? std::abs(above) : norm(centre - q.point);
+    const double r =
+        reach * (1.0 + std::pow(10.0, -rng.uniform(8, 15)) * (rng.uniform() < 0.5 ? 1 : -1));
+    // what the region test alone gives (MeshWall::touches before its quick look)
+    bool expect = above * above < r * r;
+    double distance = std::abs(above);
+    if (expect && q.feature != TriangleFeature::face) {
+      const double d2 = norm2(centre - q.point);
+      expect = d2 < r * r;
+      distance = std::sqrt(d2);
+    }
+    const WallTouches got = touches_of(w, centre, r);
+    ASSERT_EQ(got.n, expect ? 1u : 0u) << "trial " << trial;
+    if (!expect) {
+      ++missed;
+      continue;
+    }
+    ++touched;
+    faces += q.feature == TriangleFeature::face;
+    EXPECT_EQ(got.at[0].distance, distance) << "trial " << trial;
+  }
+  // (the grains lie on both sides of the boundaries, on faces and beyond edges)
+  EXPECT_GT(touched, 500);
+  EXPECT_GT(missed, 500);
+  EXPECT_GT(faces, 200);
+}
+
 TEST(TriangleMesh, WeldsSharedCornersAndKeepsTriangleOrder) {
   const TriangleMesh m = TriangleMesh::weld(
       {{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}}, {{{0, 0, 0}, {1, 1, 0}, {0, 1, -0.0}}}});
