@@ -40,6 +40,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -132,14 +133,42 @@ public:
 
 inline constexpr std::size_t max_wall_contacts = 6;
 
-// The contacts of one grain with one shaped wall.
-template <class State> struct WallContactSet {
+// The contacts of one grain with one shaped wall, at(0) to at(n - 1). The first is held in
+// place: most grains touch a wall once, and the wall loop then reads one small record per
+// candidate (about 120 bytes with the linear law's state, not max_wall_contacts times that).
+// The others, for a grain in a groove or on an edge between two faces, are held in a block
+// made for it by make_room().
+template <class State> class WallContactSet {
+public:
   struct Contact {
     Vec3 normal; // of the contact when last evaluated
     State state;
   };
   std::uint8_t n = 0;
-  std::array<Contact, max_wall_contacts> at;
+
+  WallContactSet() = default;
+  WallContactSet(const WallContactSet& o)
+      : n(o.n), first_(o.first_), more_(o.more_ ? std::make_unique<More>(*o.more_) : nullptr) {}
+  WallContactSet& operator=(const WallContactSet& o) {
+    if (this != &o) *this = WallContactSet(o);
+    return *this;
+  }
+  WallContactSet(WallContactSet&&) noexcept = default;
+  WallContactSet& operator=(WallContactSet&&) noexcept = default;
+
+  Contact& at(std::size_t c) { return c == 0 ? first_ : (*more_)[c - 1]; }
+  const Contact& at(std::size_t c) const { return c == 0 ? first_ : (*more_)[c - 1]; }
+  // Makes at(0) to at(count - 1) usable (count <= max_wall_contacts).
+  void make_room(std::size_t count) {
+    if (count > 1 && !more_) more_ = std::make_unique<More>();
+  }
+  // Bytes held beside the set itself.
+  std::size_t block_bytes() const { return more_ ? sizeof(More) : 0; }
+
+private:
+  using More = std::array<Contact, max_wall_contacts - 1>;
+  Contact first_;
+  std::unique_ptr<More> more_;
 };
 
 template <class State> class ContactHistory final : public ContactStates {
@@ -190,8 +219,8 @@ public:
     for (std::size_t k = 0; k < list.walls.size() && k < wall.size(); ++k)
       for (std::size_t c = 0; c < wall[k].n; ++c)
         out.push_back({{s.gid[list.walls[k].particle], static_cast<GlobalId>(list.walls[k].wall)},
-                       wall[k].at[c].normal,
-                       wall[k].at[c].state});
+                       wall[k].at(c).normal,
+                       wall[k].at(c).state});
     return out;
   }
 
@@ -283,10 +312,16 @@ public:
     return (pair_slot.capacity() + free_.capacity()) * sizeof(std::uint32_t) +
            (states.capacity() + plane.capacity()) * sizeof(State) + plane_live.capacity() +
            stash_.capacity() * sizeof(Entry) + wall.capacity() * sizeof(WallContactSet<State>) +
-           wall_stash_.capacity() * sizeof(WallEntry);
+           wall_blocks_bytes() + wall_stash_.capacity() * sizeof(WallEntry);
   }
 
   std::size_t stashed() const { return stash_.size(); }
+  // Bytes of the blocks that hold grain-wall contacts beyond each candidate's first.
+  std::size_t wall_blocks_bytes() const {
+    std::size_t bytes = 0;
+    for (const WallContactSet<State>& set : wall) bytes += set.block_bytes();
+    return bytes;
+  }
   const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
 
   std::vector<StateField> state_fields() const override { return yuxi::state_fields<State>(); }
@@ -299,7 +334,7 @@ public:
   }
   void wall_state(std::size_t k, std::size_t c, std::vector<double>& out) const override {
     const bool held = k < wall.size() && c < wall[k].n;
-    append_state_values(held ? wall[k].at[c].state : State{}, out);
+    append_state_values(held ? wall[k].at(c).state : State{}, out);
   }
 
   // Migration between ranks: copies of the stashed states of the contacts that the particles
@@ -435,7 +470,8 @@ private:
   }
   // Gives each grain-wall candidate of the new list its stashed contacts, in stash order.
   void restore_walls(const ParticleStore& s, const NeighborList& list) {
-    wall.assign(list.walls.size(), WallContactSet<State>{});
+    wall.clear();
+    wall.resize(list.walls.size());
     if (!wall_stash_.empty() && !list.walls.empty()) {
       std::unordered_map<ContactKey, std::size_t, ContactKeyHash> candidate;
       candidate.reserve(list.walls.size());
@@ -448,7 +484,8 @@ private:
         if (it == candidate.end()) continue;
         WallContactSet<State>& set = wall[it->second];
         if (set.n == max_wall_contacts) continue;
-        set.at[set.n++] = {e.normal, e.state};
+        set.make_room(set.n + 1u);
+        set.at(set.n++) = {e.normal, e.state};
       }
     }
     wall_stash_ = std::vector<WallEntry>();

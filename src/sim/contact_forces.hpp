@@ -138,14 +138,14 @@ public:
         match[c] = -1;
         double best = 0.5; // cos 60 degrees
         for (std::size_t m = 0; m < set.n; ++m) {
-          const double d = dot(set.at[m].normal, touches.at[c].normal);
+          const double d = dot(set.at(m).normal, touches.at[c].normal);
           if (!taken[m] && d > best) best = d, match[c] = static_cast<int>(m);
         }
         if (match[c] >= 0) taken[match[c]] = true;
       }
       for (std::size_t m = 0; m < set.n; ++m)
         if (!taken[m]) {
-          const double released = Model::release(coeffs, set.at[m].state);
+          const double released = Model::release(coeffs, set.at(m).state);
           if constexpr (BatchedModel<Model>) {
             if (batched) { // booked in its place among the batch's contacts (flush_walls)
               batch_releases_.push_back({batch_->lanes.size, released});
@@ -154,12 +154,13 @@ public:
           }
           tally.dissipated += released;
         }
+      set.make_room(n);
       if (n > 1 || set.n > 1) move_matched_states(set, match, n);
       for (std::size_t c = 0; c < n; ++c) {
         const WallTouch& touch = touches.at[c];
-        State& state = set.at[c].state;
+        State& state = set.at(c).state;
         if (match[c] < 0) state = State{};
-        set.at[c].normal = touch.normal;
+        set.at(c).normal = touch.normal;
         const WallSite site{i, ref.wall, static_cast<std::uint32_t>(k),
                             static_cast<std::uint32_t>(c), &touch};
         if constexpr (BatchedModel<Model>) {
@@ -214,7 +215,7 @@ private:
       if (match[c] < 0) continue;
       const int from = slot_of[match[c]], here = static_cast<int>(c);
       if (from == here) continue;
-      std::swap(set.at[c], set.at[from]);
+      std::swap(set.at(c), set.at(from));
       const int displaced = held_by[here];
       held_by[here] = match[c], held_by[from] = displaced;
       slot_of[match[c]] = here, slot_of[displaced] = from;

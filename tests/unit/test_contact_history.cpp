@@ -59,5 +59,51 @@ TEST(ContactHistory, MirroredStateFollowsTheListedOrientation) {
   EXPECT_EQ(s.mirrored().mirrored(), s);
 }
 
+// A grain's contacts with a shaped wall: the first held in place, the others in a block made
+// for them. Three contacts of one grain and one of another survive a rebuild that lists the
+// grains the other way round, each state with its normal, in order; a copied set keeps its own.
+TEST(ContactHistory, AGrainsWallContactsSurviveARebuildInOrder) {
+  using State = LinearSpringDashpot::State;
+  const ParticleStore s =
+      test::store_of({test::sphere({0, 0, 0}, 0.5, 1.0), test::sphere({2, 0, 0}, 0.5, 1.0)});
+  const auto state = [](double x) {
+    State st;
+    st.tangential = {.spring = {x, 2 * x, 3 * x}, .sliding = 1, .k = x};
+    return st;
+  };
+  NeighborList before;
+  before.walls = {{0, 0}, {1, 0}};
+  ContactHistory<State> history;
+  history.restore(s, before);
+  ASSERT_EQ(history.wall.size(), 2u);
+  auto& three = history.wall[0];
+  three.make_room(3);
+  for (std::size_t c = 0; c < 3; ++c)
+    three.at(c) = {{0, 0, 1.0 + static_cast<double>(c)}, state(1.0 + static_cast<double>(c))};
+  three.n = 3;
+  history.wall[1].at(0) = {{1, 0, 0}, state(9.0)};
+  history.wall[1].n = 1;
+
+  WallContactSet<State> copy = three;
+  three.at(2).state = state(-1.0);
+  EXPECT_EQ(copy.at(2).state, state(3.0));
+  three.at(2).state = state(3.0);
+  EXPECT_GT(history.memory_bytes(), history.wall_blocks_bytes());
+  EXPECT_GT(history.wall_blocks_bytes(), 0u);
+
+  history.stash(s, before);
+  NeighborList after;
+  after.walls = {{1, 0}, {0, 0}};
+  history.restore(s, after);
+  ASSERT_EQ(history.wall[1].n, 3u);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_EQ(history.wall[1].at(c).normal, (Vec3{0, 0, 1.0 + static_cast<double>(c)}));
+    EXPECT_EQ(history.wall[1].at(c).state, state(1.0 + static_cast<double>(c)));
+  }
+  ASSERT_EQ(history.wall[0].n, 1u);
+  EXPECT_EQ(history.wall[0].at(0).state, state(9.0));
+  EXPECT_EQ(history.wall_blocks_bytes(), history.wall[1].block_bytes());
+}
+
 } // namespace
 } // namespace yuxi
