@@ -15,6 +15,7 @@ Every PNG goes beside its data unless --out names another file.
 import argparse
 import csv
 import pathlib
+import re
 
 import matplotlib
 
@@ -89,7 +90,7 @@ def heap(folder, out):
     fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.8))
     # each heap of the mu_s series (three random floors and pours a mu_s), and their means
     singles = sorted((float(n[len("heap-mu"):].split("-")[0]), by[n][0]) for n in by
-                     if n.count("-") == 1 or "-seed" in n)
+                     if re.fullmatch(r"heap-mu[0-9.]+(-seed[0-9]+)?", n))
     a.plot([m for m, _ in singles], [t for _, t in singles], "C0.", alpha=0.6,
            label="each heap, k_n = 2e4, e = 0.68")
     if (folder / "heap_mu.csv").exists():
@@ -97,11 +98,20 @@ def heap(folder, out):
         a.errorbar([float(r["mu"]) for r in means], [float(r["mean"]) for r in means],
                    yerr=[2 * float(r["standard_error"]) for r in means], fmt="C0o-", capsize=3,
                    label="mean, 2 standard errors")
-    for name, marker, label in (("heap-mu0.5-stiff", "s", "k_n x 10"),
-                                ("heap-mu0.5-e0.5", "v", "e = 0.5"),
-                                ("heap-mu0.5-e0.9", "^", "e = 0.9")):
-        if name in by:
-            a.plot([0.5], [by[name][0]], "C1" + marker, label=label)
+    # the variants at mu_s = 0.5, drawn a little to the right of it: the mean of three heaps
+    # with 2 standard errors where heap_variants.csv has it, else the one heap
+    variants = {r["scene"]: r for r in rows(folder / "heap_variants.csv")} \
+        if (folder / "heap_variants.csv").exists() else {}
+    for k, (name, marker, label) in enumerate((("heap-mu0.5-stiff", "s", "k_n x 10"),
+                                               ("heap-mu0.5-e0.5", "v", "e = 0.5"),
+                                               ("heap-mu0.5-e0.9", "^", "e = 0.9"))):
+        x = 0.53 + 0.03 * k
+        if name in variants:
+            r = variants[name]
+            a.errorbar([x], [float(r["mean"])], yerr=[2 * float(r["standard_error"])],
+                       fmt="C1" + marker, capsize=3, label=label + f" (mean of {r['heaps']})")
+        elif name in by:
+            a.plot([x], [by[name][0]], "C1" + marker, label=label)
     a.axhspan(18, 26, color="0.9", label="band (a), 18-26 degrees")
     a.set_xlabel("sliding friction mu_s = mu_d")
     a.set_ylabel("angle of repose [degrees]")

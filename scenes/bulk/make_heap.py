@@ -9,6 +9,7 @@ of repose is the slope of a line fitted to the free surface against the distance
                               against mu_s is compared by the mean of three heaps
     heap-mu0.5-stiff.toml     k_n x 10 (dt / sqrt(10))
     heap-mu0.5-e0.5.toml, heap-mu0.5-e0.9.toml   restitution 0.5 and 0.9 (else about 0.68)
+                              (each also -seed2 and -seed3, compared by the mean of three)
     heap-mu0.5-mur<mu_r>.toml rolling resistance mu_r = 0.05, 0.1, 0.2 (k_r = k_t / 2)
     heap-small.toml           N = 1200 on a floor of radius 14 d, mu = 0.5 (the default tests)
 
@@ -102,9 +103,11 @@ for mu in (0.1, 0.3, 0.5, 1.0):
     scene(f"heap-mu{mu}", 4000, 22.0, mu=mu)
     for seed in (2, 3):
         scene(f"heap-mu{mu}-seed{seed}", 4000, 22.0, mu=mu, seed=seed)
-scene("heap-mu0.5-stiff", 4000, 22.0, stiff=10.0)
-for e in (0.5, 0.9):
-    scene(f"heap-mu0.5-e{e}", 4000, 22.0, e=e)
+for seed in (1, 2, 3):
+    tail = f"-seed{seed}" if seed != 1 else ""
+    scene(f"heap-mu0.5-stiff{tail}", 4000, 22.0, stiff=10.0, seed=seed)
+    for e in (0.5, 0.9):
+        scene(f"heap-mu0.5-e{e}{tail}", 4000, 22.0, e=e, seed=seed)
 for mu_r in (0.05, 0.1, 0.2):
     scene(f"heap-mu0.5-mur{mu_r}", 4000, 22.0, mu_r=mu_r)
 # (the small heap checks the mechanics in the default tests: counts, books, a cone; it keeps the

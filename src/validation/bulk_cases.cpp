@@ -350,13 +350,12 @@ struct HeapMean {
 CaseResult heaps(const Paths& paths) {
   CaseResult res;
   std::map<std::string, Heap> by;
-  const char* mus[] = {"0.1", "0.3", "0.5", "1.0"};
-  std::vector<HeapMean> means;
-  for (const char* mu : mus) {
+  // The heaps `scene`, `scene`-seed2 and -seed3 (three random floors and pours).
+  const auto three_heaps = [&](const std::string& scene, double mu) {
     HeapMean m;
-    m.mu = std::stod(mu);
+    m.mu = mu;
     for (const char* seed : {"", "-seed2", "-seed3"}) {
-      const std::string name = fmt::format("heap-mu{}{}", mu, seed);
+      const std::string name = scene + seed;
       by[name] = heap(paths, name, res, true);
       m.angles.push_back(by[name].angle);
     }
@@ -364,10 +363,15 @@ CaseResult heaps(const Paths& paths) {
     const MeanAndVariance angle = mean_and_variance(m.angles, n - 1);
     m.mean = angle.mean;
     m.error = std::sqrt(angle.variance / n);
-    means.push_back(m);
-  }
-  for (const char* name : {"heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9",
-                           "heap-mu0.5-mur0.05", "heap-mu0.5-mur0.1", "heap-mu0.5-mur0.2"})
+    return m;
+  };
+  std::vector<HeapMean> means;
+  for (const char* mu : {"0.1", "0.3", "0.5", "1.0"})
+    means.push_back(three_heaps(fmt::format("heap-mu{}", mu), std::stod(mu)));
+  const char* variants[] = {"heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9"};
+  std::vector<HeapMean> variant_means;
+  for (const char* name : variants) variant_means.push_back(three_heaps(name, 0.5));
+  for (const char* name : {"heap-mu0.5-mur0.05", "heap-mu0.5-mur0.1", "heap-mu0.5-mur0.2"})
     by[name] = heap(paths, name, res, true);
   const HeapMean& base = means[2]; // mu = 0.5
   add_range(res, "(a) mean angle of three heaps at mu = 0.5 [degrees] (18-26)", base.mean, 18.0,
@@ -385,9 +389,11 @@ CaseResult heaps(const Paths& paths) {
   }
   add_range(res, "(c) mean angle at mu = 0.5 minus at mu = 0.1 [degrees] (>= 5)",
             base.mean - means[0].mean, 5.0, 90.0);
-  for (const char* other : {"heap-mu0.5-stiff", "heap-mu0.5-e0.5", "heap-mu0.5-e0.9"})
-    res.add(fmt::format("(d) {} minus the mean at mu = 0.5 [degrees]", other), 0.0,
-            by[other].angle - base.mean, 1.5);
+  // (d) on means of three heaps too: one heap's floor and pour alone scatter its angle by up to
+  // a degree, most of the 1.5 allowed.
+  for (std::size_t v = 0; v < std::size(variants); ++v)
+    res.add(fmt::format("(d) mean of three {} minus the mean at mu = 0.5 [degrees]", variants[v]),
+            0.0, variant_means[v].mean - base.mean, 1.5);
   const auto folder = run_folder("heap");
   std::ofstream csv(folder / "heap.csv");
   csv << "scene,angle,r2\n";
@@ -396,6 +402,11 @@ CaseResult heaps(const Paths& paths) {
   by_mu << "mu,mean,standard_error,heaps\n";
   for (const HeapMean& m : means)
     by_mu << fmt::format("{:g},{:.6g},{:.6g},{}\n", m.mu, m.mean, m.error, m.angles.size());
+  std::ofstream by_variant(folder / "heap_variants.csv");
+  by_variant << "scene,mean,standard_error,heaps\n";
+  for (std::size_t v = 0; v < std::size(variants); ++v)
+    by_variant << fmt::format("{},{:.6g},{:.6g},{}\n", variants[v], variant_means[v].mean,
+                              variant_means[v].error, variant_means[v].angles.size());
   return res;
 }
 
