@@ -126,9 +126,10 @@ struct MeshWall {
       const auto& tri = mesh.triangles[k];
       PlacedTriangle& p = placed[k];
       p.a = x[tri[0]], p.b = x[tri[1]], p.c = x[tri[2]];
-      p.normal = deforms ? normalized(cross(p.b - p.a, p.c - p.a))
-                         : (turns ? rigid->turn(rest_normals_[k]) : rest_normals_[k]);
-      set_quick_look(p);
+      const Vec3 n = cross(p.b - p.a, p.c - p.a);
+      p.normal =
+          deforms ? normalized(n) : (turns ? rigid->turn(rest_normals_[k]) : rest_normals_[k]);
+      set_quick_look(p, n);
     }
   }
   bool moves() const { return controller || !std::holds_alternative<StaticMotion>(motion); }
@@ -143,11 +144,11 @@ struct MeshWall {
   bool within(const Vec3& c, double reach, std::uint32_t t) const;
 
 private:
-  // The dual vectors and squared altitudes of a placed triangle (PlacedTriangle above):
-  // with n = ab x ac, e1 = (ac x n) / |n|^2 and e2 = (n x ab) / |n|^2, so that e1.ab = 1,
+  // The dual vectors and squared altitudes of a placed triangle (PlacedTriangle above), given
+  // n = ab x ac: e1 = (ac x n) / |n|^2 and e2 = (n x ab) / |n|^2, so that e1.ab = 1,
   // e1.ac = 0, e2.ab = 0, e2.ac = 1; the altitude from a is |n| / |bc|, and so on.
-  static void set_quick_look(PlacedTriangle& p) {
-    const Vec3 ab = p.b - p.a, ac = p.c - p.a, n = cross(ab, ac);
+  static void set_quick_look(PlacedTriangle& p, const Vec3& n) {
+    const Vec3 ab = p.b - p.a, ac = p.c - p.a;
     const double n2 = norm2(n), ab2 = norm2(ab), ac2 = norm2(ac), bc2 = norm2(p.c - p.b);
     if (!(n2 > 1e-6 * ab2 * ac2)) { // (sin^2 of the angle at a below 1e-6, or not finite)
       p.e1 = p.e2 = Vec3{};
