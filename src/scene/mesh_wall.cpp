@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace yuxi {
 
@@ -133,16 +134,25 @@ std::vector<Vec3> MeshWall::placed_whole() const {
   return at;
 }
 
-std::array<Vec3, 8> MeshWall::placed_box_corners() const {
-  const WallMotionAtTime now = at_time(motion, placed_at);
-  const Vec3 shift = servo_offset * servo_axis;
-  std::array<Vec3, 8> corners;
+double MeshWall::moved2_since_build() const {
+  const WallMotionAtTime now = at_time(motion, placed_at), then = at_time(motion, built_at);
+  const double travel = servo_offset - servo_offset_built;
+  if (const auto* radial = std::get_if<RadialCosineMotion::AtTime>(&now)) {
+    const double most =
+        std::abs(radial->radial - std::get<RadialCosineMotion::AtTime>(then).radial) +
+        std::abs(travel);
+    return std::isnan(most) ? std::numeric_limits<double>::infinity() : most * most;
+  }
+  const Vec3 shift_now = servo_offset * servo_axis, shift_then = servo_offset_built * servo_axis;
+  double most2 = 0.0;
   for (int k = 0; k < 8; ++k) {
     const Vec3 p{k & 1 ? rest_hi_.x : rest_lo_.x, k & 2 ? rest_hi_.y : rest_lo_.y,
                  k & 4 ? rest_hi_.z : rest_lo_.z};
-    corners[k] = yuxi::place(now, p).position + shift;
+    const double d2 = norm2((yuxi::place(now, p).position + shift_now) -
+                            (yuxi::place(then, p).position + shift_then));
+    if (!(d2 <= most2)) most2 = std::isnan(d2) ? std::numeric_limits<double>::infinity() : d2;
   }
-  return corners;
+  return most2;
 }
 
 bool MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {

@@ -50,35 +50,34 @@ struct MeshWall {
   double servo_offset = 0.0; // [length]
   double servo_speed = 0.0;  // [length/time]
 
-  // A rank may hold only a part of a mesh that stands still or moves rigidly, the triangles
-  // near its grains: `mesh` is then that part, `held` the index in the whole mesh of each of
-  // its triangles (ascending), and `whole` the whole mesh at rest, from which the part is
-  // chosen again when the grains leave the box it was chosen for or, for a moving mesh, at
-  // every list build (Simulation::list_wall_candidates), and which the snapshots draw. With
-  // `held` empty, `mesh` is whole (or nothing is near).
+  // A rank may hold only a part of a mesh, the triangles near its grains: `mesh` is then that
+  // part, `held` the index in the whole mesh of each of its triangles (ascending), and `whole`
+  // the whole mesh at rest, from which the part is chosen again when the grains leave the box it
+  // was chosen for or, for a moving mesh, at every list build (Simulation::list_wall_candidates),
+  // and which the snapshots draw. With `held` empty, `mesh` is whole (or nothing is near).
   std::shared_ptr<const TriangleMesh> whole;
   std::vector<std::uint32_t> held;
   const TriangleMesh& whole_mesh() const { return whole ? *whole : mesh; }
   bool holds_whole() const { return !whole || mesh.n_triangles() == whole->n_triangles(); }
   // The whole mesh's index of triangle t of `mesh` (a contact's element).
   std::uint32_t element_of(std::uint32_t t) const { return held.empty() ? t : held[t]; }
-  // Whether a rank may hold only a part: a still or rigidly moved mesh. A deforming mesh
-  // (whose vertices move apart) and a servo-controlled one (whose place at a past time is
-  // not known again after a resume) are held whole.
-  bool may_hold_part() const {
-    return !controller && !std::holds_alternative<RadialCosineMotion>(motion);
-  }
   // Holds only the triangles whose box, placed as at the last place(), comes within `reach`
   // of the box [lo, hi], and places them; returns whether the held part changed.
   bool hold_near(const Vec3& lo, const Vec3& hi, double reach);
   // The whole mesh's vertices placed at the time of the last place().
   std::vector<Vec3> placed_whole() const;
-  // The corners of the whole mesh's box at rest, placed as at the last place(). Under a rigid
-  // motion no point of the mesh moves farther than the farthest of them: a point's
-  // displacement is an affine map of the point, and its length, a convex function, is largest
-  // at a corner of any box around the mesh.
-  std::array<Vec3, 8> placed_box_corners() const;
-
+  // Where the mesh stood at the last list build: the time it was placed at, and the servo's
+  // offset then (a checkpoint keeps the offset: a resumed run builds that list again).
+  double built_at = 0.0, servo_offset_built = 0.0;
+  // A bound on the square of how far any point of the whole mesh has moved, from where it
+  // stood at the last list build to where the last place() put it [length^2]. It covers the
+  // triangles a rank does not hold (docs/walls.md section 3):
+  //  - under a rigid motion (and a servo's travel), a point's displacement is an affine map of
+  //    the point, and its length, a convex function, is largest at a corner of the mesh's box
+  //    at rest: the bound is the farthest corner's;
+  //  - under the radial mode each point moves along its radius by cos(m alpha) times the
+  //    change of dr sin(omega (t - t0)), at most that change; the servo adds its travel.
+  double moved2_since_build() const;
   // Where each vertex is and how fast it moves, as of the last place().
   std::vector<Vec3> x, v;
   double placed_at = 0.0;

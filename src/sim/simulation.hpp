@@ -91,7 +91,9 @@ class Simulation {
 public:
   // The layout of checkpoint(), which the checkpoint file's format version names: layout 6
   // added the sources' part; a state of layout 5 loads with no insert or outlet under way.
-  static constexpr std::uint32_t state_layout = 6, oldest_state_layout = 5;
+  // Layout 7 added each servo's offset at the last list build; a state of layout 6 takes the
+  // offset it was saved with.
+  static constexpr std::uint32_t state_layout = 7, oldest_state_layout = 5;
 
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
@@ -325,19 +327,22 @@ private:
     ar.vector(wall_work_);
     if (!Archive::loading || loading_layout_ >= 6) ar.vector(plane_work_);
     plane_work_.resize(planes_.size(), 0.0);
+    // Each mesh's servo: its offset and speed, and its offset at the last list build.
+    const std::size_t per_mesh = Archive::loading && loading_layout_ < 7 ? 2 : 3;
     std::vector<double> servo;
     for (const ShapedWall& w : walls_)
       if (const auto* m = std::get_if<MeshWall>(&w))
-        servo.insert(servo.end(), {m->servo_offset, m->servo_speed});
+        servo.insert(servo.end(), {m->servo_offset, m->servo_speed, m->servo_offset_built});
     ar.vector(servo);
     if constexpr (Archive::loading) {
       std::size_t k = 0;
       for (ShapedWall& w : walls_)
         if (auto* m = std::get_if<MeshWall>(&w)) {
-          if (k + 2 > servo.size())
+          if (k + per_mesh > servo.size())
             throw std::invalid_argument("the checkpoint's walls are not this scene's");
           m->servo_offset = servo[k], m->servo_speed = servo[k + 1];
-          k += 2;
+          m->servo_offset_built = per_mesh == 3 ? servo[k + 2] : servo[k];
+          k += per_mesh;
         }
     }
     if constexpr (Archive::loading)

@@ -5,6 +5,7 @@
 #include "sim/simulation.hpp"
 
 #include <fmt/format.h>
+#include <utility>
 
 namespace yuxi {
 
@@ -250,13 +251,21 @@ void Simulation::rebuild_after_load(bool as_saved) {
     // the ghosts and the owners are that build's again; then every particle goes back to where
     // it stands now, and the ghosts follow. The run goes on bit for bit as if never stopped,
     // whatever step it was saved at (a checkpoint leaves the trajectory untouched).
-    // The meshes likewise stand where they stood at that build while it is made again.
+    // The meshes likewise stand where they stood at that build while it is made again, a
+    // servo's where it had carried its mesh then.
     const double built = walls_built_at_;
+    std::vector<double> servo_now;
+    for (ShapedWall& w : walls_)
+      if (auto* m = std::get_if<MeshWall>(&w))
+        servo_now.push_back(std::exchange(m->servo_offset, m->servo_offset_built));
     place_shaped_walls(built, true);
     std::swap(store_.x, store_.x_build);
     rebuild(BuildAfter::load_at_last_build);
     std::swap(store_.x, store_.x_build);
     walls_built_at_ = built;
+    std::size_t k = 0;
+    for (ShapedWall& w : walls_)
+      if (auto* m = std::get_if<MeshWall>(&w)) m->servo_offset = servo_now[k++];
     place_shaped_walls(time_, true);
     halo_.forward(store_, comm_);
   }

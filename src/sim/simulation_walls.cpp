@@ -6,9 +6,9 @@
 // radius and the skin, overlaps; a grain then reads the triangles of its own cell only, so the
 // cost per grain does not grow with the size of the mesh, and triangles far from every grain
 // cost nothing per step. A still mesh keeps its bins while the cells stay the same. A rank
-// holds (places, bins, searches) only the triangles of a still or rigidly moving mesh that lie
-// near its own grains, chosen again from the whole mesh when the grains leave the box they were
-// chosen for, or at every build if the mesh moves (MeshWall::hold_near).
+// holds (places, bins, searches) only the triangles of a mesh that lie near its own grains,
+// chosen again from the whole mesh when the grains leave the box they were chosen for, or at
+// every build if the mesh moves (MeshWall::hold_near).
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -32,11 +32,10 @@ bool Simulation::place_shaped_walls(double t, bool every_one) {
     auto& mesh = std::get<MeshWall>(walls_[w]);
     if (!every_one && !mesh.moves()) continue;
     mesh.place(t);
-    // Its vertices; where this rank holds a part of it, the held vertices, and the corners of
-    // its box, which bound every point's displacement (MeshWall::placed_box_corners): a
-    // triangle left out lay a cell edge beyond the reach of the grains' box at the build
-    // (list_wall_candidates), and comes within it only after the corners have moved that much
-    // farther than half the skin.
+    // Its vertices; where this rank holds a part of it, the held vertices, and the bound on
+    // every point's displacement (MeshWall::moved2_since_build): a triangle left out lay a cell
+    // edge beyond the reach of the grains' box at the build (list_wall_candidates), and comes
+    // within it only after it has moved that much farther than half the skin.
     const auto moved_beyond = [](std::span<const Vec3> then, std::span<const Vec3> now,
                                  double most2) {
       for (std::size_t k = 0; k < then.size(); ++k)
@@ -46,11 +45,10 @@ bool Simulation::place_shaped_walls(double t, bool every_one) {
     if (mesh.holds_whole()) {
       if (built.size() == mesh.x.size())
         moved_far = moved_far || moved_beyond(built, mesh.x, limit2);
-    } else if (built.size() == mesh.x.size() + 8) { // (else not built yet)
+    } else if (built.size() == mesh.x.size()) {
       const double far = 0.5 * config_.skin + cell_edge_;
-      moved_far = moved_far ||
-                  moved_beyond(std::span(built).first(mesh.x.size()), mesh.x, limit2) ||
-                  moved_beyond(std::span(built).last(8), mesh.placed_box_corners(), far * far);
+      moved_far = moved_far || moved_beyond(built, mesh.x, limit2) ||
+                  !(mesh.moved2_since_build() <= far * far);
     }
   }
   return moved_far;
@@ -87,29 +85,22 @@ void Simulation::list_wall_candidates() {
     }
     MeshWall& mesh = std::get<MeshWall>(walls_[w]);
     MeshBins& bins = mesh_bins_[w];
-    // Of a still or rigidly moving mesh, this rank holds only the triangles its grains can
-    // reach: those within the reach of the grains' box grown by a cell edge. Chosen again,
-    // where the mesh stands now, at every build if it moves (see place_shaped_walls), else
-    // when the grains leave that box or the reach grows.
-    if (mesh.may_hold_part()) {
-      bool inside = bins.held_reach >= reach;
-      for (int a = 0; a < 3; ++a)
-        inside = inside && grains_lo[a] >= bins.held_lo[a] && grains_hi[a] <= bins.held_hi[a];
-      if (mesh.moves() || !inside) {
-        bins.held_reach = std::max(reach, cell_edge_ + range_);
-        bins.held_lo = grains_lo - Vec3{cell_edge_, cell_edge_, cell_edge_};
-        bins.held_hi = grains_hi + Vec3{cell_edge_, cell_edge_, cell_edge_};
-        if (mesh.hold_near(bins.held_lo, bins.held_hi, bins.held_reach)) bins.valid = false;
-      }
+    // Of a mesh, this rank holds only the triangles its grains can reach: those within the
+    // reach of the grains' box grown by a cell edge. Chosen again, where the mesh stands now,
+    // at every build if it moves (see place_shaped_walls), else when the grains leave that box
+    // or the reach grows.
+    bool inside = bins.held_reach >= reach;
+    for (int a = 0; a < 3; ++a)
+      inside = inside && grains_lo[a] >= bins.held_lo[a] && grains_hi[a] <= bins.held_hi[a];
+    if (mesh.moves() || !inside) {
+      bins.held_reach = std::max(reach, cell_edge_ + range_);
+      bins.held_lo = grains_lo - Vec3{cell_edge_, cell_edge_, cell_edge_};
+      bins.held_hi = grains_hi + Vec3{cell_edge_, cell_edge_, cell_edge_};
+      if (mesh.hold_near(bins.held_lo, bins.held_hi, bins.held_reach)) bins.valid = false;
     }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
-    if (mesh.moves()) { // (a still mesh never moves away from where it was built)
-      mesh_x_build_[w] = mesh.x;
-      if (!mesh.holds_whole()) {
-        const auto corners = mesh.placed_box_corners();
-        mesh_x_build_[w].insert(mesh_x_build_[w].end(), corners.begin(), corners.end());
-      }
-    }
+    mesh.built_at = mesh.placed_at, mesh.servo_offset_built = mesh.servo_offset;
+    if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves from its build)
     // Each triangle's box, as placed now.
     const auto box_of = [&](std::uint32_t t) { return mesh.mesh.box_of(t, mesh.x); };
     if (mesh.moves() || !bins.valid || bins.reach < reach || bins.dims != dims ||

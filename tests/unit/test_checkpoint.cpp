@@ -118,10 +118,10 @@ INSTANTIATE_TEST_SUITE_P(
                "checksum mismatch: the file is corrupt"},
         Damage{"wrong version",
                [](std::string b) {
-                 b[8] = 7;
+                 b[8] = 8;
                  return b;
                },
-               "checkpoint format version 7; this yuxi reads versions 5 to 6"},
+               "checkpoint format version 8; this yuxi reads versions 5 to 7"},
         Damage{"not a checkpoint", [](std::string) { return std::string("hello, world: no"); },
                "not a yuxi checkpoint"},
         Damage{"empty", [](std::string) { return std::string(); }, "not a yuxi checkpoint"},
