@@ -12,6 +12,8 @@ that walls.csv and measurements.csv give every silo's bottom and side forces apa
                         state (yuxi run janssen-lowered.toml --from <janssen's run folder>)
 
 Units: d = 1 (radii uniform in 0.45-0.55), grain density 6/pi (m = 1 for d = 1), g = 1.
+The linear law caps the whole tangential force at mu |F_n| (friction_cap = "total"), except in
+janssen-small, which keeps the paper's cap on the spring alone, as its checks were set.
 Each silo is poured in stages of one diameter of height: stage j pours its grains from a region
 2-12 d above the height the stage fills to, so that no grain falls more than D + 12 d. The grains
 then settle; Janssen's wall friction is mobilised by the grains settling along the wall. Settling
@@ -30,9 +32,11 @@ GRAIN_VOLUME = 4 / 3 * math.pi * R_MEAN_CUBE
 PHI = 0.6  # the settled packing fraction the counts aim at
 
 
-def scene(name, diameter, silos, rate, settle, comment, lowered=None):
+def scene(name, diameter, silos, rate, settle, comment, lowered=None, coulomb=True):
     """lowered: (speed, travel, settle) of the floors, which start sinking at the end of the
-    pour-and-settle run; None for that run itself."""
+    pour-and-settle run; None for that run itself. coulomb: the linear law caps the whole
+    tangential force at mu |F_n| (friction_cap = "total"), else the spring alone (the paper's
+    scheme, whose dashpot adds to a sliding contact's friction)."""
     radius = diameter / 2
     pitch = diameter + 2.0
     columns = min(4, len(silos))
@@ -64,6 +68,7 @@ def scene(name, diameter, silos, rate, settle, comment, lowered=None):
         out += ["[[contact.pair]]", f'materials = ["grain", "{partner}"]', "k_n = 2.0e4",
                 "k_t = 5714.2857", "gamma_n = 50.0", "gamma_t = 25.0", f"mu_s = {mu}",
                 f"mu_d = {mu}"]
+        out += ['friction_cap = "total"'] if coulomb else []
     out.append("")
     for k, ((height, material), count) in enumerate(zip(silos, counts)):
         x = pitch / 2 + pitch * (k % columns)
@@ -112,4 +117,5 @@ def scene(name, diameter, silos, rate, settle, comment, lowered=None):
     "friction.", lowered=(0.02, 0.2, 50.0)))
 (HERE / "janssen-small.toml").write_text(scene(
     "janssen-small", 10.0, [(1, "wall"), (2, "wall"), (1, "smooth")], 150.0, 30.0,
-    "Janssen silos, small: D = 10 d, H = 1 and 2 D with mu_w = 0.5, and 1 D with mu_w = 0."))
+    "Janssen silos, small: D = 10 d, H = 1 and 2 D with mu_w = 0.5, and 1 D with mu_w = 0.",
+    coulomb=False))
