@@ -134,22 +134,37 @@ std::vector<Vec3> MeshWall::placed_whole() const {
   return at;
 }
 
-double MeshWall::moved2_since_build() const {
-  const WallMotionAtTime now = at_time(motion, placed_at), then = at_time(motion, built_at);
-  const double travel = servo_offset - servo_offset_built;
-  if (const auto* radial = std::get_if<RadialCosineMotion::AtTime>(&now)) {
-    const double most =
-        std::abs(radial->radial - std::get<RadialCosineMotion::AtTime>(then).radial) +
-        std::abs(travel);
-    return std::isnan(most) ? std::numeric_limits<double>::infinity() : most * most;
-  }
-  const Vec3 shift_now = servo_offset * servo_axis, shift_then = servo_offset_built * servo_axis;
-  double most2 = 0.0;
+std::array<Vec3, 8> MeshWall::placed_box_corners() const {
+  const WallMotionAtTime now = at_time(motion, placed_at);
+  const Vec3 shift = servo_offset * servo_axis;
+  std::array<Vec3, 8> corners;
   for (int k = 0; k < 8; ++k) {
     const Vec3 p{k & 1 ? rest_hi_.x : rest_lo_.x, k & 2 ? rest_hi_.y : rest_lo_.y,
                  k & 4 ? rest_hi_.z : rest_lo_.z};
-    const double d2 = norm2((yuxi::place(now, p).position + shift_now) -
-                            (yuxi::place(then, p).position + shift_then));
+    corners[k] = yuxi::place(now, p).position + shift;
+  }
+  return corners;
+}
+
+void MeshWall::mark_built() {
+  servo_offset_built = servo_offset;
+  if (std::holds_alternative<RadialCosineMotion>(motion)) {
+    built_radial_ = std::get<RadialCosineMotion::AtTime>(at_time(motion, placed_at)).radial;
+  } else {
+    built_corners_ = placed_box_corners();
+  }
+}
+
+double MeshWall::moved2_since_build() const {
+  if (const auto* mode = std::get_if<RadialCosineMotion>(&motion)) {
+    const double most = std::abs(mode->at_time(placed_at).radial - built_radial_) +
+                        std::abs(servo_offset - servo_offset_built);
+    return std::isnan(most) ? std::numeric_limits<double>::infinity() : most * most;
+  }
+  const std::array<Vec3, 8> now = placed_box_corners();
+  double most2 = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const double d2 = norm2(now[k] - built_corners_[k]);
     if (!(d2 <= most2)) most2 = std::isnan(d2) ? std::numeric_limits<double>::infinity() : d2;
   }
   return most2;

@@ -66,12 +66,14 @@ struct MeshWall {
   bool hold_near(const Vec3& lo, const Vec3& hi, double reach);
   // The whole mesh's vertices placed at the time of the last place().
   std::vector<Vec3> placed_whole() const;
-  // Where the mesh stood at the last list build: the time it was placed at, and the servo's
-  // offset then (a checkpoint keeps the offset: a resumed run builds that list again).
-  double built_at = 0.0, servo_offset_built = 0.0;
+  // Takes where the last place() put the mesh as where the last list build found it, from
+  // which moved2_since_build() measures. The servo's offset then: a checkpoint keeps it, so
+  // that a resumed run builds that list again with the mesh where it stood.
+  void mark_built();
+  double servo_offset_built = 0.0;
   // A bound on the square of how far any point of the whole mesh has moved, from where it
   // stood at the last list build to where the last place() put it [length^2]. It covers the
-  // triangles a rank does not hold (docs/walls.md section 3):
+  // triangles a rank does not hold (docs/walls.md section 5):
   //  - under a rigid motion (and a servo's travel), a point's displacement is an affine map of
   //    the point, and its length, a convex function, is largest at a corner of the mesh's box
   //    at rest: the bound is the farthest corner's;
@@ -159,9 +161,14 @@ private:
     p.altitude2[0] = n2 / bc2, p.altitude2[1] = n2 / ac2, p.altitude2[2] = n2 / ab2;
   }
 
-  double cos_merge_ = 1.0;         // of merge_degrees, at the last place()
-  std::vector<Vec3> rest_normals_; // of the triangles at rest (taken at the first place())
-  Vec3 rest_lo_, rest_hi_;         // the whole mesh's box at rest (taken with `whole`)
+  // The corners of the whole mesh's box at rest, placed as at the last place().
+  std::array<Vec3, 8> placed_box_corners() const;
+
+  std::array<Vec3, 8> built_corners_{}; // placed_box_corners() at the last list build
+  double built_radial_ = 0.0;           // the radial mode's dr sin(omega (t - t0)) then
+  double cos_merge_ = 1.0;              // of merge_degrees, at the last place()
+  std::vector<Vec3> rest_normals_;      // of the triangles at rest (taken at the first place())
+  Vec3 rest_lo_, rest_hi_;              // the whole mesh's box at rest (taken with `whole`)
 };
 
 } // namespace yuxi

@@ -99,7 +99,7 @@ void Simulation::list_wall_candidates() {
       if (mesh.hold_near(bins.held_lo, bins.held_hi, bins.held_reach)) bins.valid = false;
     }
     if (mesh.x.size() != mesh.mesh.vertices.size()) mesh.place(time_);
-    mesh.built_at = mesh.placed_at, mesh.servo_offset_built = mesh.servo_offset;
+    mesh.mark_built();
     if (mesh.moves()) mesh_x_build_[w] = mesh.x; // (a still mesh never moves from its build)
     // Each triangle's box, as placed now.
     const auto box_of = [&](std::uint32_t t) { return mesh.mesh.box_of(t, mesh.x); };
