@@ -114,7 +114,7 @@ def scene(name, diameter, silos, rate, settle, comment, lowered=None, coulomb=Tr
     [(0.5, "wall"), (1, "wall"), (2, "wall"), (3, "wall"), (4, "wall"), (6, "wall"),
      (1, "smooth")], 400.0, 55.0,
     "Janssen silos of janssen.toml, their floors then lowered by 0.2 d to mobilise the wall "
-    "friction.", lowered=(0.02, 0.2, 50.0)))
+    "friction.", lowered=(0.02, 0.2, 150.0)))
 (HERE / "janssen-small.toml").write_text(scene(
     "janssen-small", 10.0, [(1, "wall"), (2, "wall"), (1, "smooth")], 150.0, 30.0,
     "Janssen silos, small: D = 10 d, H = 1 and 2 D with mu_w = 0.5, and 1 D with mu_w = 0.",
