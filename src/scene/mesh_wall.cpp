@@ -148,11 +148,10 @@ std::array<Vec3, 8> MeshWall::placed_box_corners() const {
 
 void MeshWall::mark_built() {
   servo_offset_built = servo_offset;
-  if (std::holds_alternative<RadialCosineMotion>(motion)) {
-    built_radial_ = std::get<RadialCosineMotion::AtTime>(at_time(motion, placed_at)).radial;
-  } else {
+  if (const auto* mode = std::get_if<RadialCosineMotion>(&motion))
+    built_radial_ = mode->at_time(placed_at).radial;
+  else
     built_corners_ = placed_box_corners();
-  }
 }
 
 double MeshWall::moved2_since_build() const {
