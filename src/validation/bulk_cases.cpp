@@ -42,6 +42,12 @@ BulkRun run_bulk(const Paths& paths, const std::string& name, bool progress,
   return r;
 }
 
+// The index of a table's first row at or after time t0 (its rows are in time order).
+std::size_t first_row_at(const CsvTable& table, double t0) {
+  const auto& t = table.column("time");
+  return static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), t0) - t.begin());
+}
+
 // A check that `measured` lies in [lo, hi].
 void add_range(CaseResult& res, const std::string& what, double measured, double lo, double hi) {
   res.add(what, 0.5 * (lo + hi), measured, 0.5 * (hi - lo));
@@ -151,12 +157,12 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
     // damps it; at the end of the full run about ten of them hold nearly all of the
     // rotational energy (docs/results/bulk/README.md, B2). The few that slide flicker: one
     // reading may be twice another a tau later, so the check takes the mean of the last 10 tau.
-    const auto& t = energies.column("time");
     const auto& kinetic = energies.column("translational");
     const auto& grains = energies.column("grains");
     std::vector<double> late; // [m g d] per grain: m = g = d = 1
-    for (std::size_t i = 0; i < t.size(); ++i)
-      if (t[i] >= t.back() - 10.0 - 1e-9) late.push_back(kinetic[i] / grains[i]);
+    for (std::size_t i = first_row_at(energies, energies.last("time") - 10.0 - 1e-9);
+         i < kinetic.size(); ++i)
+      late.push_back(kinetic[i] / grains[i]);
     add_range(res, "at rest: translational KE / grain, 10-tau mean (< 1e-8)",
               mean_and_variance(late, 1.0).mean, 0.0, 1e-8);
   } else
@@ -433,11 +439,10 @@ Drum drum(const Paths& paths, const std::string& name, CaseResult& res, bool pro
   for (const ShapedWall& w : scene.walls)
     if (const auto* c = std::get_if<CylinderWall>(&w))
       d.froude = c->omega * c->omega * c->radius / std::abs(scene.sim.gravity.z);
-  const auto& t = m.column("time");
   const auto& angle = m.column("angle");
-  std::vector<double> late;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= 0.5 * scene.run.t_end) late.push_back(angle[i]);
+  const std::vector<double> late(
+      angle.begin() + static_cast<std::ptrdiff_t>(first_row_at(m, 0.5 * scene.run.t_end)),
+      angle.end());
   const MeanAndVariance late_angle = mean_and_variance(late, static_cast<double>(late.size()));
   d.angle = late_angle.mean;
   d.spread = std::sqrt(late_angle.variance);
