@@ -113,7 +113,28 @@ void MeshWall::touches(const Vec3& c, double r, std::span<const std::uint32_t> t
     return;
   }
   select_touches(
-      scratch, cos_merge_, [&](std::uint32_t t) { return mesh.triangles[t]; }, order, out);
+      scratch, cos_merge_, [&](std::uint32_t t) { return mesh.triangles[t]; },
+      [&](const FeatureTouch& f) { return feature_closest(f); }, order, out);
+}
+
+bool MeshWall::feature_closest(const FeatureTouch& f) const {
+  // A point p of a triangle is its closest point to the centre x exactly when
+  // (x - p) . (q - p) <= 0 for each of its corners q (the projection onto a convex set), and
+  // n = (x - p) / |x - p| is the touch's normal. The triangles that hold an edge are those of
+  // its first vertex's star that hold the second; the corners on the feature itself give zero
+  // and are passed over. No slack: round-off decides only where the touch nearly repeats
+  // another (a foot on the feature itself, the boundary of two regions), and where it drops
+  // every touch, select_touches() keeps the deepest.
+  const Vec3& n = f.touch.normal;
+  const Vec3& p = f.touch.point;
+  const bool on_edge = f.kind == 1;
+  for (const std::uint32_t t : stars_.around(f.a)) {
+    const auto& tri = mesh.triangles[t];
+    if (on_edge && tri[0] != f.b && tri[1] != f.b && tri[2] != f.b) continue;
+    for (const std::uint32_t q : tri)
+      if (q != f.a && !(on_edge && q == f.b) && dot(n, x[q] - p) > 0.0) return false;
+  }
+  return true;
 }
 
 bool MeshWall::within(const Vec3& c, double reach, std::uint32_t t) const {
@@ -196,6 +217,7 @@ bool MeshWall::hold_near(const Vec3& lo, const Vec3& hi, double reach) {
   mesh = all_near ? all : all.subset(near);
   held = std::move(near);
   rest_normals_.clear();
+  stars_ = VertexStars{};
   x.clear();
   place(placed_at);
   return true;

@@ -7,6 +7,7 @@
 #include "core/vec3.hpp"
 #include "scene/active_window.hpp"
 #include "scene/triangle_mesh.hpp"
+#include "scene/vertex_stars.hpp"
 #include "scene/wall_controller.hpp"
 #include "scene/wall_motion.hpp"
 #include "scene/wall_touch.hpp"
@@ -38,7 +39,7 @@ struct MeshWall {
   // A conveyor: the surface moves with this velocity's component along each triangle, the
   // triangles stay [length/time].
   Vec3 surface_velocity;
-  // Touches whose normals differ by less than this angle count as one (wall_touch.hpp rule 3).
+  // Touches whose normals differ by less than this angle count as one (wall_touch.hpp rule 4).
   double merge_degrees = 15.0;
   // The point about which walls.csv gives the torque on the wall.
   Vec3 torque_point;
@@ -119,6 +120,7 @@ struct MeshWall {
         rest_normals_[k] = normalized(cross(mesh.vertices[tri[1]] - a, mesh.vertices[tri[2]] - a));
       }
     }
+    if (!stars_.fits(mesh)) stars_ = VertexStars::of(mesh);
     const auto* rigid = std::get_if<RigidMotion::AtTime>(&now);
     const bool deforms = !rigid && !at_rest(now);
     const bool turns = rigid && !rigid->at_rest();
@@ -161,6 +163,10 @@ private:
     p.altitude2[0] = n2 / bc2, p.altitude2[1] = n2 / ac2, p.altitude2[2] = n2 / ab2;
   }
 
+  // Whether a touch on an edge or a vertex lies where its feature is the closest point of
+  // every triangle that holds it (wall_touch.hpp rule 3), as placed last.
+  bool feature_closest(const FeatureTouch& f) const;
+
   // The corners of the whole mesh's box at rest, placed as at the last place().
   std::array<Vec3, 8> placed_box_corners() const;
 
@@ -168,6 +174,7 @@ private:
   double built_radial_ = 0.0;           // the radial mode's dr sin(omega (t - t0)) then
   double cos_merge_ = 1.0;              // of merge_degrees, at the last place()
   std::vector<Vec3> rest_normals_;      // of the triangles at rest (taken at the first place())
+  VertexStars stars_;                   // of `mesh` (taken at the first place())
   Vec3 rest_lo_, rest_hi_;              // the whole mesh's box at rest (taken with `whole`)
 };
 

@@ -4,14 +4,18 @@
 // A wall offers, for one grain, its closest points: one per triangle of a mesh, one per
 // surface patch of a cylinder, each on a face, an edge or a vertex. A sphere resting on a
 // triangulated surface would otherwise see the same edge or vertex once per triangle that
-// shares it, and a face and the edge of its neighbour at once. The rules (feature-based, in the
-// manner of the region-based scheme of Kremmer & Favier, Int. J. Numer. Meth. Eng. 51 (2001)
-// 1407; docs/walls.md section 2):
+// shares it, a face and the edge of its neighbour at once, and, once it sinks in, the edges of
+// triangles further off. The rules (feature-based, in the manner of the region-based scheme of
+// Kremmer & Favier, Int. J. Numer. Meth. Eng. 51 (2001) 1407; docs/walls.md section 2):
 //   1. an edge point whose edge borders a triangle touched on its face is dropped, and each
 //      edge counts once;
 //   2. a vertex point whose vertex belongs to a triangle touched on its face or to an edge
 //      touched is dropped, and each vertex counts once;
-//   3. of touches whose normals differ by less than the merge angle, only the deepest counts:
+//   3. an edge or vertex point counts only where it is the closest point of every triangle
+//      that holds its edge or vertex (the feature's own Voronoi region of the surface): on a
+//      flat or convex part of a mesh the grain then sees what it sees on the plane, at any
+//      overlap;
+//   4. of touches whose normals differ by less than the merge angle, only the deepest counts:
 //      coplanar triangles give one contact, and a sphere pressed into a finely faceted concave
 //      surface one contact, not one per facet it overlaps.
 // Two faces meeting at a concave corner (a groove) keep one contact each; a convex edge gives
@@ -64,12 +68,15 @@ struct FeatureTouch {
   std::uint32_t a = 0, b = 0;
 };
 
-// Applies rules 1-3 to the candidate touches of one grain with one mesh (each within reach:
-// distance < radius). `corners(t)` gives the three vertex indices of triangle t. `order` is
-// scratch space.
-template <class Corners>
+// Applies rules 1-4 to the candidate touches of one grain with one mesh (each within reach:
+// distance < radius). `corners(t)` gives the three vertex indices of triangle t;
+// `feature_closest(c)` whether candidate c on an edge or a vertex passes rule 3. `order` is
+// scratch space. In exact arithmetic the mesh's closest point passes every rule; should
+// round-off drop every candidate, the deepest counts.
+template <class Corners, class FeatureClosest>
 void select_touches(const std::vector<FeatureTouch>& cand, double cos_merge, const Corners& corners,
-                    std::vector<std::uint32_t>& order, WallTouches& out) {
+                    const FeatureClosest& feature_closest, std::vector<std::uint32_t>& order,
+                    WallTouches& out) {
   const std::size_t n_cand = cand.size();
   const auto touched_face_has = [&](std::uint32_t v) {
     for (std::size_t k = 0; k < n_cand; ++k)
@@ -94,19 +101,23 @@ void select_touches(const std::vector<FeatureTouch>& cand, double cos_merge, con
       if (cand[k].kind == 1 && (cand[k].a == v || cand[k].b == v)) return true;
     return false;
   };
-  // Rules 1 and 2 pick the candidates that count (a duplicate counts once).
+  // Rules 1 to 3 pick the candidates that count (a duplicate counts once).
   order.clear();
+  std::size_t deepest = 0;
   for (std::size_t k = 0; k < n_cand; ++k) {
     const FeatureTouch& c = cand[k];
+    if (c.touch.distance < cand[deepest].touch.distance) deepest = k;
     bool keep = true;
     if (c.kind == 1) keep = !touched_face_has_edge(c.a, c.b);
     if (c.kind == 2) keep = !touched_face_has(c.a) && !touched_edge_has(c.a);
     if (keep && c.kind != 0)
       for (const std::uint32_t j : order)
         if (cand[j].kind == c.kind && cand[j].a == c.a && cand[j].b == c.b) keep = false;
+    if (keep && c.kind != 0) keep = feature_closest(c);
     if (keep) order.push_back(static_cast<std::uint32_t>(k));
   }
-  // Rule 3, deepest first (ties: candidate order, which is ascending triangle index). An
+  if (order.empty() && n_cand > 0) order.push_back(static_cast<std::uint32_t>(deepest));
+  // Rule 4, deepest first (ties: candidate order, which is ascending triangle index). An
   // insertion sort: a grain has a handful of touches, and it allocates nothing.
   for (std::size_t k = 1; k < order.size(); ++k) {
     const std::uint32_t moving = order[k];

@@ -1,6 +1,7 @@
 // The geometry of shaped walls: closest points on triangles, the rules that turn a grain's
 // touches with a mesh into contacts (scene/wall_touch.hpp), cylinders, rigid motions.
 #include "core/random.hpp"
+#include "mesh_surfaces.hpp"
 #include "scene/closest_point_on_triangle.hpp"
 #include "scene/cylinder_wall.hpp"
 #include "scene/mesh_wall.hpp"
@@ -13,23 +14,10 @@
 namespace yuxi {
 namespace {
 
-// A mesh wall of the given triangles, placed at t = 0.
-MeshWall mesh_of(const std::vector<std::array<Vec3, 3>>& soup) {
-  MeshWall w;
-  w.mesh = TriangleMesh::weld(soup);
-  w.place(0.0);
-  return w;
+MeshWall mesh_of(const test::TriangleSoup& soup) {
+  return test::mesh_wall_of(soup);
 }
-
-WallTouches touches_of(const MeshWall& w, const Vec3& c, double r) {
-  std::vector<std::uint32_t> all(w.mesh.n_triangles());
-  for (std::uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-  std::vector<FeatureTouch> scratch;
-  std::vector<std::uint32_t> order;
-  WallTouches out;
-  w.touches(c, r, all, scratch, order, out);
-  return out;
-}
+using test::touches_of;
 
 TEST(ClosestPointOnTriangle, IsNoFartherThanAnyPointOfTheTriangle) {
   Random rng(11);

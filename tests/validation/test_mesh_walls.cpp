@@ -15,6 +15,7 @@
 //    exactly its travel, holds at t1, and books the work m g delta it took from them.
 #include "core/random.hpp"
 #include "core/units.hpp"
+#include "mesh_surfaces.hpp"
 #include "validation/impact_probe.hpp"
 
 #include <cmath>
@@ -54,32 +55,12 @@ MeshWall square(const Vec3& p, const Vec3& n, double h) {
 // (x0, y0), inner vertices shifted at random within the plane, each cell split along a random
 // diagonal.
 MeshWall random_triangulation(int n, double h, double x0, double y0, std::uint64_t seed) {
-  Random rng(seed);
-  std::vector<Vec3> v;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const bool inner = i > 0 && j > 0 && i < n && j < n;
-      const double dx = inner ? rng.uniform(-0.3, 0.3) * h : 0.0;
-      const double dy = inner ? rng.uniform(-0.3, 0.3) * h : 0.0;
-      v.push_back({x0 + i * h + dx, y0 + j * h + dy, 0.0});
-    }
-  std::vector<std::array<Vec3, 3>> soup;
-  const auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * (n + 1) + i)]; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const Vec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      if (rng.uniform() < 0.5) {
-        soup.push_back({{a, b, c}});
-        soup.push_back({{a, c, d}});
-      } else {
-        soup.push_back({{a, b, d}});
-        soup.push_back({{b, c, d}});
-      }
-    }
-  MeshWall w;
-  w.name = "meshed plane";
-  w.mesh = TriangleMesh::weld(soup);
-  return w;
+  return test::mesh_wall_of(
+      test::random_surface(n, n, seed,
+                           [&](double u, double v) {
+                             return Vec3{x0 + u * (n * h), y0 + v * (n * h), 0.0};
+                           }),
+      "meshed plane");
 }
 
 TEST(MeshWalls, AFaceIsAPlane) {
@@ -111,12 +92,13 @@ TEST(MeshWalls, AFaceIsAPlane) {
 }
 
 // One grain on the plane z = 0, as an analytic plane or as a meshed one, under gravity tilted
-// by `tangential`; returns its position, velocity and spin after `steps` steps.
+// by `tangential`, on contacts of stiffness k_n (resting overlap m g_z / k_n); returns its
+// position, velocity and spin after `steps` steps.
 struct Track {
   Vec3 x, v, w;
 };
-Track roll(bool meshed, Vec3 gravity, Vec3 v0, Vec3 w0, double mu, int steps) {
-  LinearSpringDashpot::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 20.0, 10.0, mu, mu};
+Track roll(bool meshed, Vec3 gravity, Vec3 v0, Vec3 w0, double mu, int steps, double k_n) {
+  LinearSpringDashpot::Coeffs c{k_n, 2.0 / 7.0 * k_n, 20.0, 10.0, mu, mu};
   SimulationConfig cfg;
   cfg.box = {{-2, -2, -1}, {38, 38, 3}};
   cfg.gravity = gravity;
@@ -125,7 +107,7 @@ Track roll(bool meshed, Vec3 gravity, Vec3 v0, Vec3 w0, double mu, int steps) {
   const double r = 0.5, m = 1.0;
   ParticleStore store;
   ParticleSpec sp;
-  sp.position = {0.5, 0.5, r - m * 9.81 / 1e5}; // at its resting overlap
+  sp.position = {0.5, 0.5, r + m * gravity.z / k_n}; // at its resting overlap
   sp.velocity = v0;
   sp.angular_velocity = w0;
   sp.radius = r;
@@ -145,18 +127,22 @@ Track roll(bool meshed, Vec3 gravity, Vec3 v0, Vec3 w0, double mu, int steps) {
 }
 
 TEST(MeshWalls, AMeshedPlaneIsAPlane) {
-  // rolling with a little spin about the normal; sliding down a tilt beyond friction
-  for (const auto& [g, v0, w0, mu] :
-       {std::tuple{Vec3{0, 0, -9.81}, Vec3{0.2, 0.1, 0}, Vec3{-0.2, 0.4, 0.3}, 0.5},
-        std::tuple{Vec3{0.8, 0.4, -9.81}, Vec3{0.1, 0, 0}, Vec3{}, 0.05}}) {
-    const int steps = 100000;
-    const Track a = roll(false, g, v0, w0, mu, steps), b = roll(true, g, v0, w0, mu, steps);
-    const double travel = norm(a.x - Vec3{0.5, 0.5, 0.5});
-    EXPECT_GT(travel, 1.5); // it crossed many triangles
-    EXPECT_LT(norm(a.x - b.x), 1e-9 * travel);
-    EXPECT_LT(norm(a.v - b.v), 1e-9 * norm(a.v));
-    EXPECT_LT(norm(a.w - b.w), 1e-9 * (norm(a.w) + norm(a.v) / 0.5));
-  }
+  // rolling with a little spin about the normal; sliding down a tilt beyond friction; resting
+  // on overlaps of 0.02 %, 5 % and 20 % of the radius
+  for (const double overlap : {0.0002, 0.05, 0.2})
+    for (const auto& [g, v0, w0, mu] :
+         {std::tuple{Vec3{0, 0, -9.81}, Vec3{0.2, 0.1, 0}, Vec3{-0.2, 0.4, 0.3}, 0.5},
+          std::tuple{Vec3{0.8, 0.4, -9.81}, Vec3{0.1, 0, 0}, Vec3{}, 0.05}}) {
+      const int steps = 100000;
+      const double k_n = 9.81 / (overlap * 0.5);
+      const Track a = roll(false, g, v0, w0, mu, steps, k_n),
+                  b = roll(true, g, v0, w0, mu, steps, k_n);
+      const double travel = norm(a.x - Vec3{0.5, 0.5, 0.5});
+      EXPECT_GT(travel, 1.5) << "overlap " << overlap; // it crossed many triangles
+      EXPECT_LT(norm(a.x - b.x), 1e-9 * travel);
+      EXPECT_LT(norm(a.v - b.v), 1e-9 * norm(a.v));
+      EXPECT_LT(norm(a.w - b.w), 1e-9 * (norm(a.w) + norm(a.v) / 0.5));
+    }
 }
 
 // The two faces of a 90 degree groove along y (z = |x|), each its own mesh wall.
