@@ -57,6 +57,8 @@ public:
   ContactHistory<State> history;
   // What the grains did to each flat wall at the last evaluation (this rank's part).
   std::vector<WallLoad> plane_loads;
+  // The contacts with shaped walls that began already deep on this rank (contact_tally.hpp).
+  DeepStarts deep_starts;
 
   // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
   // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
@@ -109,7 +111,7 @@ public:
     }
     bool batched = false;
     if constexpr (BatchedModel<Model>) batched = batch_ != nullptr;
-    WallBooks books{loads, elements, record, tally, torque_points};
+    WallBooks books{loads, elements, record, tally, torque_points, t};
     batch_releases_.clear();
     WallTouches touches;
     for (std::size_t k = 0; k < list.walls.size(); ++k) {
@@ -159,10 +161,18 @@ public:
       for (std::size_t c = 0; c < n; ++c) {
         const WallTouch& touch = touches.at[c];
         State& state = set.at(c).state;
-        if (match[c] < 0) state = State{};
+        double deep = 0.0, approach = 0.0; // (a new contact that began deep: DeepStarts)
+        if (match[c] < 0) {
+          state = State{};
+          if (dt > 0.0) {
+            approach = std::max(0.0, -dot(s.v[i] - touch.velocity, touch.normal)) * dt;
+            deep = DeepStarts::deep_overlap(s.radius[i] - touch.distance, approach, s.radius[i]);
+          }
+        }
         set.at(c).normal = touch.normal;
-        const WallSite site{i, ref.wall, static_cast<std::uint32_t>(k),
-                            static_cast<std::uint32_t>(c), &touch};
+        const WallSite site{
+            i,    ref.wall, static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(c), &touch,
+            deep, approach};
         if constexpr (BatchedModel<Model>) {
           if (batched) {
             queue_wall_contact(s, site, coeffs, state, dt, books);
@@ -176,6 +186,8 @@ public:
         s.torque[i] += r.torque_i;
         book(r, tally);
         book_wall_contact(s, site, r.force, r.elastic, g.overlap, dt, books);
+        if (deep > 0.0)
+          deep_starts.add(r.elastic, t, s.gid[i], ref.wall, touch.element, deep, approach);
       }
       set.n = static_cast<std::uint8_t>(n);
     }
@@ -191,12 +203,14 @@ private:
     ContactRecord& record;
     ContactTally& tally;
     const std::vector<Vec3>& torque_points;
+    double t;
   };
-  // One wall contact: grain i, its wall, its place in the list (candidate k, contact c), and
-  // where it touches.
+  // One wall contact: grain i, its wall, its place in the list (candidate k, contact c), where
+  // it touches, and where it began deep (DeepStarts) its overlap and its grain's approach.
   struct WallSite {
     std::uint32_t i, wall, k, c;
     const WallTouch* touch;
+    double deep, approach;
   };
   // A wall contact in the batch: its site, with what the booking needs of its touch copied
   // (the touches are the grain's; the normal stays in the lanes).
@@ -204,6 +218,7 @@ private:
     std::uint32_t i, wall, k, c, element;
     Vec3 point, velocity;
     State* state;
+    double deep, approach;
   };
 
   // Moves the state that wall contact c matched (match[c], -1 for none) to slot c, by swaps
@@ -250,8 +265,8 @@ private:
     lanes.set_wall_contact(k, touch.normal, touch.distance, s.radius[site.i],
                            s.v[site.i] - touch.velocity, s.w[site.i], s.inv_mass[site.i], state);
     if (!lanes.uniform) lanes.set_coeffs(k, coeffs);
-    queued_walls_[k] = {site.i,        site.wall,   site.k,         site.c,
-                        touch.element, touch.point, touch.velocity, &state};
+    queued_walls_[k] = {site.i,      site.wall,      site.k, site.c,    touch.element,
+                        touch.point, touch.velocity, &state, site.deep, site.approach};
     if (lanes.full()) flush_walls(s, dt, books);
   }
 
@@ -278,8 +293,11 @@ private:
       touch.point = q.point;
       touch.velocity = q.velocity;
       touch.element = q.element;
-      book_wall_contact(s, {q.i, q.wall, q.k, q.c, &touch}, force, lanes.elastic[k],
-                        lanes.overlap[k], dt, books);
+      book_wall_contact(s, {q.i, q.wall, q.k, q.c, &touch, q.deep, q.approach}, force,
+                        lanes.elastic[k], lanes.overlap[k], dt, books);
+      if (q.deep > 0.0)
+        deep_starts.add(lanes.elastic[k], books.t, s.gid[q.i], q.wall, q.element, q.deep,
+                        q.approach);
       lanes.save_state(k, *q.state);
     }
     for (; released < batch_releases_.size(); ++released) // after the batch's last contact

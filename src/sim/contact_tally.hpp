@@ -19,6 +19,36 @@ struct ContactTally {
   std::size_t worst_particle = 0; // owned particle of that contact
 };
 
+// The contacts with shaped walls (meshes, cylinders) that began already deep, since the
+// simulation was built: a contact with no state from the step before whose overlap exceeds
+// twice what its grain came nearer the wall in that step (and a millionth of its radius). Its
+// spring's energy then comes from nothing the equations of motion did: a wall that appears
+// over grains (its active window), grains placed inside a wall, or a contact rule that lets a
+// contact appear where none was (docs/walls.md section 2). When the energy books gain, this
+// record tells a wall's contacts from an unstable integration (Simulation::check_energy_books).
+struct DeepStarts {
+  double energy = 0.0; // the elastic energy they began with, summed [energy]
+  // The one that began with the most energy:
+  double worst = 0.0; // its elastic energy [energy]
+  double time = 0.0;
+  std::int64_t grain = 0; // the grain's global id
+  std::uint32_t wall = 0, element = 0;
+  double overlap = 0.0;  // its overlap then [length]
+  double approach = 0.0; // how much nearer the wall its grain came in the step [length]
+
+  void add(double elastic, double t, std::int64_t gid, std::uint32_t w, std::uint32_t e,
+           double deep, double near) {
+    energy += elastic;
+    if (!(elastic > worst)) return;
+    worst = elastic, time = t, grain = gid, wall = w, element = e, overlap = deep, approach = near;
+  }
+  // The overlap of a new contact where it began deep (else 0): `approach` is how much nearer
+  // the wall the grain came in the step, |min(0, v_rel . n)| dt.
+  static double deep_overlap(double overlap, double approach, double radius) {
+    return overlap > 2.0 * approach + 1e-6 * radius ? overlap : 0.0;
+  }
+};
+
 // What the grains do to one shaped wall in one force evaluation (walls.csv).
 struct WallLoad {
   Vec3 force;      // on the wall [force]

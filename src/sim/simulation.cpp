@@ -294,6 +294,21 @@ void Simulation::check_energy_books(const EnergyBooks& e) const {
                          e.removed + std::abs(e.mechanical());
   const double gained = e.balance() - initial_balance_;
   if (!(gained <= 0.1 * in_play) && in_play > 0) {
+    // Energy that came with wall contacts born deep is no fault of the time step: say where.
+    const DeepStarts& deep =
+        std::visit([](const auto& f) -> const DeepStarts& { return f.deep_starts; }, forces_);
+    const double deep_energy = comm_.sum(deep.energy), worst = comm_.max(deep.worst);
+    if (deep_energy >= 0.25 * gained) {
+      const std::string where = comm_.first_error(
+          worst > 0 && deep.worst == worst ? describe_deep_start(deep) : std::string{});
+      throw SimulationError(fmt::format(
+          "step {}, t = {}: the energy books gained {:.4g} since the start ({:.0f} % of the "
+          "energy in play), and {:.4g} of it came with contacts with walls that began already "
+          "deep, which no time step explains: {}. A contact that begins deep makes its spring's "
+          "energy from nothing: a wall that appears over grains (its active window), grains "
+          "placed inside a wall, or the wall's contact rules (docs/walls.md section 2)",
+          step_, time_, gained, 100 * gained / in_play, deep_energy, where));
+    }
     std::size_t fastest = 0;
     double fastest_ke = -1;
     for (std::size_t i = 0; i < store_.n_owned(); ++i)
@@ -399,6 +414,19 @@ std::string Simulation::describe_particle(std::size_t i) const {
                      s.is_grain(i) ? "grain" : "wall particle", s.gid[i], s.radius[i], s.x[i].x,
                      s.x[i].y, s.x[i].z, s.v[i].x, s.v[i].y, s.v[i].z, s.w[i].x, s.w[i].y,
                      s.w[i].z);
+}
+
+std::string Simulation::describe_deep_start(const DeepStarts& deep) const {
+  const ShapedWall& wall = walls_[deep.wall];
+  const std::string element =
+      std::holds_alternative<MeshWall>(wall)
+          ? fmt::format("triangle {}", deep.element)
+          : fmt::format("patch {} (0 the side, 1 and 2 the caps)", deep.element);
+  return fmt::format("the one that began with the most energy ({:.4g}) began at t = {:.6g} on wall "
+                     "'{}', {}, against grain {}, overlapping it by {:.4g} where the grain had "
+                     "come {:.4g} nearer the wall in the step",
+                     deep.worst, deep.time, wall_name(wall), element, deep.grain, deep.overlap,
+                     deep.approach);
 }
 
 std::string Simulation::describe_contacts(std::size_t i) const {

@@ -424,6 +424,8 @@ private:
   void settle_energy_books();
   std::string describe_particle(std::size_t i) const;
   std::string describe_contacts(std::size_t i) const;
+  // Where the wall contact that began deepest began (DeepStarts), for a diagnosis.
+  std::string describe_deep_start(const DeepStarts& deep) const;
   double mechanical_energy(std::size_t i) const; // kinetic + gravitational of one grain
   // Gravity's components along periodic axes (no potential) and along the others.
   Vec3 periodic_gravity() const;

@@ -34,6 +34,28 @@ TEST(Health, NoCheckpointKeepsAnOverlapBeyondTheLimit) {
   EXPECT_FALSE(std::filesystem::exists(file));
 }
 
+// A square lid that comes into existence at t = 0.05 over a grain at rest, overlapping it by
+// 20 % of its radius: its spring's energy comes from nothing. The diagnosis names the wall, the
+// triangle and the grain, and does not blame the time step.
+TEST(Health, EnergyFromAWallsContactsNamesTheWallNotTheTimeStep) {
+  auto cfg = test::open_box(4.0, {0, 0, 0}, 1e-3);
+  const double z = 0.4; // the lid's height: the grain (radius 0.5 at the origin) overlaps it by 0.1
+  MeshWall lid;
+  lid.name = "lid";
+  lid.mesh = TriangleMesh::weld({{{Vec3{-2, -2, z}, Vec3{2, -2, z}, Vec3{2, 2, z}}},
+                                 {{Vec3{-2, -2, z}, Vec3{2, 2, z}, Vec3{-2, 2, z}}}});
+  lid.active.from = 0.05;
+  Simulation sim(cfg, test::store_of({test::sphere({0, 0, 0}, 0.5, 1.0)}), {}, {},
+                 test::linear_law({1e4, 0, 0, 0, 0, 0}), Comm::self(), {lid});
+  const std::string diagnosis = test::failure_of(sim, 2000);
+  EXPECT_NE(diagnosis.find("began already deep"), std::string::npos) << diagnosis;
+  EXPECT_NE(diagnosis.find("on wall 'lid', triangle "), std::string::npos) << diagnosis;
+  EXPECT_NE(diagnosis.find("against grain 0, overlapping it by 0.1 "), std::string::npos)
+      << diagnosis;
+  EXPECT_NE(diagnosis.find("began at t = 0.05"), std::string::npos) << diagnosis;
+  EXPECT_EQ(diagnosis.find("time step is too large"), std::string::npos) << diagnosis;
+}
+
 TEST(Health, AnInitialOverlapBeyondTheLimitIsRefused) {
   EXPECT_THROW(test::head_on(0.4), SimulationError);
 }
