@@ -26,6 +26,14 @@ void print_error(const std::string& message) {
   if (Comm::world().root()) fmt::print(stderr, "error: {}\n", message);
 }
 
+// An error's message with this program's remedy, where it has one.
+std::string with_remedy(const std::exception& e) {
+  if (dynamic_cast<const TimeStepError*>(&e)) return fmt::format("{} (or pass --force)", e.what());
+  if (const auto* f = dynamic_cast<const OutputFolderError*>(&e); f && f->occupied)
+    return fmt::format("{}; choose another with -o or pass --overwrite", e.what());
+  return e.what();
+}
+
 void apply_balance_by(const RunCommandOptions& o, Scene& scene) {
   if (!o.balance_by.empty())
     scene.sim.balance_by = o.balance_by == "time" ? BalanceBy::time : BalanceBy::pairs;
@@ -73,7 +81,7 @@ bool prepare(const RunCommandOptions& o, Scene& scene, std::unique_ptr<Simulatio
     describe(scene, *sim, report);
     return true;
   } catch (const std::exception& e) { // SceneError, or invalid_argument from the engine
-    print_error(e.what());
+    print_error(with_remedy(e));
     return false;
   }
 }
@@ -111,7 +119,7 @@ bool open(const RunCommandOptions& o, OpenedRun& run) {
     spdlog::info("{}", run.origin);
     return true;
   } catch (const std::exception& e) { // SceneError, CheckpointError, invalid_argument
-    print_error(e.what());
+    print_error(with_remedy(e));
     return false;
   }
 }
@@ -132,8 +140,8 @@ int run_command(const RunCommandOptions& o) {
     // (only once the scene is known to be good)
     try {
       dir = create_run_folder(sim->comm(), o.output_dir, scene, o.overwrite, scene_text);
-    } catch (const SceneError& e) {
-      print_error(e.what());
+    } catch (const OutputFolderError& e) {
+      print_error(with_remedy(e));
       return 2;
     }
   }

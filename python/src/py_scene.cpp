@@ -123,11 +123,19 @@ py::dict PyScene::resolved_dict() const {
 void bind_scene(py::module_& m) {
   // SceneError carries the key the message names ("file:line:column: key: message").
   static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
+  // The errors whose remedy the command line words as flags get Python's words here.
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const OutputFolderError& e) {
+      const std::string message =
+          e.occupied ? fmt::format("{}; choose another output= or pass overwrite=True", e.what())
+                     : e.what();
+      PyErr_SetString(e.occupied ? PyExc_FileExistsError : PyExc_OSError, message.c_str());
     } catch (const SceneError& e) {
-      const std::string message = e.what();
+      const bool time_step = dynamic_cast<const TimeStepError*>(&e) != nullptr;
+      const std::string message =
+          time_step ? fmt::format("{} (or pass force_dt=True)", e.what()) : e.what();
       static const std::regex pattern(R"(:(\d+):(\d+): ([^:\s][^:]*): )");
       std::smatch match;
       py::object key = py::none();

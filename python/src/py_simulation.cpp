@@ -60,8 +60,24 @@ std::vector<Vec3> vec3s(const DoubleArray& a, const char* what) {
   return out;
 }
 
-std::vector<GlobalId> ids_of(const IdArray& a) {
-  if (a.ndim() != 1) throw py::value_error("ids: expected a one-dimensional array");
+// Particle ids: a one-dimensional array of integers (an empty one of any type). A boolean
+// mask or floats are refused: numpy would turn a mask into the ids 0 and 1, and 1.5 into 1.
+std::vector<GlobalId> ids_of(const py::array& given, const char* call) {
+  if (given.ndim() != 1)
+    throw py::value_error(fmt::format("{}: ids must be a one-dimensional array of particle ids, "
+                                      "not of shape {}",
+                                      call, py::str(given.attr("shape")).cast<std::string>()));
+  const char kind = given.dtype().kind();
+  if (given.size() > 0 && kind == 'b')
+    throw py::type_error(fmt::format("{}: ids must be particle ids (integers), not a boolean mask; "
+                                     "pass sim.particles.id[mask]",
+                                     call));
+  if (given.size() > 0 && kind != 'i' && kind != 'u')
+    throw py::type_error(fmt::format(
+        "{}: ids must be particle ids (integers), not {}; pass an integer array such as "
+        "sim.particles.id",
+        call, py::str(given.dtype()).cast<std::string>()));
+  const IdArray a = IdArray::ensure(given);
   return {a.data(), a.data() + a.shape(0)};
 }
 
@@ -109,12 +125,12 @@ const std::uint8_t* elements(const std::vector<Kind>& field) {
 // A binding of one of Simulation's writes by id (velocities, angular velocities, positions).
 // `moves_arrays`: the write builds the list afresh, which moves the arrays (views go stale).
 auto setter(void (Simulation::*write)(std::span<const GlobalId>, std::span<const Vec3>),
-            const char* what, bool moves_arrays = false) {
-  return
-      [write, what, moves_arrays](PySimulation& s, const IdArray& ids, const DoubleArray& values) {
-        (s.sim().*write)(ids_of(ids), vec3s(values, what));
-        if (moves_arrays) s.edited();
-      };
+            const char* call, const char* what, bool moves_arrays = false) {
+  return [write, call, what, moves_arrays](PySimulation& s, const py::array& ids,
+                                           const DoubleArray& values) {
+    (s.sim().*write)(ids_of(ids, call), vec3s(values, what));
+    if (moves_arrays) s.edited();
+  };
 }
 
 py::dict books_dict(const EnergyBooks& e) {
@@ -140,10 +156,17 @@ py::dict books_dict(const EnergyBooks& e) {
   return d;
 }
 
+py::array_t<double> vec3_array(const Vec3& v) {
+  py::array_t<double> a(3);
+  auto m = a.mutable_unchecked<1>();
+  m(0) = v.x, m(1) = v.y, m(2) = v.z;
+  return a;
+}
+
 py::dict load_dict(const WallLoad& l) {
   py::dict d;
-  d["force"] = py::make_tuple(l.force.x, l.force.y, l.force.z);
-  d["torque"] = py::make_tuple(l.torque.x, l.torque.y, l.torque.z);
+  d["force"] = vec3_array(l.force);
+  d["torque"] = vec3_array(l.torque);
   d["work"] = l.work;
   d["contacts"] = l.contacts;
   return d;
@@ -215,14 +238,14 @@ void PySimulation::open_driver(bool resumed) {
 }
 
 py::tuple PySimulation::generation() const {
-  return py::make_tuple(run_.sim->step_count(), edits_);
+  return py::make_tuple(sim().step_count(), edits_);
 }
 
 void PySimulation::advance(py::object self, std::int64_t until, py::object callback,
                            std::int64_t every) {
   if (finished_) throw std::runtime_error("the simulation was closed");
-  if (until > driver_->end_step())
-    driver_->set_end_time(static_cast<double>(until) * run_.scene.sim.dt);
+  RunDriver& d = driver();
+  if (until > d.end_step()) d.set_end_time(static_cast<double>(until) * run_.scene.sim.dt);
   StepHook hook;
   // An exception in the callback stops the run at that step, and is raised once it has
   // (KeyboardInterrupt after a checkpoint, as Ctrl-C between callbacks).
@@ -243,28 +266,34 @@ void PySimulation::advance(py::object self, std::int64_t until, py::object callb
       }
     };
   }
-  driver_->set_show_progress(progress_);
-  const bool ok = driver_->advance(until, hook);
+  d.set_show_progress(progress_);
+  const bool ok = d.advance(until, hook);
+  // A callback that raised on one rank stopped every rank (RunDriver::advance): each raises,
+  // so that no rank goes on alone into a collective call.
+  const bool raised_elsewhere =
+      !callback.is_none() && sim().comm().any(callback_error.has_value()) && !callback_error;
   if (interrupt_) {
-    if (ok) driver_->write_checkpoint(); // (a stop by signal has written one)
+    if (ok) d.write_checkpoint(); // (a stop by signal has written one)
     py::error_already_set e = std::move(*interrupt_);
     interrupt_.reset();
     throw e;
   }
+  if (raised_elsewhere)
+    throw std::runtime_error("the run stopped: the callback raised an exception on another rank");
   if (callback_error) throw std::move(*callback_error);
   if (!ok) {
-    const RunSummary s = driver_->finish();
+    const RunSummary s = d.finish();
     finished_ = true;
     throw std::runtime_error(fmt::format("the simulation stopped: {}; its last state is in {}",
                                          s.failure, (folder_ / "failure.vtu").string()));
   }
 }
 
-void PySimulation::checkpoint(const std::string& path) {
-  if (path.empty())
-    driver_->write_checkpoint();
-  else
-    write_checkpoint(path, run_.scene_text, *run_.sim);
+std::string PySimulation::checkpoint(const std::string& path) {
+  RunDriver& d = driver();
+  if (path.empty()) return d.write_checkpoint().string();
+  write_checkpoint(path, run_.scene_text, sim());
+  return path;
 }
 
 py::dict PySimulation::finish() {
@@ -348,10 +377,10 @@ void bind_simulation(py::module_& m) {
            })
       .def("inflow", [](PySimulation& s) { return tallies(s.sim().inflow()); })
       .def("outflow", [](PySimulation& s) { return tallies(s.sim().outflow()); })
-      .def("set_velocities", setter(&Simulation::set_velocities, "velocities"))
-      .def("set_angular_velocities",
-           setter(&Simulation::set_angular_velocities, "angular velocities"))
-      .def("set_positions", setter(&Simulation::set_positions, "positions", true))
+      .def("set_velocities", setter(&Simulation::set_velocities, "set_velocities", "velocities"))
+      .def("set_angular_velocities", setter(&Simulation::set_angular_velocities,
+                                            "set_angular_velocities", "angular velocities"))
+      .def("set_positions", setter(&Simulation::set_positions, "set_positions", "positions", true))
       .def("add_grains",
            [](PySimulation& s, const DoubleArray& x, const DoubleArray& radius,
               const DoubleArray& v, const std::string& material) {
@@ -382,8 +411,8 @@ void bind_simulation(py::module_& m) {
              return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
            })
       .def("remove_grains",
-           [](PySimulation& s, const IdArray& ids) {
-             const auto id = ids_of(ids);
+           [](PySimulation& s, const py::array& ids) {
+             const auto id = ids_of(ids, "remove_grains");
              const std::int64_t n = s.sim().remove_grains(id);
              s.edited();
              return n;

@@ -32,12 +32,18 @@ public:
   // callback stops the run by returning False.
   void advance(pybind11::object self, std::int64_t until, pybind11::object callback,
                std::int64_t every);
-  void checkpoint(const std::string& path);
+  // Writes a checkpoint (into the run folder when `path` is empty); returns the file.
+  std::string checkpoint(const std::string& path);
   pybind11::dict finish();
   // Finishes the run and frees the engine (before MPI ends). Collective.
   void close();
 
+  // Every call on a closed simulation raises RuntimeError through these two.
   Simulation& sim() {
+    if (!run_.sim) throw std::runtime_error("the simulation was closed");
+    return *run_.sim;
+  }
+  const Simulation& sim() const {
     if (!run_.sim) throw std::runtime_error("the simulation was closed");
     return *run_.sim;
   }

@@ -12,18 +12,18 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def run(ranks, out):
+def run(ranks, out, script="mpi_energies.py"):
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [HERE] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
-    cmd = [sys.executable, os.path.join(HERE, "mpi_energies.py"), str(out)]
+    cmd = [sys.executable, os.path.join(HERE, script), str(out)]
     if ranks > 1:
         launcher = ["mpirun", "-np", str(ranks), "--oversubscribe"]
         if os.geteuid() == 0:
             launcher.append("--allow-run-as-root")
         cmd = launcher + cmd
-    done = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
-    line = [s for s in done.stdout.splitlines() if s.startswith("{")][-1]
+    line = [s for s in done.stdout.splitlines() if s.startswith(("{", "["))][-1]
     return json.loads(line)
 
 
@@ -37,3 +37,17 @@ def test_two_ranks_run_one_simulation_with_the_energies_of_one(tmp_path):
         a, b = one["energies"][key], two["energies"][key]
         assert b == pytest.approx(a, rel=1e-9, abs=1e-12), key
     assert one["energies"]["grains"] == two["energies"]["grains"] == 343
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_a_callback_s_stop_is_agreed_over_the_ranks(tmp_path):
+    """A stop (or an exception) decided on one rank's particles stops every rank at that step,
+    and each goes on to the next collective call: no rank is left waiting (the test would time
+    out)."""
+    ranks = run(2, tmp_path / "stop", "mpi_callback_stop.py")
+    assert [r["rank"] for r in ranks] == [0, 1]
+    assert [r["stopped_at"] for r in ranks] == [200, 200]
+    assert [r["raised_at"] for r in ranks] == [300, 300]
+    assert ranks[1]["raised"] == "ArithmeticError: rank 1's callback failed"
+    assert ranks[0]["raised"].startswith("RuntimeError: the run stopped: the callback raised")
+    assert ranks[0]["grains"] == ranks[1]["grains"] == 343

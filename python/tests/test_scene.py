@@ -57,16 +57,18 @@ def test_a_value_with_no_toml_form_is_refused(box_scene):
 
 def test_a_time_step_too_large_for_the_stiffness_is_refused(box_scene, tmp_path):
     box_scene["run"]["dt"] = 0.01
-    with pytest.raises(yuxi.SceneError, match="dt"):
+    with pytest.raises(yuxi.SceneError, match="dt") as refused:
         yuxi.Simulation(box_scene, output=tmp_path / "out")
     assert not (tmp_path / "out").exists()
+    assert "force_dt=True" in str(refused.value) and "--force" not in str(refused.value)
 
 
 def test_a_folder_that_holds_a_run_is_not_overwritten(box_scene, tmp_path):
     out = tmp_path / "out"
     yuxi.Simulation(box_scene, output=out, progress=False).close()
-    with pytest.raises(yuxi.SceneError, match="already holds a run"):
+    with pytest.raises(FileExistsError, match="already holds a run") as refused:
         yuxi.Simulation(box_scene, output=out)
+    assert "overwrite=True" in str(refused.value) and "--overwrite" not in str(refused.value)
     yuxi.Simulation(box_scene, output=out, overwrite=True, progress=False).close()
 
 

@@ -290,9 +290,13 @@ class Simulation:
         if t_end is not None and steps is not None:
             raise ValueError("give t_end or steps, not both")
         if steps is not None:
-            until = core.step_count + int(steps)
+            until = core.step_count + _step_count(steps, "steps")
         elif t_end is not None:
+            t_end = _number(t_end, "t_end")
             until = int(round(t_end / core.dt))
+            if until < core.step_count:
+                raise ValueError(f"t_end = {t_end:g} is before the simulation's time t = "
+                                 f"{core.time:g}: it runs forwards only")
         else:
             until = core.end_step
         self._stop = False
@@ -306,7 +310,7 @@ class Simulation:
 
     def step(self, n=1):
         """Advances ``n`` steps."""
-        self._core.advance(self._core.step_count + int(n), None, 100)
+        self._core.advance(self._core.step_count + _step_count(n, "n"), None, 100)
         return self
 
     def stop(self):
@@ -314,8 +318,9 @@ class Simulation:
         self._stop = True
 
     def checkpoint(self, path=None):
-        """Writes a checkpoint: into the run folder's checkpoints/, or to ``path``."""
-        self._core.checkpoint("" if path is None else os.fspath(path))
+        """Writes a checkpoint, into the run folder's checkpoints/ or to ``path``; returns the
+        path of the file written. Collective."""
+        return self._core.checkpoint("" if path is None else os.fspath(path))
 
     def close(self):
         """Finishes the run's analyses and frees the engine; returns the run's summary."""
@@ -363,7 +368,9 @@ class Simulation:
                              names=True).view(np.recarray)
 
     def wall_loads(self):
-        """Each named wall's force, torque, work and contacts at the last step. Collective."""
+        """Each named wall's load at the last step, by name: ``force`` and ``torque`` (numpy
+        arrays of shape (3,), on the wall), ``work`` (cumulative, done by the wall on the grains)
+        and ``contacts`` (docs/python.md). Collective."""
         return self._core.wall_loads()
 
     def inflow(self):
@@ -386,13 +393,27 @@ class Simulation:
         self._core.set_positions(np.asarray(ids), np.asarray(positions))
 
     def add_grains(self, positions, radii, velocities=None, material=None):
-        """Adds grains (the same on every rank); returns their ids. Collective."""
+        """Adds grains (the same on every rank); returns their ids. ``radii``: one radius for
+        all, or one per grain. A grain that would overlap another particle or a flat wall is
+        refused (ValueError naming it). Collective."""
         positions = np.atleast_2d(np.asarray(positions, dtype=float))
-        radii = np.broadcast_to(np.asarray(radii, dtype=float), (len(positions),)).copy()
-        if velocities is None:
-            velocities = np.zeros_like(positions)
+        if positions.ndim != 2 or positions.shape[1] != 3:
+            raise ValueError(f"add_grains: positions must be of shape (n, 3), not "
+                             f"{np.shape(positions)}")
+        n = len(positions)
+        radii = np.asarray(radii, dtype=float)
+        if radii.ndim == 0:
+            radii = np.full(n, float(radii))
+        elif radii.shape != (n,):
+            raise ValueError(f"add_grains: {n} positions but radii of shape {radii.shape}: give "
+                             f"one radius, or one per grain")
+        velocities = (np.zeros_like(positions) if velocities is None
+                      else np.atleast_2d(np.asarray(velocities, dtype=float)))
+        if velocities.shape != positions.shape:
+            raise ValueError(f"add_grains: {n} positions but velocities of shape "
+                             f"{velocities.shape}: give one (3,) velocity per grain")
         material = self.materials[0] if material is None else material
-        return self._core.add_grains(positions, radii, np.atleast_2d(velocities), material)
+        return self._core.add_grains(positions, radii, velocities, material)
 
     def remove_grains(self, ids):
         """Removes the grains of these ids (where any rank owns them); returns how many went.
@@ -431,6 +452,26 @@ class Simulation:
 
 def _path(output):
     return "" if output is None else os.fspath(output)
+
+
+def _step_count(n, name):
+    """A number of steps: a whole number, not negative."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+        if isinstance(n, (float, np.floating)) and float(n).is_integer():
+            n = int(n)
+        else:
+            raise TypeError(f"{name} must be a whole number of steps, not {n!r}")
+    if n < 0:
+        raise ValueError(f"{name} = {n}: the simulation runs forwards only")
+    return int(n)
+
+
+def _number(x, name):
+    if isinstance(x, bool) or not isinstance(x, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number, not {x!r}")
+    if not np.isfinite(x):
+        raise ValueError(f"{name} = {x} is not finite")
+    return float(x)
 
 
 def _progress(progress):

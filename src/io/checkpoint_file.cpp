@@ -365,18 +365,20 @@ std::filesystem::path CheckpointSet::path_for(std::int64_t step) const {
   return folder_ / fmt::format("checkpoint_{:012d}.yxc", step);
 }
 
-void CheckpointSet::write(const std::string& scene_text, Simulation& sim) {
+std::filesystem::path CheckpointSet::write(const std::string& scene_text, Simulation& sim) {
   if (sim.comm().root()) {
     std::filesystem::create_directories(folder_);
     for (const auto& e : std::filesystem::directory_iterator(folder_)) // left by a crash
       if (e.path().extension() == ".tmp") std::filesystem::remove(e.path());
   }
   sim.comm().barrier(); // every rank opens the file in the folder rank 0 has made
-  write_checkpoint(path_for(sim.step_count()), scene_text, sim);
-  if (!sim.comm().root()) return;
+  const std::filesystem::path file = path_for(sim.step_count());
+  write_checkpoint(file, scene_text, sim);
+  if (!sim.comm().root()) return file;
   const auto files = list();
   for (std::size_t k = static_cast<std::size_t>(keep_); k < files.size(); ++k)
     std::filesystem::remove(files[k]);
+  return file;
 }
 
 std::vector<std::filesystem::path> CheckpointSet::list() const {

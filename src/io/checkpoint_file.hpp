@@ -66,8 +66,8 @@ class CheckpointSet {
 public:
   explicit CheckpointSet(std::filesystem::path run_folder, int keep = 3);
   std::filesystem::path path_for(std::int64_t step) const;
-  // Writes one and removes the oldest beyond `keep`.
-  void write(const std::string& scene_text, Simulation& sim);
+  // Writes one and removes the oldest beyond `keep`; returns the file written.
+  std::filesystem::path write(const std::string& scene_text, Simulation& sim);
   // Files present, newest first.
   std::vector<std::filesystem::path> list() const;
   // Collective: the newest checkpoint that verifies (rank 0's listing of the folder); each

@@ -53,7 +53,7 @@ struct RunDriver::Impl {
   void snapshot();
   bool stop_requested() const;
   bool checkpoint_due(std::int64_t next) const;
-  void write_checkpoint();
+  std::filesystem::path write_checkpoint();
 };
 
 namespace {
@@ -211,11 +211,12 @@ bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
   return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
 }
 
-void RunDriver::Impl::write_checkpoint() {
+std::filesystem::path RunDriver::Impl::write_checkpoint() {
   const auto t0 = std::chrono::steady_clock::now();
-  checkpoints->write(options.scene_text, sim);
+  const std::filesystem::path file = checkpoints->write(options.scene_text, sim);
   last_checkpoint = std::chrono::steady_clock::now();
   summary.checkpoint_seconds += seconds_since(t0);
+  return file;
 }
 
 RunDriver::RunDriver(const Scene& scene, Simulation& sim, RunOptions options)
@@ -235,8 +236,8 @@ void RunDriver::set_show_progress(bool on) {
   impl_->options.show_progress = on;
 }
 
-void RunDriver::write_checkpoint() {
-  impl_->write_checkpoint();
+std::filesystem::path RunDriver::write_checkpoint() {
+  return impl_->write_checkpoint();
 }
 
 bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
@@ -257,7 +258,10 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
       const std::int64_t k = sim.step_count();
       if (k % d.energy_every == 0 || k == d.last) d.write_energies();
       if (d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last)) d.snapshot();
-      const bool go_on = !(hook.every > 0 && k % hook.every == 0 && hook.call && !hook.call());
+      // Every rank calls the hook at the same step, and any one that says stop stops them all
+      // there (a decision from this rank's particles alone would leave the others waiting).
+      bool go_on = true;
+      if (hook.every > 0 && k % hook.every == 0 && hook.call) go_on = !sim.comm().any(!hook.call());
       if (checkpoint_now) {
         d.write_checkpoint();
         if (d.stop_requested()) {

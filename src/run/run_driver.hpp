@@ -49,7 +49,8 @@ struct RunSummary {
   std::string failure;      // the diagnosis when failed
 };
 
-// Called every `every` steps after a step; returns false to stop the run there.
+// Called every `every` steps after a step, on every rank; returns false to stop the run there.
+// Collective: where any rank's call returns false, every rank stops at that step.
 struct StepHook {
   std::int64_t every = 0; // 0: never
   std::function<bool()> call;
@@ -72,8 +73,8 @@ public:
   std::int64_t end_step() const;
   void set_end_time(double t_end);
   void set_show_progress(bool on);
-  // Writes a checkpoint into the run folder now. Collective.
-  void write_checkpoint();
+  // Writes a checkpoint into the run folder now; returns the file. Collective.
+  std::filesystem::path write_checkpoint();
   // Ends the run's analysis and returns what it did (also after a failure). Collective.
   RunSummary finish();
 

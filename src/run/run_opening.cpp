@@ -106,13 +106,14 @@ fs::path create_run_folder(const Comm& comm, const fs::path& output, const Scene
                            bool overwrite, const std::string& scene_text) {
   const fs::path dir = output.empty() ? fs::path("runs") / scene.run.name : output;
   std::string error;
+  bool occupied = false;
   if (comm.root()) {
     try {
       if (fs::exists(dir) && !fs::is_empty(dir)) {
-        if (!overwrite)
-          throw SceneError(fmt::format("output folder {} already holds a run; choose another "
-                                       "with -o or pass --overwrite",
-                                       dir.string()));
+        occupied = !overwrite;
+        if (occupied)
+          throw std::runtime_error(
+              fmt::format("output folder {} already holds a run", dir.string()));
         fs::remove_all(dir);
       }
       fs::create_directories(dir);
@@ -122,7 +123,7 @@ fs::path create_run_folder(const Comm& comm, const fs::path& output, const Scene
     }
   }
   error = comm.first_error(error);
-  if (!error.empty()) throw SceneError(error);
+  if (!error.empty()) throw OutputFolderError(error, comm.any(occupied));
   return dir;
 }
 

@@ -43,7 +43,8 @@ OpenedRun open_branch(Scene scene, const std::filesystem::path& from, bool force
 
 // Collective: the run folder `output` (runs/<scene name> when empty), created empty by rank 0
 // with the resolved scene in it (scene.resolved.toml). A folder that holds files is refused
-// unless `overwrite` (then emptied). Throws SceneError on every rank with rank 0's reason.
+// unless `overwrite` (then emptied). Throws OutputFolderError on every rank with rank 0's
+// reason.
 std::filesystem::path create_run_folder(const Comm& comm, const std::filesystem::path& output,
                                         const Scene& scene, bool overwrite,
                                         const std::string& scene_text);

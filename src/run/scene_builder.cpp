@@ -77,10 +77,10 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
   r.dt_over_tc = scene.sim.dt / r.stiffest.contact_time;
   if (r.dt_over_tc > 0.1 && !scene.run.allow_large_dt && !force_dt) {
     const auto& m = scene.materials;
-    throw SceneError(fmt::format(
+    throw TimeStepError(fmt::format(
         "{}: run.dt: {} is {:.3g} of the contact time t_c = {:.4g} of the stiffest contact "
         "({}-{}, m_eff = {:.4g}); at most t_c/10 = {:.4g} is allowed. Reduce dt, or set "
-        "run.allow_large_dt = true (or pass --force) to run anyway",
+        "run.allow_large_dt = true to run anyway",
         scene.dt_location, scene.sim.dt, r.dt_over_tc, r.stiffest.contact_time,
         m[r.stiffest.material_a], m[r.stiffest.material_b], r.stiffest.m_eff,
         r.stiffest.contact_time / 10));

@@ -20,8 +20,8 @@ struct BuildReport {
   std::vector<std::string> warnings; // for the log: what the scene does that may be a mistake
 };
 
-// Throws SceneError if dt > t_c / 10 for the stiffest contact, unless the scene sets
-// run.allow_large_dt or `force_dt` is given.
+// Throws TimeStepError if dt > t_c / 10 for the stiffest contact, unless the scene sets
+// run.allow_large_dt or `force_dt` is given; SceneError for another fault of the scene.
 // `comm`: the ranks that share the simulation (all of them by default).
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt,
                                              BuildReport* report = nullptr,

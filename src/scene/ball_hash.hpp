@@ -5,6 +5,7 @@
 
 #include "core/vec3.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,25 @@ public:
     cells_[key(x)].push_back(static_cast<std::uint32_t>(balls_.size() - 1));
   }
   bool overlaps(const Vec3& x, double r) const {
+    return visit_overlapping(x, r, [](std::size_t) { return true; });
+  }
+  // The first ball added that overlaps the ball (x, r), or `none`.
+  static constexpr std::size_t none = ~std::size_t{0};
+  std::size_t first_overlapping(const Vec3& x, double r) const {
+    std::size_t first = none;
+    visit_overlapping(x, r, [&](std::size_t b) {
+      first = std::min(first, b);
+      return false;
+    });
+    return first;
+  }
+  const Vec3& position(std::size_t b) const { return balls_[b].x; }
+  double radius(std::size_t b) const { return balls_[b].r; }
+
+private:
+  // Calls `f(b)` for each ball b overlapping (x, r) until it returns true; returns whether it
+  // did.
+  template <class F> bool visit_overlapping(const Vec3& x, double r, F&& f) const {
     const auto c = cell(x);
     for (int i = -1; i <= 1; ++i)
       for (int j = -1; j <= 1; ++j)
@@ -30,13 +50,11 @@ public:
           if (it == cells_.end()) continue;
           for (std::uint32_t b : it->second) {
             const double reach = r + balls_[b].r;
-            if (norm2(balls_[b].x - x) < reach * reach) return true;
+            if (norm2(balls_[b].x - x) < reach * reach && f(std::size_t{b})) return true;
           }
         }
     return false;
   }
-
-private:
   struct Ball {
     Vec3 x;
     double r;

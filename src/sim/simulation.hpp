@@ -264,7 +264,9 @@ public:
   // evaluated without advancing any spring (every rank calls it, with its own grains or none).
   void set_positions(std::span<const GlobalId> ids, std::span<const Vec3> x);
   // New grains, the same list on every rank (each keeps those in its sub-domain), with ids
-  // from the counter of inserted grains; returns their ids. Collective.
+  // from the counter of inserted grains; returns their ids. Collective. Throws
+  // std::invalid_argument, adding none, where one overlaps a particle, a new grain before it or
+  // a flat wall.
   std::vector<GlobalId> add_grains(std::span<const ParticleSpec> grains);
   // Removes the grains of these ids that this rank owns (others are passed over); returns how
   // many went on all ranks. Collective.
@@ -420,6 +422,9 @@ private:
   EnergyBooks energy_parts() const;
   // Throws SimulationError if the books have gained energy (an unstable integration).
   void check_energy_books(const EnergyBooks& e) const;
+  // Throws std::invalid_argument naming the first new grain that overlaps a particle this rank
+  // owns, a new grain before it or a flat wall (add_grains()).
+  void check_clear_of_particles(std::span<const ParticleSpec> grains) const;
   // Collective: sums and checks the books that a list build left due.
   void settle_energy_books();
   std::string describe_particle(std::size_t i) const;

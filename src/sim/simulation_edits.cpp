@@ -3,6 +3,7 @@
 // a controlled wall given another controller. Each change books the mechanical energy it makes
 // or takes (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
 #include "contact/contact_history.hpp"
+#include "scene/ball_hash.hpp"
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -109,6 +110,56 @@ void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Ve
       });
 }
 
+void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) const {
+  // This rank's particles and the new grains before each, hashed on cells as wide as the
+  // widest contact; along a periodic axis a grain near a face is looked for at its image too.
+  // A touch within 1e-9 of the radius (grains placed exactly in contact) is no overlap.
+  double widest = 0.0;
+  for (const ParticleSpec& p : grains) widest = std::max(widest, p.radius);
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) widest = std::max(widest, store_.radius[i]);
+  const double edge = 2.0 * widest;
+  BallHash owned(edge), added(edge);
+  std::vector<GlobalId> added_ids;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    owned.add(config_.box.wrap(store_.x[i]), store_.radius[i]);
+  const Box& box = config_.box;
+  for (std::size_t k = 0; k < grains.size(); ++k) {
+    const Vec3 x = box.wrap(grains[k].position);
+    const double r = grains[k].radius * (1.0 - 1e-9);
+    std::vector<Vec3> images{x};
+    for (int a = 0; a < 3; ++a) {
+      if (!box.periodic(a)) continue;
+      Vec3 shift;
+      shift[a] = x[a] - box.lo[a] < edge ? box.length(a)
+                                         : (box.hi[a] - x[a] < edge ? -box.length(a) : 0.0);
+      if (shift[a] == 0.0) continue;
+      const std::size_t n = images.size();
+      for (std::size_t m = 0; m < n; ++m) images.push_back(images[m] + shift);
+    }
+    const auto refuse = [&](const std::string& what, double overlap) {
+      throw std::invalid_argument(fmt::format(
+          "new grain {} at ({:.6g}, {:.6g}, {:.6g}), radius {:.4g}, overlaps {} by {:.4g} ({:.3g} "
+          "% "
+          "of its radius): grains are added clear of every particle and wall (move it, or remove "
+          "what is there first)",
+          k, x.x, x.y, x.z, grains[k].radius, what, overlap, 100.0 * overlap / grains[k].radius));
+    };
+    for (const Vec3& at : images) {
+      if (const std::size_t b = owned.first_overlapping(at, r); b != BallHash::none)
+        refuse(fmt::format("{} {}", store_.is_grain(b) ? "grain" : "wall particle", store_.gid[b]),
+               grains[k].radius + owned.radius(b) - norm(owned.position(b) - at));
+      if (const std::size_t b = added.first_overlapping(at, r); b != BallHash::none)
+        refuse(fmt::format("new grain {} of the same call", added_ids[b]),
+               grains[k].radius + added.radius(b) - norm(added.position(b) - at));
+    }
+    for (const PlaneWall& w : planes_)
+      if (const double d = w.distance(x, time_); d < r)
+        refuse(fmt::format("the flat wall '{}'", w.name), grains[k].radius - d);
+    added.add(x, grains[k].radius);
+    added_ids.push_back(static_cast<GlobalId>(k));
+  }
+}
+
 std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grains) {
   std::vector<GlobalId> ids;
   for (std::size_t k = 0; k < grains.size(); ++k) {
@@ -131,7 +182,7 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
     ids.push_back(next_gid_ + static_cast<GlobalId>(k));
   }
   // (edit_particles books their energy with the change of the contacts')
-  edit_particles([] {},
+  edit_particles([&] { check_clear_of_particles(grains); },
                  [&] {
                    for (const ParticleSpec& spec : grains) {
                      const GlobalId id = next_gid_++;

@@ -1,0 +1,129 @@
+"""Misuse of the Python API ends in a Python exception that says what to do, never in a crash
+or a silent wrong result."""
+import os
+
+import numpy as np
+import pytest
+
+import yuxi
+
+
+@pytest.fixture
+def sim(box_scene, tmp_path):
+    s = yuxi.Simulation(box_scene, output=tmp_path / "out", progress=False)
+    yield s
+    s.close()
+
+
+@pytest.mark.parametrize("call", [
+    lambda s, kept: s.particles.position,
+    lambda s, kept: kept.velocity,
+    lambda s, kept: len(kept),
+    lambda s, kept: s.checkpoint(),
+    lambda s, kept: s.checkpoint("elsewhere.yxc"),
+    lambda s, kept: s.run(steps=1),
+    lambda s, kept: s.step(),
+    lambda s, kept: s.energies(),
+    lambda s, kept: s.time,
+    lambda s, kept: s.gather("id"),
+    lambda s, kept: s.add_grains([[4.0, 4.0, 11.0]], 0.5),
+    lambda s, kept: s.set_velocities([0], [[0.0, 0.0, 0.0]]),
+    lambda s, kept: s.wall_loads(),
+])
+def test_every_call_after_close_raises(box_scene, tmp_path, call):
+    s = yuxi.Simulation(box_scene, output=tmp_path / "out", progress=False)
+    kept = s.particles
+    view = s.particles.position
+    s.run(steps=10)
+    s.close()
+    with pytest.raises(RuntimeError, match="closed|stepped"):
+        call(s, kept)
+    with pytest.raises(RuntimeError):
+        view[0]
+    s.close()  # (closing twice is harmless)
+
+
+def test_ids_are_integer_ids_not_masks_or_floats(sim):
+    grains = sim.particles.grains
+    with pytest.raises(TypeError, match="boolean mask.*sim.particles.id\\[mask\\]"):
+        sim.set_velocities(grains, np.zeros((int(grains.sum()), 3)))
+    with pytest.raises(TypeError, match="integers.*float64"):
+        sim.set_velocities([1.5], [[0.0, 0.0, 1.0]])
+    with pytest.raises(TypeError, match="boolean mask"):
+        sim.remove_grains(grains)
+    with pytest.raises(ValueError, match="one-dimensional"):
+        sim.set_positions([[0, 1]], [[1.0, 1.0, 1.0]])
+    ids = np.asarray(sim.particles.id)[np.asarray(sim.particles.grains)][:3].copy()
+    sim.set_velocities(ids.astype(np.int32), np.tile([0.0, 0.0, 1.0], (3, 1)))
+    sim.set_velocities([], np.zeros((0, 3)))  # nothing to write is fine
+    moved = np.asarray(sim.particles.velocity)[np.isin(np.asarray(sim.particles.id), ids)]
+    assert np.all(moved[:, 2] == 1.0) and len(moved) == 3
+
+
+def test_runs_go_forwards_only(sim):
+    sim.run(steps=20)
+    with pytest.raises(ValueError, match="forwards"):
+        sim.run(steps=-5)
+    with pytest.raises(ValueError, match="before the simulation's time"):
+        sim.run(t_end=0.5 * sim.time)
+    with pytest.raises(TypeError, match="whole number"):
+        sim.run(steps=2.5)
+    with pytest.raises(TypeError, match="whole number"):
+        sim.step("3")
+    with pytest.raises(ValueError, match="not finite"):
+        sim.run(t_end=float("nan"))
+    assert sim.step_count == 20
+    sim.run(steps=0)
+    sim.run(t_end=sim.time)
+    assert sim.step_count == 20
+
+
+def test_checkpoint_returns_the_file_it_wrote(sim, tmp_path):
+    sim.run(steps=10)
+    path = sim.checkpoint()
+    assert os.path.isfile(path) and path.endswith(".yxc")
+    assert os.path.dirname(path) == os.path.join(sim.folder, "checkpoints")
+    other = sim.checkpoint(tmp_path / "mine.yxc")
+    assert other == os.fspath(tmp_path / "mine.yxc") and os.path.isfile(other)
+
+
+def test_wall_loads_are_numpy_arrays(sim):
+    sim.run(steps=2000)  # (the bottom layer on the floor)
+    loads = sim.wall_loads()
+    floor = loads["box z lo"]
+    assert isinstance(floor["force"], np.ndarray) and floor["force"].shape == (3,)
+    assert isinstance(floor["torque"], np.ndarray) and floor["torque"].shape == (3,)
+    assert floor["force"][2] != 0 and floor["contacts"] > 0
+
+
+def test_a_grain_added_on_another_is_refused_by_name(sim):
+    sim.run(steps=400)  # (the grains fall clear of the top of the box)
+    x = np.asarray(sim.particles.position)[0].copy()
+    gid = int(np.asarray(sim.particles.id)[0])
+    n = sim.energies()["grains"]
+    with pytest.raises(ValueError, match=f"new grain 0 .* overlaps grain {gid} by"):
+        sim.add_grains([x + [0.3, 0.0, 0.0]], 0.5)
+    with pytest.raises(ValueError, match="new grain 1 .* overlaps new grain 0 of the same call"):
+        sim.add_grains([[4.0, 4.0, 11.0], [4.5, 4.0, 11.0]], 0.5)
+    with pytest.raises(ValueError, match="overlaps the flat wall 'box z hi'"):
+        sim.add_grains([[4.0, 4.0, 11.8]], 0.5)
+    assert sim.energies()["grains"] == n  # nothing was added
+    (new,) = sim.add_grains([[4.0, 4.0, 11.0]], 0.5)
+    sim.run(steps=50)
+    assert sim.energies()["grains"] == n + 1 and new >= 343
+
+
+def test_add_grains_checks_its_lengths(sim):
+    with pytest.raises(ValueError, match="2 positions but radii of shape \\(3,\\)"):
+        sim.add_grains([[4.0, 4.0, 11.0], [6.0, 4.0, 11.0]], [0.5, 0.5, 0.5])
+    with pytest.raises(ValueError, match="velocities of shape"):
+        sim.add_grains([[4.0, 4.0, 11.0]], 0.5, velocities=[[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]])
+    with pytest.raises(ValueError, match="shape \\(n, 3\\)"):
+        sim.add_grains([[4.0, 4.0]], 0.5)
+
+
+def test_errors_speak_python(box_scene, tmp_path):
+    out = tmp_path / "taken"
+    yuxi.Simulation(box_scene, output=out, progress=False).close()
+    with pytest.raises(FileExistsError, match="output= or pass overwrite=True"):
+        yuxi.Simulation(box_scene, output=out, progress=False)
