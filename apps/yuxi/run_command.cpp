@@ -60,9 +60,9 @@ void describe(const Scene& scene, const Simulation& sim, const BuildReport& r) {
                scene.sim.box.lo.y, scene.sim.box.hi.y, scene.sim.box.lo.z, scene.sim.box.hi.z);
   const auto& m = scene.materials;
   spdlog::info("time step dt = {:.4g} = t_c / {:.1f} of the stiffest contact ({}-{}: t_c = {:.4g}, "
-               "m_eff = {:.4g}); {} steps to t = {}",
+               "m_eff = {:.4g}{}); {} steps to t = {}",
                scene.sim.dt, 1.0 / r.dt_over_tc, m[r.stiffest.material_a], m[r.stiffest.material_b],
-               r.stiffest.contact_time, r.stiffest.m_eff,
+               r.stiffest.contact_time, r.stiffest.m_eff, speed_note(r),
                std::llround(scene.run.t_end / scene.sim.dt) - sim.step_count(), scene.run.t_end);
   const auto e = sim.grid().edge();
   const auto d = sim.grid().dims();

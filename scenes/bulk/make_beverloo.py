@@ -64,7 +64,7 @@ def scene(name, orifice, diameter, height, settle, discharge):
            "[output]", "energy_interval = 0.5", f"snapshot_interval = {discharge / 4}", "",
            "[checkpoint]", "every_minutes = 20", "",
            "[domain]", f"lo = [{-half}, {-half}, -6.0]", f"hi = [{half}, {half}, {top}]",
-           "gravity = [0.0, 0.0, -1.0]", "",
+           "gravity = [0.0, 0.0, -1.0]", "skin = 0.2", "",
            "[contact]", 'model = "linear"']
     for partner in ("grain", "wall"):
         out += ["[[contact.pair]]", f'materials = ["grain", "{partner}"]', "k_n = 2.0e4",

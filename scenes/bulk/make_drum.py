@@ -35,7 +35,7 @@ def scene(name, froude, t_end=None):
            "[output]", "energy_interval = 1.0", f"snapshot_interval = {t_end / 4:g}", "",
            "[checkpoint]", "every_minutes = 20", "",
            "[domain]", f"lo = [{-R - 1}, -1.0, {-R - 1}]", f"hi = [{R + 1}, {L + 1}, {R + 1}]",
-           "gravity = [0.0, 0.0, -1.0]", "",
+           "gravity = [0.0, 0.0, -1.0]", "skin = 0.2", "",
            "[contact]", 'model = "linear"']
     for partner in ("grain", "drum"):
         out += ["[[contact.pair]]", f'materials = ["grain", "{partner}"]', "k_n = 2.0e4",

@@ -58,7 +58,7 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coul
            "[output]", "energy_interval = 1.0", f"snapshot_interval = {t_end / 4}", "",
            "[checkpoint]", "every_minutes = 20", "",
            "[domain]", f"lo = [{-floor - 4}, {-floor - 4}, -8.0]",
-           f"hi = [{floor + 4}, {floor + 4}, {source_top + 4}]", "gravity = [0.0, 0.0, -1.0]",
+           f"hi = [{floor + 4}, {floor + 4}, {source_top + 4}]", "gravity = [0.0, 0.0, -1.0]", "skin = 0.2",
            'on_escape = "remove" # grains that bounce off sideways', "",
            "[contact]", 'model = "linear"']
     for partner in ("grain", "floor"):

@@ -61,7 +61,7 @@ def scene(name, diameter, silos, rate, settle, comment, lowered=None, coulomb=Tr
             "[checkpoint]", "every_minutes = 20", "",
             "[domain]", "lo = [0.0, 0.0, -2.0]",
             f"hi = [{columns * pitch}, {rows * pitch}, {math.ceil(top) + 2.0}]",
-            'boundary = ["wall", "wall", "wall"]', "gravity = [0.0, 0.0, -1.0]",
+            'boundary = ["wall", "wall", "wall"]', "gravity = [0.0, 0.0, -1.0]", "skin = 0.2",
             'wall_material = "wall"', "",
             "[contact]", 'model = "linear"']
     for partner, mu in (("grain", 0.5), ("wall", 0.5), ("smooth", 0.0)):

@@ -27,6 +27,15 @@ struct Box {
   Vec3 wrap(Vec3 p) const;
   // Shortest separation vector a - b, using periodic images along periodic axes.
   Vec3 minimum_image(const Vec3& a, const Vec3& b) const;
+  // p (wrapped) and its periodic images that lie within `reach` of the box: what a ball of
+  // radius `reach` about p meets across the periodic faces (at most 8, p first).
+  struct Images {
+    std::array<Vec3, 8> at;
+    int n = 0;
+    const Vec3* begin() const { return at.data(); }
+    const Vec3* end() const { return at.data() + n; }
+  };
+  Images images_within(const Vec3& p, double reach) const;
 };
 
 } // namespace yuxi

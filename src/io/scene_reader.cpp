@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <string_view>
 #include <type_traits>
@@ -178,7 +179,9 @@ void read_domain(Scene& scene, TomlReader& root) {
   }
   c.gravity = d->vec3("gravity");
   c.cell_size = d->positive("cell_size", 0.0);
-  c.skin = d->non_negative("skin", c.skin);
+  // Without a skin key, the skin is a fraction of the largest grain diameter, taken once the
+  // grains are known (check_consistency).
+  c.skin = d->has("skin") ? d->non_negative("skin", c.skin) : -1.0;
   c.on_escape = d->choice("on_escape", {"stop", "remove"}, "stop") == "remove"
                     ? EscapePolicy::remove
                     : EscapePolicy::stop;
@@ -499,6 +502,9 @@ void read_lammps_data_section(Scene& scene, TomlReader& root) {
   scene.lammps_data = spec;
 }
 
+// The skin without a `skin` key, as a fraction of the largest grain diameter.
+constexpr double default_skin_fraction = 0.2;
+
 // Largest centre distance of a possible contact, and which materials grains and walls use.
 void check_consistency(Scene& scene, TomlReader& root) {
   double rg = 0.0, rw = 0.0;
@@ -536,19 +542,47 @@ void check_consistency(Scene& scene, TomlReader& root) {
     if (scene.sim.box.boundary[a] == Boundary::wall) other_mat[scene.sim.box_wall_material] = true;
 
   const double reach = std::max(2.0 * rg, rg + rw);
-  if (scene.sim.cell_size > 0.0 && scene.sim.cell_size < reach) {
+  const bool skin_given = scene.sim.skin >= 0.0;
+  if (!skin_given) scene.sim.skin = default_skin_fraction * 2.0 * rg;
+  auto& c = scene.sim;
+  if (c.cell_size > 0.0 && c.cell_size < reach) {
     auto d = root.table("domain");
     d->fail("cell_size", fmt::format("{} is smaller than the largest contact distance {} (the "
                                      "largest grain diameter, or grain + wall radius)",
-                                     scene.sim.cell_size, reach));
+                                     c.cell_size, reach));
   }
+  const double edge = std::max(c.cell_size, reach + c.skin);
   for (int a = 0; a < 3; ++a)
-    if (scene.sim.box.periodic(a) &&
-        scene.sim.box.length(a) < 2.0 * std::max(scene.sim.cell_size, reach + scene.sim.skin)) {
+    if (c.box.periodic(a) && c.box.length(a) < 2.0 * edge) {
       auto d = root.table("domain");
-      d->fail("hi", fmt::format("periodic axis {} is {} long, less than two cell edges", "xyz"[a],
-                                scene.sim.box.length(a)));
+      // (name the key that made the cells too wide, where it is not the domain)
+      const char* key = c.cell_size >= reach + c.skin  ? "cell_size"
+                        : skin_given && c.skin > reach ? "skin"
+                                                       : "hi";
+      d->fail(key, fmt::format("periodic axis {} is {:.4g} long, less than two linked cells of "
+                               "{:.4g} (the largest contact distance {:.4g}{}); a periodic axis "
+                               "needs two cells: make it at least {:.4g} long{}",
+                               "xyz"[a], c.box.length(a), edge, reach,
+                               c.cell_size > 0.0 ? fmt::format(", cell_size {:.4g}", c.cell_size)
+                                                 : fmt::format(" plus the skin {:.4g}", c.skin),
+                               2.0 * edge,
+                               std::string_view(key) == "hi" ? "" : ", or make the cells smaller"));
     }
+  // Cells much wider than a contact hold many grains, and every pair within reach of a cell's
+  // neighbours is listed: warn where they are more than three contact distances wide (27 times
+  // the grains of the smallest cells).
+  if (edge > 3.0 * reach)
+    scene.warnings.push_back(fmt::format(
+        "the linked cells are {:.4g} wide, {:.3g} times the largest contact distance {:.4g} (the "
+        "largest grain diameter {:.4g}{}): each holds up to about {:.0f} grains and the lists "
+        "every "
+        "pair within {:.4g}, so the run may be many times slower than it needs to be. The "
+        "default skin is {} of the largest grain diameter",
+        edge, edge / reach, reach, 2.0 * rg,
+        c.cell_size > 0.0 ? fmt::format(", cell_size {:.4g}", c.cell_size)
+                          : fmt::format(", [domain] skin {:.4g}", c.skin),
+        0.74 * std::pow(edge / (2.0 * rg), 3) / (std::numbers::pi / 6.0), reach + c.skin,
+        default_skin_fraction));
   // Every pair that can touch needs coefficients.
   const auto has_pair = [&](std::size_t a, std::size_t b) {
     return std::visit([&](const auto& law) { return law.coeffs.has(a, b); }, scene.law);
@@ -557,10 +591,11 @@ void check_consistency(Scene& scene, TomlReader& root) {
     if (!grain_mat[a]) continue;
     for (std::size_t b = 0; b < scene.materials.size(); ++b)
       if ((grain_mat[b] || other_mat[b]) && !has_pair(a, b)) {
-        auto c = root.table("contact");
-        c->fail("pair", fmt::format("no [[contact.pair]] for materials (\"{}\", \"{}\"), which "
-                                    "can touch",
-                                    scene.materials[a], scene.materials[b]));
+        auto contact = root.table("contact");
+        contact->fail("pair",
+                      fmt::format("no [[contact.pair]] for materials (\"{}\", \"{}\"), which "
+                                  "can touch",
+                                  scene.materials[a], scene.materials[b]));
       }
   }
 }

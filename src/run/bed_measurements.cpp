@@ -14,8 +14,10 @@ namespace {
 
 using Quantity = MeasureSpec::Quantity;
 
-bool in_region(const MeasureSpec& m, const Vec3& x) {
-  return !m.region || m.region->contains(x);
+// Whether a grain is in the measure's region. Between list builds a grain that crossed a
+// periodic face stands beyond it: its place in the domain is its wrapped position.
+bool in_region(const MeasureSpec& m, const Box& box, const Vec3& x) {
+  return !m.region || m.region->contains(box.wrap(x));
 }
 
 // The columns over the region's part of the domain, `bin` wide (at least one).
@@ -34,8 +36,9 @@ analysis::GridField column_tops(const MeasureSpec& m, const Simulation& sim, dou
   std::vector<Vec3> x;
   std::vector<double> r;
   for (std::size_t i = 0; i < p.n_owned(); ++i)
-    if (p.is_grain(i) && in_region(m, p.x[i])) {
-      x.push_back(p.x[i]);
+    if (const Vec3 at = sim.config().box.wrap(p.x[i]);
+        p.is_grain(i) && in_region(m, sim.config().box, at)) {
+      x.push_back(at);
       r.push_back(p.radius[i]);
     }
   analysis::GridField tops = analysis::free_surface(columns_for(m, sim.config().box, bin), x, r);
@@ -109,7 +112,7 @@ std::vector<double> BedMeasurements::values(const Simulation& sim) const {
     const Quantity q = specs_[k].quantity;
     if (q != Quantity::mass && q != Quantity::grains && q != Quantity::kinetic_per_grain) continue;
     for (std::size_t i = 0; i < p.n_owned(); ++i) {
-      if (!p.is_grain(i) || !in_region(specs_[k], p.x[i])) continue;
+      if (!p.is_grain(i) || !in_region(specs_[k], sim.config().box, p.x[i])) continue;
       sums[3 * k] += p.mass[i];
       sums[3 * k + 1] += 1.0;
       sums[3 * k + 2] += 0.5 * p.mass[i] * norm2(p.v[i]) + sim.rotational_energy(i);

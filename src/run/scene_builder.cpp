@@ -28,6 +28,11 @@ void check_outlets(const Scene& scene, const ParticleStore& particles, BuildRepo
 
 } // namespace
 
+std::string speed_note(const BuildReport& r) {
+  if (!r.stiffest.depends_on_speed) return "";
+  return fmt::format(", meeting at {:.4g}: {}", r.impact.speed, r.impact.source);
+}
+
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, BuildReport* report,
                                              Comm comm) {
   ParticleStore particles;
@@ -69,20 +74,21 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
     }
   }
   check_outlets(scene, particles, r);
+  r.impact = impact_speed(scene, particles, motions);
   auto sim = std::make_unique<Simulation>(scene.sim, std::move(particles), scene.planes,
                                           std::move(motions), scene.law, comm, scene.walls);
   if (!scene.inserts.empty() || !scene.outlets.empty())
     sim->set_sources(scene.inserts, scene.outlets);
-  r.stiffest = sim->stiffest_contact();
+  r.stiffest = sim->stiffest_contact(r.impact.speed);
   r.dt_over_tc = scene.sim.dt / r.stiffest.contact_time;
   if (r.dt_over_tc > 0.1 && !scene.run.allow_large_dt && !force_dt) {
     const auto& m = scene.materials;
     throw TimeStepError(fmt::format(
         "{}: run.dt: {} is {:.3g} of the contact time t_c = {:.4g} of the stiffest contact "
-        "({}-{}, m_eff = {:.4g}); at most t_c/10 = {:.4g} is allowed. Reduce dt, or set "
+        "({}-{}, m_eff = {:.4g}{}); at most t_c/10 = {:.4g} is allowed. Reduce dt, or set "
         "run.allow_large_dt = true to run anyway",
         scene.dt_location, scene.sim.dt, r.dt_over_tc, r.stiffest.contact_time,
-        m[r.stiffest.material_a], m[r.stiffest.material_b], r.stiffest.m_eff,
+        m[r.stiffest.material_a], m[r.stiffest.material_b], r.stiffest.m_eff, speed_note(r),
         r.stiffest.contact_time / 10));
   }
   if (report) *report = r;

@@ -177,6 +177,20 @@ bool Region::contains(const Vec3& p) const {
       *shape_);
 }
 
+bool Region::contains_sphere_in(const Vec3& p, double r, const Box& domain) const {
+  Vec3 at = domain.wrap(p);
+  bool wraps = false;
+  Vec3 lo, hi;
+  for (int a = 0; a < 3; ++a)
+    if (domain.periodic(a)) {
+      if (!wraps) bounds_in(domain, lo, hi);
+      wraps = true;
+      if (lo[a] <= domain.lo[a] && hi[a] >= domain.hi[a])
+        at[a] = 0.5 * (domain.lo[a] + domain.hi[a]);
+    }
+  return contains_sphere(at, r);
+}
+
 bool Region::contains_sphere(const Vec3& p, double r) const {
   return std::visit(
       Overloaded{

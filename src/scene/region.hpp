@@ -94,6 +94,10 @@ public:
 
   bool contains(const Vec3& p) const;
   bool contains_sphere(const Vec3& p, double r) const;
+  // contains_sphere() within `domain`: along a periodic axis that the region spans end to end,
+  // a ball may cross the periodic face (it wraps around), and the region is taken at the
+  // domain's mid-plane along that axis (exact for a box, and for a cylinder along that axis).
+  bool contains_sphere_in(const Vec3& p, double r, const Box& domain) const;
   // The region's volume within `domain` (a half-space's, and any other's part outside the
   // domain, is cut off; estimated by sampling where no closed form applies).
   double volume_in(const Box& domain) const;

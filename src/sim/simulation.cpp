@@ -495,7 +495,7 @@ Vec3 Simulation::periodic_gravity() const {
   return g;
 }
 
-StiffestContact Simulation::stiffest_contact() const {
+StiffestContact Simulation::stiffest_contact(double impact_speed) const {
   // Smallest grain mass and radius per material, and which materials appear on walls.
   const std::size_t n_mat = n_materials_;
   const double inf = std::numeric_limits<double>::infinity();
@@ -537,9 +537,10 @@ StiffestContact Simulation::stiffest_contact() const {
           for (std::size_t b = 0; b < n_mat; ++b) {
             if (!table.has(a, b) || m_min[a] == inf) continue;
             auto consider = [&](double m_eff, double r_eff) {
-              const double tc = M::contact_time(table(a, b), m_eff, r_eff, 1.0);
+              const double tc = M::contact_time(table(a, b), m_eff, r_eff, impact_speed);
               if (tc < best.contact_time)
-                best = {tc, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(b), m_eff};
+                best = {tc, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(b), m_eff,
+                        M::contact_time(table(a, b), m_eff, r_eff, 2.0 * impact_speed) != tc};
             };
             if (m_min[b] < inf)
               consider(m_min[a] * m_min[b] / (m_min[a] + m_min[b]),

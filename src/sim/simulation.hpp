@@ -85,6 +85,7 @@ struct StiffestContact {
   double contact_time = 0; // t_c [time]
   std::uint8_t material_a = 0, material_b = 0;
   double m_eff = 0;
+  bool depends_on_speed = false; // t_c depends on the impact speed (Hertzian laws)
 };
 
 class Simulation {
@@ -159,8 +160,10 @@ public:
   const PhaseTimes& timers() const { return timers_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   // The contact of the shortest duration t_c among the materials present: grains (those inserts
-  // will pour included) with each other and with wall particles, planes, meshes and cylinders.
-  StiffestContact stiffest_contact() const;
+  // will pour included) with each other and with wall particles, planes, meshes and cylinders,
+  // meeting at `impact_speed` where the law's t_c depends on it (run/impact_speed.hpp).
+  // Collective.
+  StiffestContact stiffest_contact(double impact_speed) const;
 
   // Saves or loads the whole dynamic state: time, step, particles in the order of the last list
   // build (with where each stood then, x_build), contact history, the last forces and energy

@@ -92,26 +92,34 @@ void Simulation::insert_batch(std::size_t source) {
   for (auto& p : places) p = s.region.sample(rng, config_.box).value_or(Vec3{NAN, NAN, NAN});
   // Refused where the ball leaves the region or the domain, meets a flat wall, or overlaps a
   // particle this rank owns; every rank judges its own particles, and the refusals are
-  // combined (max) so that every rank takes the same candidates.
+  // combined (max) so that every rank takes the same candidates. Positions are wrapped, and a
+  // ball near a periodic face is looked for at its images across it too.
+  const Box& box = config_.box;
   double r_max = s.grains.size.largest();
   std::vector<double> refused(places.size(), 0.0);
   Vec3 lo, hi;
-  s.region.bounds_in(config_.box, lo, hi);
+  s.region.bounds_in(box, lo, hi);
   double reach = 2.0 * r_max;
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
     reach = std::max(reach, store_.radius[i] + r_max);
   BallHash near(reach);
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    const Vec3& x = store_.x[i];
-    if (x.x >= lo.x - reach && x.x <= hi.x + reach && x.y >= lo.y - reach && x.y <= hi.y + reach &&
-        x.z >= lo.z - reach && x.z <= hi.z + reach)
-      near.add(x, store_.radius[i]);
+    const Vec3 x = box.wrap(store_.x[i]);
+    bool is_near = true; // (any distance along a periodic axis: an image may come near)
+    for (int a = 0; a < 3; ++a)
+      is_near = is_near && (box.periodic(a) || (x[a] >= lo[a] - reach && x[a] <= hi[a] + reach));
+    if (is_near) near.add(x, store_.radius[i]);
   }
+  const auto overlaps = [&](const BallHash& balls, const Vec3& x, double r) {
+    for (const Vec3& image : box.images_within(x, reach))
+      if (balls.overlaps(image, r)) return true;
+    return false;
+  };
   for (std::size_t c = 0; c < places.size(); ++c) {
     const Vec3& x = places[c];
     const double r = due[c / attempts].radius;
-    bool bad = !is_finite(x) || !config_.box.contains(x) || !s.region.contains_sphere(x, r) ||
-               near.overlaps(x, r);
+    bool bad = !is_finite(x) || !box.contains(x) || !s.region.contains_sphere_in(x, r, box) ||
+               overlaps(near, x, r);
     for (const PlaneWall& w : planes_) bad = bad || w.distance(x, time_) < r;
     refused[c] = bad ? 1.0 : 0.0;
   }
@@ -126,7 +134,7 @@ void Simulation::insert_batch(std::size_t source) {
     for (std::size_t a = 0; a < attempts; ++a) {
       const std::size_t c = j * attempts + a;
       const Vec3& x = places[c];
-      if (refused[c] > 0.0 || taken.overlaps(x, due[j].radius)) continue;
+      if (refused[c] > 0.0 || overlaps(taken, x, due[j].radius)) continue;
       taken.add(x, due[j].radius);
       const GlobalId id = next_gid_++;
       const double m = s.grains.mass_of(due[j].radius);
@@ -158,7 +166,7 @@ void Simulation::handle_outlets() {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i)) continue;
     for (std::size_t k = 0; k < outlets_.size(); ++k)
-      if (outlets_[k].region.contains(store_.x[i])) {
+      if (outlets_[k].region.contains(config_.box.wrap(store_.x[i]))) {
         gone.push_back(i);
         books_.removed += mechanical_energy(i);
         ++outlet_part_[k].grains;
