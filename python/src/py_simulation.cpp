@@ -3,6 +3,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_writer.hpp"
+#include "io/source_scene_reader.hpp"
 #include "py_contacts.hpp"
 #include "scene/particle_fill.hpp"
 #include "scene/wall_controller.hpp"
@@ -37,6 +38,17 @@ public:
 private:
   py::function f_;
 };
+
+std::size_t insert_index(const Simulation& sim, const std::string& name) {
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < sim.inserts().size(); ++k) {
+    if (sim.inserts()[k].name == name) return k;
+    names.push_back(sim.inserts()[k].name);
+  }
+  throw py::key_error(
+      fmt::format("no insert named '{}' (the run has: {})", name,
+                  names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+}
 
 std::size_t wall_index(Simulation& sim, const std::string& name) {
   for (std::size_t w = 0; w < sim.walls().size(); ++w)
@@ -289,6 +301,20 @@ void PySimulation::advance(py::object self, std::int64_t until, py::object callb
   }
 }
 
+std::string PySimulation::add_insert(const std::string& table_toml) {
+  Simulation& engine = sim();
+  const InsertSpec spec = add_insert_table(run_.scene, table_toml, "<add_insert>");
+  try {
+    engine.add_insert(spec);
+  } catch (...) {
+    run_.scene.inserts.pop_back();
+    throw;
+  }
+  run_.scene_text = resolved_scene_toml(run_.scene);
+  driver().scene_changed(run_.scene_text);
+  return spec.name;
+}
+
 std::string PySimulation::checkpoint(const std::string& path) {
   RunDriver& d = driver();
   if (path.empty()) return d.write_checkpoint().string();
@@ -435,6 +461,19 @@ void bind_simulation(py::module_& m) {
              d["offset"] = offset;
              return d;
            })
+      .def("start_insert",
+           [](PySimulation& s, const std::string& name) {
+             s.sim().start_insert(insert_index(s.sim(), name));
+           })
+      .def("pause_insert",
+           [](PySimulation& s, const std::string& name) {
+             s.sim().pause_insert(insert_index(s.sim(), name));
+           })
+      .def("stop_insert",
+           [](PySimulation& s, const std::string& name) {
+             s.sim().stop_insert(insert_index(s.sim(), name));
+           })
+      .def("add_insert", &PySimulation::add_insert, py::arg("table"))
       .def("record_contacts", [](PySimulation& s, bool on) { s.sim().record_contacts(on); })
       .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); });
 }

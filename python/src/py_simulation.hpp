@@ -32,6 +32,9 @@ public:
   // callback stops the run by returning False.
   void advance(pybind11::object self, std::int64_t until, pybind11::object callback,
                std::int64_t every);
+  // One more insert, from an [[insert]] table as TOML text ("[[insert]]\n..."): it joins the
+  // run's scene (and so its checkpoints) and pours from the next step on; returns its name.
+  std::string add_insert(const std::string& table_toml);
   // Writes a checkpoint (into the run folder when `path` is empty); returns the file.
   std::string checkpoint(const std::string& path);
   pybind11::dict finish();

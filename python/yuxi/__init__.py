@@ -374,7 +374,34 @@ class Simulation:
         return self._core.wall_loads()
 
     def inflow(self):
+        """Each insert's cumulative grains, mass and grains owed (due but not placed yet)."""
         return self._core.inflow()
+
+    # -- pouring in stages -------------------------------------------------------------------
+    def start_insert(self, name):
+        """Starts (or resumes) the insert ``name``: it pours from the next step on, at its rate,
+        until its total (what it poured before counts) or the scene's end. An insert with
+        ``held = true`` in the scene waits for this. Checkpoints, resumes and branches keep the
+        pouring as it stands."""
+        self._core.start_insert(name)
+
+    def pause_insert(self, name):
+        """No batch of the insert ``name`` until it is started again."""
+        self._core.pause_insert(name)
+
+    def stop_insert(self, name):
+        """The insert ``name`` pours no more, for good."""
+        self._core.stop_insert(name)
+
+    def add_insert(self, table):
+        """Adds an insert from a dict with the keys of a scene's ``[[insert]]`` table (a
+        ``name`` among them, new to the run); it pours from the next step on (or from its
+        ``start``, if later). It joins the run's scene: its checkpoints and scene.resolved.toml
+        hold it. Returns its name."""
+        if not isinstance(table, dict):
+            raise TypeError(f"add_insert: a dict with the keys of an [[insert]] table, not "
+                            f"{type(table).__name__}")
+        return self._core.add_insert(_yuxi._toml_of({"insert": [table]}))
 
     def outflow(self):
         """Each outlet's cumulative grains and mass. Collective."""

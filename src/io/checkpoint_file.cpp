@@ -4,6 +4,7 @@
 #include "domain/shared_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -71,6 +72,13 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
   // Rank 0's part starts with the head. The CRC is combined from the ranks' CRCs of their parts.
   ArchiveWriter section;
   sim.checkpoint(section);
+  // The largest grain's radius, for a branch that builds no grain: of the grains now, or of
+  // those the cells were sized for (a run that itself built none keeps its size for a resume).
+  double largest = 0.5 * sim.config().min_contact_reach;
+  const ParticleStore& s = sim.particles();
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (s.is_grain(i)) largest = std::max(largest, s.radius[i]);
+  largest = comm.max(largest);
   std::string part; // what precedes the section in this rank's part
   if (comm.root()) {
     ArchiveWriter head;
@@ -80,6 +88,7 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
     double time = sim.time();
     head.value(step);
     head.value(time);
+    head.value(largest);
     auto n = static_cast<std::uint64_t>(comm.size());
     head.value(n);
     part = head.release();
@@ -179,6 +188,7 @@ struct CheckpointIndex {
   std::string scene_text;
   std::int64_t step = 0;
   double time = 0;
+  double largest_grain_radius = NAN; // (from format 8)
   // The file offset of each section's length field, then the end of the payload.
   std::vector<std::uint64_t> starts;
   std::uint32_t crc = 0;
@@ -188,6 +198,7 @@ struct CheckpointIndex {
     ar.string(scene_text);
     ar.value(step);
     ar.value(time);
+    ar.value(largest_grain_radius);
     ar.vector(starts);
     ar.value(crc);
     ar.value(version);
@@ -227,8 +238,9 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
     throw ArchiveError("a length field exceeds the data that follows (corrupt or truncated)");
   };
   try {
-    // The head: scene (as ArchiveWriter::string), step, time, number of sections.
-    const std::uint64_t fixed = 8 + 8 + 8 + 8;
+    // The head: scene (as ArchiveWriter::string), step, time, the largest grain's radius (from
+    // format 8), number of sections.
+    const std::uint64_t fixed = 8 + 8 + 8 + (version >= 8 ? 8 : 0) + 8;
     if (size < fixed) throw ArchiveError("the data ends early (truncated)");
     const auto scene_bytes = get<std::uint64_t>(bytes.read(at, 8), 0);
     if (scene_bytes > size - fixed) exceeds();
@@ -237,6 +249,11 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
     ar.string(index.scene_text);
     ar.value(index.step);
     ar.value(index.time);
+    if (version >= 8) {
+      ar.value(index.largest_grain_radius);
+      if (!(index.largest_grain_radius >= 0.0) || !std::isfinite(index.largest_grain_radius))
+        throw ArchiveError("an impossible grain radius in the head (corrupt)");
+    }
     std::uint64_t n = 0;
     ar.value(n);
     at += head.size();
@@ -314,6 +331,7 @@ CheckpointData read_share(CheckpointBytes& bytes, const std::string& name, const
   d.scene_text = std::move(index.scene_text);
   d.step = index.step;
   d.time = index.time;
+  d.largest_grain_radius = index.largest_grain_radius;
   d.first_section = first;
   d.n_sections = n;
   d.format_version = index.version;

@@ -118,6 +118,10 @@ struct Scene {
   std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms
   std::optional<LammpsDataSpec> lammps_data;
   std::size_t n_lammps_atoms = 0;
+  // The largest radius of the grains the scene builds or pours (0: none; a branch takes its
+  // grains from a checkpoint), and whether the skin is the default fraction of its diameter.
+  double largest_grain_radius = 0.0;
+  bool skin_from_grains = false;
 
   std::optional<std::uint8_t> material_index(const std::string& name) const {
     for (std::size_t k = 0; k < materials.size(); ++k)

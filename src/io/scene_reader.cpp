@@ -502,9 +502,6 @@ void read_lammps_data_section(Scene& scene, TomlReader& root) {
   scene.lammps_data = spec;
 }
 
-// The skin without a `skin` key, as a fraction of the largest grain diameter.
-constexpr double default_skin_fraction = 0.2;
-
 // Largest centre distance of a possible contact, and which materials grains and walls use.
 void check_consistency(Scene& scene, TomlReader& root) {
   double rg = 0.0, rw = 0.0;
@@ -533,9 +530,9 @@ void check_consistency(Scene& scene, TomlReader& root) {
   }
   rg = std::max(rg, poured);
   if (poured > 0) scene.sim.min_contact_reach = std::max(2.0 * rg, rg + rw);
-  if (rg == 0.0)
-    root.fail("", "the scene has no grains: add a [basin], [[fill]], [[insert]] or [[particle]] "
-                  "entries");
+  // (a scene without grains may continue a saved state: the run that builds it from t = 0
+  // refuses it, open_scene())
+  scene.largest_grain_radius = rg;
   for (const auto& w : scene.planes) other_mat[w.material] = true;
   for (const auto& w : scene.walls) other_mat[wall_material(w)] = true;
   for (int a = 0; a < 3; ++a)
@@ -543,6 +540,7 @@ void check_consistency(Scene& scene, TomlReader& root) {
 
   const double reach = std::max(2.0 * rg, rg + rw);
   const bool skin_given = scene.sim.skin >= 0.0;
+  scene.skin_from_grains = !skin_given;
   if (!skin_given) scene.sim.skin = default_skin_fraction * 2.0 * rg;
   auto& c = scene.sim;
   if (c.cell_size > 0.0 && c.cell_size < reach) {
@@ -571,7 +569,7 @@ void check_consistency(Scene& scene, TomlReader& root) {
   // Cells much wider than a contact hold many grains, and every pair within reach of a cell's
   // neighbours is listed: warn where they are more than three contact distances wide (27 times
   // the grains of the smallest cells).
-  if (edge > 3.0 * reach)
+  if (rg > 0.0 && edge > 3.0 * reach)
     scene.warnings.push_back(fmt::format(
         "the linked cells are {:.4g} wide, {:.3g} times the largest contact distance {:.4g} (the "
         "largest grain diameter {:.4g}{}): each holds up to about {:.0f} grains and the lists "
@@ -601,6 +599,13 @@ void check_consistency(Scene& scene, TomlReader& root) {
 }
 
 } // namespace
+
+void size_for_saved_grains(Scene& scene, double largest_grain_radius) {
+  if (scene.largest_grain_radius > 0.0 || !(largest_grain_radius > 0.0)) return;
+  scene.largest_grain_radius = largest_grain_radius;
+  scene.sim.min_contact_reach = std::max(scene.sim.min_contact_reach, 2.0 * largest_grain_radius);
+  if (scene.skin_from_grains) scene.sim.skin = default_skin_fraction * 2.0 * largest_grain_radius;
+}
 
 Scene read_scene_text(std::string_view text, const std::string& source) {
   const toml::table doc = parse_toml(text, source);

@@ -13,4 +13,12 @@ namespace yuxi {
 Scene read_scene_file(const std::string& path);
 Scene read_scene_text(std::string_view text, const std::string& source);
 
+// Without a `skin` key, the skin is this fraction of the largest grain diameter.
+inline constexpr double default_skin_fraction = 0.2;
+
+// A scene that builds and pours no grain continues a saved state (a branch, or a resume of
+// one) whose largest grain has this radius: its cells, and its skin where it has no skin key,
+// are sized for them. A scene with grains of its own is left as it is.
+void size_for_saved_grains(Scene& scene, double largest_grain_radius);
+
 } // namespace yuxi

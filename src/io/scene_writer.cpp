@@ -162,6 +162,7 @@ void write_sources(const Scene& s, toml::table& doc) {
       if (i.total >= 0) t.insert("total", i.total);
       t.insert("interval", i.interval);
       t.insert("attempts", i.attempts);
+      if (i.held) t.insert("held", true);
       inserts.push_back(t);
     }
     doc.insert("insert", inserts);

@@ -148,15 +148,17 @@ void read_insert(Scene& scene, TomlReader& t, std::size_t index) {
   s.interval = t.positive("interval", 500 * scene.sim.dt);
   if (s.interval < scene.sim.dt) t.fail("interval", "must be at least one time step");
   s.attempts = static_cast<int>(t.integer("attempts", s.attempts, 1, 10000));
-  // One batch must fit in the region by random placement.
+  s.held = t.boolean("held", false);
+  // One batch must fit in the region by random placement (a batch is at most the total).
   const double volume = s.region.volume_in(scene.sim.box);
   const double grain_volume = 4.0 / 3.0 * pi * s.grains.size.mean_cube();
   const double grain_mass = s.grains.density * grain_volume;
-  const double batch = s.rate * s.interval / (s.by_mass ? grain_mass : 1.0);
+  double batch = s.rate * s.interval / (s.by_mass ? grain_mass : 1.0);
+  if (s.total >= 0) batch = std::min(batch, static_cast<double>(s.total));
   if (batch * grain_volume > random_fill_limit * volume)
     t.fail(s.by_mass ? "mass_rate" : "rate",
            fmt::format("a batch of {:.4g} grains every {:.4g} (interval) would fill a packing "
-                       "fraction of {:.3f} of the region ({:.4g} of volume), beyond the 0.35-0.38 "
+                       "fraction of {:.3f} of the region ({:.4g} of volume), beyond the 0.38 "
                        "at which random placement jams: lower the rate, shorten the interval or "
                        "enlarge the region",
                        batch, s.interval, batch * grain_volume / volume, volume));
@@ -214,6 +216,16 @@ void read_sources(Scene& scene, TomlReader& root) {
   for (auto& t : root.tables("fill")) read_fill(scene, t, scene.fills.size());
   for (auto& t : root.tables("insert")) read_insert(scene, t, scene.inserts.size());
   for (auto& t : root.tables("outlet")) read_outlet(scene, t, scene.outlets.size());
+}
+
+const InsertSpec& add_insert_table(Scene& scene, std::string_view text, const std::string& source) {
+  const toml::table doc = parse_toml(text, source);
+  TomlReader root(doc, "", source);
+  auto tables = root.tables("insert");
+  if (tables.size() != 1) root.fail("insert", "expected one [[insert]] table");
+  read_insert(scene, tables.front(), scene.inserts.size());
+  root.finish();
+  return scene.inserts.back();
 }
 
 } // namespace yuxi

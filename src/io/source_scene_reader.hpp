@@ -17,6 +17,11 @@ namespace yuxi {
 // keep clear of every particle placed before them).
 void read_sources(Scene& scene, TomlReader& root);
 
+// One more [[insert]] for a scene under way (Python's sim.add_insert): `text` holds one
+// [[insert]] table, read as the scene's own; appended to scene.inserts and returned. Throws
+// SceneError naming the key.
+const InsertSpec& add_insert_table(Scene& scene, std::string_view text, const std::string& source);
+
 // The region table at `key` of `t` (docs/scene-format.md, "Regions").
 Region read_region(const Scene& scene, TomlReader& t, std::string_view key = "region");
 

@@ -236,6 +236,16 @@ void RunDriver::set_show_progress(bool on) {
   impl_->options.show_progress = on;
 }
 
+void RunDriver::scene_changed(const std::string& scene_text) {
+  Impl& d = *impl_;
+  d.options.scene_text = scene_text;
+  if (!d.root) return;
+  std::ofstream(d.options.output_dir / "scene.resolved.toml") << scene_text;
+  if (!d.inflow && !d.scene.inserts.empty())
+    d.inflow = std::make_unique<EnergyCsv>(d.options.output_dir / "inflow.csv", std::nullopt,
+                                           "step,time,insert,grains,mass,owed");
+}
+
 std::filesystem::path RunDriver::write_checkpoint() {
   return impl_->write_checkpoint();
 }

@@ -73,6 +73,9 @@ public:
   std::int64_t end_step() const;
   void set_end_time(double t_end);
   void set_show_progress(bool on);
+  // The scene changed under way (an insert added): checkpoints and the run folder's
+  // scene.resolved.toml take `scene_text`, and inflow.csv is opened where it was not.
+  void scene_changed(const std::string& scene_text);
   // Writes a checkpoint into the run folder now; returns the file. Collective.
   std::filesystem::path write_checkpoint();
   // Ends the run's analysis and returns what it did (also after a failure). Collective.

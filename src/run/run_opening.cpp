@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fstream>
+#include <regex>
 
 namespace fs = std::filesystem;
 
@@ -27,6 +28,46 @@ CheckpointData newest_checkpoint(const fs::path& run_folder, const std::string& 
   return std::move(*data);
 }
 
+// The scene as far as it sets the dynamics: without its name and end, its outputs, checkpoints,
+// analysis and measures, and its inserts and outlets (whose grains are the checkpoint's, and
+// whose state a checkpoint keeps by name).
+std::string dynamics_of(Scene s) {
+  s.run.name.clear();
+  s.run.t_end = 1.0;
+  s.output = {};
+  s.checkpoint = {};
+  s.analysis.reset();
+  s.measures.clear();
+  s.inserts.clear();
+  s.outlets.clear();
+  return resolved_scene_toml(s);
+}
+
+// A branch matches its inserts with the checkpoint's by name. An unnamed insert is named by its
+// place ("insert[2]"): where the scene's insert of such a name pours from another region or
+// other grains than the checkpoint's, it is not the same insert, and the match would be wrong.
+void check_unnamed_inserts(const Scene& scene, const Scene& saved) {
+  static const std::regex by_place(R"(insert\[\d+\])");
+  for (const InsertSpec& s : scene.inserts) {
+    if (!std::regex_match(s.name, by_place)) continue;
+    for (const InsertSpec& o : saved.inserts) {
+      if (o.name != s.name) continue;
+      const auto& a = s.grains;
+      const auto& b = o.grains;
+      const bool same = s.region.describe() == o.region.describe() &&
+                        a.size.describe() == b.size.describe() && a.material == b.material &&
+                        a.density == b.density && a.seed == b.seed;
+      if (!same)
+        throw SceneError(fmt::format(
+            "{}: {} pours from another region or other grains than the checkpoint's {}: a "
+            "branch matches inserts by name, and an unnamed insert is named by its place. Give "
+            "the inserts names (name = \"...\"), so that a new insert is not taken for an old "
+            "one",
+            scene.source, s.name, o.name));
+    }
+  }
+}
+
 } // namespace
 
 OpenedRun open_scene(Scene scene, bool force_dt) {
@@ -42,6 +83,7 @@ OpenedRun open_resume(const fs::path& run_folder, const std::function<bool(Scene
   const CheckpointData data = newest_checkpoint(run_folder, "resume from", r.warnings);
   r.scene_text = data.scene_text;
   r.scene = read_scene_text(r.scene_text, (run_folder / "scene.resolved.toml").string());
+  size_for_saved_grains(r.scene, data.largest_grain_radius); // (a run branched without grains)
   // Later checkpoints carry the new settings.
   if (adjust && adjust(r.scene)) r.scene_text = resolved_scene_toml(r.scene);
   r.sim = build_simulation(r.scene, true, &r.report);
@@ -69,15 +111,27 @@ OpenedRun open_branch(Scene scene, const fs::path& from, bool force_dt) {
         "of the run it starts from, in their order",
         r.scene.source, fmt::join(r.scene.materials, ", "), fmt::join(saved.materials, ", "),
         data->file.string()));
+  check_unnamed_inserts(r.scene, saved);
   if (!(r.scene.run.t_end > data->time))
     throw SceneError(fmt::format("{}: run.t_end = {} is not after the checkpoint's time t = {}",
                                  r.scene.source, r.scene.run.t_end, data->time));
+  // A scene that builds no grain takes them all from the checkpoint: cells and skin for them,
+  // and the time-step check once they are loaded.
+  const bool own_grains = r.scene.largest_grain_radius > 0.0;
+  if (!own_grains) {
+    if (!(data->largest_grain_radius > 0.0))
+      throw SceneError(fmt::format(
+          "{}: the scene has no grains, and {} (format {}) does not say how large its grains "
+          "are: add a [[particle]], [[fill]] or [[insert]] with their size",
+          r.scene.source, data->file.string(), data->format_version));
+    size_for_saved_grains(r.scene, data->largest_grain_radius);
+  }
   r.sim = build_simulation(r.scene, force_dt, &r.report);
   r.scene_text = resolved_scene_toml(r.scene);
-  Scene same = r.scene;
-  same.run.name = saved.run.name;
-  same.run.t_end = saved.run.t_end;
-  const bool as_resume = resolved_scene_toml(same) == data->scene_text;
+  // A scene whose dynamics are the checkpoint's (it may pour, drain, measure and write
+  // otherwise) continues as a resume does, bit for bit, with its own sources.
+  const bool as_resume = dynamics_of(r.scene) == dynamics_of(saved) &&
+                         r.scene.sim.min_contact_reach == saved.sim.min_contact_reach;
   if (as_resume) {
     apply_checkpoint(*data, *r.sim);
   } else {
@@ -88,16 +142,17 @@ OpenedRun open_branch(Scene scene, const fs::path& from, bool force_dt) {
           "springs and model state) is dropped, and contacts open afresh under the new law",
           saved.contact_model, r.scene.contact_model));
     try {
-      r.sim->branch(data->sections, data->n_sections, {r.report.walls, r.report.grains, keep},
-                    data->format_version);
+      r.sim->branch(data->sections, data->n_sections, {r.report.walls, keep}, data->format_version);
     } catch (const std::invalid_argument& e) {
       throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
     }
   }
+  if (!own_grains) check_time_step(r.scene, *r.sim, force_dt, r.report);
   r.origin = fmt::format("branching from {} at step {}, t = {}{}", data->file.string(), data->step,
                          data->time,
-                         as_resume ? " (the scene is the checkpoint's: the run continues as "
-                                     "--resume would)"
+                         as_resume ? " (the scene's dynamics are the checkpoint's: the run "
+                                     "continues as --resume would, with this scene's sources "
+                                     "and outputs)"
                                    : "");
   return r;
 }

@@ -36,9 +36,11 @@ OpenedRun open_resume(const std::filesystem::path& run_folder,
                       const std::function<bool(Scene&)>& adjust = {});
 
 // The state of `from` (a checkpoint file, or a run folder's newest valid one) continued under
-// `scene`. A scene identical to the checkpoint's but for its name and end time continues as a
-// resume does, bit for bit. Throws SceneError (other materials, an end before the checkpoint's
-// time) or CheckpointError (no valid checkpoint, particles that are not the scene's).
+// `scene`. A scene whose dynamics are the checkpoint's (it differs only in its name and end
+// time, outputs, checkpoints, analysis, measures, inserts and outlets) continues as a resume
+// does, bit for bit, its inserts and outlets taking the saved ones' state by name. Throws
+// SceneError (other materials, an end before the checkpoint's time) or CheckpointError (no valid
+// checkpoint, particles that are not the scene's).
 OpenedRun open_branch(Scene scene, const std::filesystem::path& from, bool force_dt);
 
 // Collective: the run folder `output` (runs/<scene name> when empty), created empty by rank 0

@@ -35,6 +35,11 @@ std::string speed_note(const BuildReport& r) {
 
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, BuildReport* report,
                                              Comm comm) {
+  if (!(scene.largest_grain_radius > 0.0))
+    throw SceneError(fmt::format("{}: the scene has no grains: add a [basin], [[fill]], "
+                                 "[[insert]] or [[particle]] entries, or start it from another "
+                                 "run's state (yuxi run --from, Python's Simulation.branch)",
+                                 scene.source));
   ParticleStore particles;
   std::vector<WallMotion> motions{StaticMotion{}};
   BuildReport r;
@@ -79,7 +84,13 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
                                           std::move(motions), scene.law, comm, scene.walls);
   if (!scene.inserts.empty() || !scene.outlets.empty())
     sim->set_sources(scene.inserts, scene.outlets);
-  r.stiffest = sim->stiffest_contact(r.impact.speed);
+  check_time_step(scene, *sim, force_dt, r);
+  if (report) *report = r;
+  return sim;
+}
+
+void check_time_step(const Scene& scene, const Simulation& sim, bool force_dt, BuildReport& r) {
+  r.stiffest = sim.stiffest_contact(r.impact.speed);
   r.dt_over_tc = scene.sim.dt / r.stiffest.contact_time;
   if (r.dt_over_tc > 0.1 && !scene.run.allow_large_dt && !force_dt) {
     const auto& m = scene.materials;
@@ -91,8 +102,6 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
         m[r.stiffest.material_a], m[r.stiffest.material_b], r.stiffest.m_eff, speed_note(r),
         r.stiffest.contact_time / 10));
   }
-  if (report) *report = r;
-  return sim;
 }
 
 } // namespace yuxi

@@ -33,4 +33,8 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt,
                                              BuildReport* report = nullptr,
                                              Comm comm = Comm::world());
 
+// The time-step check against the grains `sim` holds now (a branch's, once loaded), at the
+// impact speed in `report`; fills in its stiffest contact. Collective.
+void check_time_step(const Scene& scene, const Simulation& sim, bool force_dt, BuildReport& report);
+
 } // namespace yuxi

@@ -29,6 +29,7 @@ struct InsertSpec {
   std::int64_t total = -1; // grains at most (-1: no limit)
   double interval = 0;     // time between batches (the reader sets it)
   int attempts = 20;       // places tried for each grain of a batch
+  bool held = false;       // waits for Simulation::start_insert (Python's sim.start_insert)
 };
 
 struct OutletSpec {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "contact/contact_model.hpp"
+#include "core/archive.hpp"
 #include "core/box.hpp"
 #include "core/cell_grid.hpp"
 #include "core/near_pairs.hpp"
@@ -93,8 +94,10 @@ public:
   // The layout of checkpoint(), which the checkpoint file's format version names: layout 6
   // added the sources' part; a state of layout 5 loads with no insert or outlet under way.
   // Layout 7 added each servo's offset at the last list build; a state of layout 6 takes the
-  // offset it was saved with.
-  static constexpr std::uint32_t state_layout = 7, oldest_state_layout = 5;
+  // offset it was saved with. Layout 8 names each insert and outlet with its progress (a
+  // branch matches them by name) and keeps the inserts' pourings started, paused or stopped
+  // from outside the scene; a state of layout 6 or 7 matches them by position.
+  static constexpr std::uint32_t state_layout = 8, oldest_state_layout = 5;
 
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
@@ -229,12 +232,12 @@ public:
   // positions), the walls are placed at the saved time by this scene's motions, and the forces
   // are evaluated afresh without advancing any spring; the change of mechanical energy that the
   // new scene gives the same state is booked as `inserted`, so the books carry on closed.
-  // `keep_history` false drops every contact's state (another contact model). Throws
-  // std::invalid_argument on every rank where the saved particles are not the ones this scene
-  // builds (`walls` wall particles, at most `grains` grains, ids below their sum) or stand
-  // outside the domain.
+  // `keep_history` false drops every contact's state (another contact model). The grains are
+  // the checkpoint's (the scene's own fills and particles give way to them). Throws
+  // std::invalid_argument on every rank where the saved wall particles are not the `walls`
+  // this scene builds, or a saved grain stands outside the domain.
   struct BranchCheck {
-    std::size_t walls = 0, grains = 0; // the particles this scene builds
+    std::size_t walls = 0; // the wall particles this scene builds
     bool keep_history = true;
   };
   void branch(const std::vector<std::string>& share, std::uint64_t written_on,
@@ -254,6 +257,18 @@ public:
   // Each insert's and each outlet's cumulative grains and mass. Collective.
   std::vector<SourceTally> inflow() const;
   std::vector<SourceTally> outflow() const;
+  // An insert's pouring steered from outside the scene (the Python API), by the insert's index.
+  // start: it pours from the next step on, at its rate, until its total (or the scene's end);
+  // what it poured before counts towards the total. pause: no batch until started again.
+  // stop: no batch ever again. Each throws std::invalid_argument where the insert cannot (a
+  // stopped insert started, an insert whose total is poured or whose end has passed). The same
+  // call on every rank. A checkpoint keeps the state, and a resume or a branch continues it.
+  void start_insert(std::size_t insert);
+  void pause_insert(std::size_t insert);
+  void stop_insert(std::size_t insert);
+  // A new insert from the next step on (at its start, if that is later); its name must be new.
+  void add_insert(InsertSpec insert);
+  const std::vector<InsertSpec>& inserts() const { return inserts_; }
 
   // Changes from outside the equations of motion between steps (the Python API:
   // simulation_edits.cpp). Each books the change of mechanical energy it makes as `inserted`
@@ -355,26 +370,49 @@ private:
         throw std::invalid_argument("the checkpoint's walls are not this scene's");
   }
   void check_wall_files(const std::vector<std::uint32_t>& saved) const;
-  // The sources' part of a checkpoint: the next global id, each insert's progress (the same on
-  // every rank) and each outlet's part on this rank.
+  // The sources' part of a checkpoint: the next global id, each insert's name and progress
+  // (the same on every rank) and each outlet's name and part on this rank. Loading matches
+  // them by name: a scene's insert or outlet that the checkpoint does not name starts afresh,
+  // and one the scene does not have is left behind (its grains stay).
   template <class Archive> void checkpoint_sources(Archive& ar) {
     if constexpr (Archive::loading)
       if (loading_layout_ < 6) return; // (none under way)
     ar.value(next_gid_);
-    ar.vector(insert_progress_);
-    ar.vector(outlet_part_);
-    if constexpr (Archive::loading) {
-      saved_poured_ = 0;
-      for (const InsertProgress& p : insert_progress_) saved_poured_ += p.grains;
+    std::vector<std::string> insert_names, outlet_names;
+    for (const InsertSpec& s : inserts_) insert_names.push_back(s.name);
+    for (const OutletSpec& s : outlets_) outlet_names.push_back(s.name);
+    std::vector<InsertProgress> inserts = insert_progress_;
+    std::vector<OutletPart> outlets = outlet_part_;
+    if (Archive::loading && loading_layout_ < 8) { // by position, unnamed
+      std::vector<InsertProgressV6> old;
+      ar.vector(old);
+      ar.vector(outlets);
+      inserts.assign(old.size(), InsertProgress{});
+      for (std::size_t k = 0; k < old.size(); ++k)
+        inserts[k].batches = old[k].batches, inserts[k].grains = old[k].grains,
+        inserts[k].owed = old[k].owed, inserts[k].mass = old[k].mass;
+      if (inserts.size() != inserts_.size()) inserts.clear(), insert_names.clear();
+      if (outlets.size() != outlets_.size()) outlets.clear(), outlet_names.clear();
+    } else {
+      strings(ar, insert_names);
+      ar.vector(inserts);
+      strings(ar, outlet_names);
+      ar.vector(outlets);
     }
-    if constexpr (Archive::loading)
-      if (insert_progress_.size() != inserts_.size() || outlet_part_.size() != outlets_.size()) {
-        // A branch may bring other sources: they start afresh.
-        if (!branch_)
-          throw std::invalid_argument("the checkpoint's inserts and outlets are not this scene's");
-        insert_progress_.assign(inserts_.size(), InsertProgress{});
-        outlet_part_.assign(outlets_.size(), OutletPart{});
-      }
+    if constexpr (Archive::loading) {
+      if (insert_names.size() != inserts.size() || outlet_names.size() != outlets.size())
+        throw ArchiveError("the sources' names and states differ in number (corrupt)");
+      adopt_sources(insert_names, inserts, outlet_names, outlets);
+    }
+  }
+  template <class Archive> static void strings(Archive& ar, std::vector<std::string>& v) {
+    std::uint64_t n = v.size();
+    ar.value(n);
+    if constexpr (Archive::loading) {
+      if (n > (std::uint64_t{1} << 24)) throw ArchiveError("an impossible count of names");
+      v.assign(n, std::string{});
+    }
+    for (std::string& s : v) ar.string(s);
   }
   // At a list build, after the escapes: grains in an outlet leave, a due batch is inserted.
   void handle_outlets();
@@ -516,14 +554,37 @@ private:
   struct InsertProgress { // the same on every rank
     std::int64_t batches = 0, grains = 0, owed = 0;
     double mass = 0;
+    // Set from outside the scene (start_insert, add_insert...): the step of the first batch of
+    // the pouring under way (-1: the scene's start) and what was poured before it began; the
+    // insert paused (1) or stopped (2).
+    std::int64_t first_step = -1, grains_before = 0;
+    double mass_before = 0;
+    std::int64_t halted = 0;
+    static constexpr int n_numbers = 8; // (the fields as numbers, for sums over sections)
+  };
+  struct InsertProgressV6 { // layouts 6 and 7
+    std::int64_t batches = 0, grains = 0, owed = 0;
+    double mass = 0;
   };
   struct OutletPart { // this rank's
     std::int64_t grains = 0;
     double mass = 0;
   };
   std::vector<InsertProgress> insert_progress_;
-  std::int64_t saved_poured_ = 0; // grains the loaded run's inserts had poured (for a branch)
   std::vector<OutletPart> outlet_part_;
+  // The steps of insert k's batches as they stand: its first batch, the steps between batches
+  // and its last step.
+  struct BatchSteps {
+    std::int64_t first, every, last;
+  };
+  BatchSteps batch_steps(std::size_t k) const;
+  bool batch_due(std::size_t k, std::int64_t step) const;
+  // Takes the saved sources' state by name: each insert and outlet of this scene takes the
+  // saved one of its name, and starts afresh where none has it (checkpoint_sources()).
+  void adopt_sources(const std::vector<std::string>& insert_names,
+                     const std::vector<InsertProgress>& inserts,
+                     const std::vector<std::string>& outlet_names,
+                     const std::vector<OutletPart>& outlets);
   GlobalId next_gid_ = 0;      // of the next inserted grain (the same on every rank)
   std::function<void()> edit_; // the change of edit_particles(), made in its list build
   // While branch() loads: the state continues under another scene (what it must hold).

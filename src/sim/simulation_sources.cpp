@@ -10,19 +10,6 @@
 namespace yuxi {
 namespace {
 
-// Steps of an insert: its first batch, the steps between batches and its last step.
-struct BatchSteps {
-  std::int64_t first, every, last;
-};
-
-BatchSteps batch_steps(const InsertSpec& s, double dt) {
-  const std::int64_t first = std::max<std::int64_t>(1, std::llround(s.start / dt));
-  const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.interval / dt));
-  const std::int64_t last =
-      std::isfinite(s.end) ? std::llround(s.end / dt) : std::numeric_limits<std::int64_t>::max();
-  return {first, every, last};
-}
-
 // The random stream of one batch of an insert: the same candidates on every number of ranks,
 // and a resumed run draws the batches it has not drawn yet.
 Random batch_stream(std::uint64_t seed, std::int64_t batch) {
@@ -35,33 +22,117 @@ void Simulation::set_sources(std::vector<InsertSpec> inserts, std::vector<Outlet
   inserts_ = std::move(inserts);
   outlets_ = std::move(outlets);
   insert_progress_.assign(inserts_.size(), InsertProgress{});
+  for (std::size_t k = 0; k < inserts_.size(); ++k)
+    if (inserts_[k].held) insert_progress_[k].halted = 1; // (until start_insert)
   outlet_part_.assign(outlets_.size(), OutletPart{});
 }
 
+Simulation::BatchSteps Simulation::batch_steps(std::size_t k) const {
+  const InsertSpec& s = inserts_[k];
+  const double dt = config_.dt;
+  const std::int64_t first = insert_progress_[k].first_step >= 0
+                                 ? insert_progress_[k].first_step
+                                 : std::max<std::int64_t>(1, std::llround(s.start / dt));
+  const std::int64_t every = std::max<std::int64_t>(1, std::llround(s.interval / dt));
+  const std::int64_t last =
+      std::isfinite(s.end) ? std::llround(s.end / dt) : std::numeric_limits<std::int64_t>::max();
+  return {first, every, last};
+}
+
+bool Simulation::batch_due(std::size_t k, std::int64_t step) const {
+  const InsertProgress& p = insert_progress_[k];
+  const bool full = inserts_[k].total >= 0 && p.grains >= inserts_[k].total;
+  const BatchSteps b = batch_steps(k);
+  return p.halted == 0 && !full && step >= b.first && step <= b.last &&
+         (step - b.first) % b.every == 0;
+}
+
 bool Simulation::insertion_due(std::int64_t step) const {
-  for (std::size_t k = 0; k < inserts_.size(); ++k) {
-    const BatchSteps b = batch_steps(inserts_[k], config_.dt);
-    const bool full = inserts_[k].total >= 0 && insert_progress_[k].grains >= inserts_[k].total;
-    if (!full && step >= b.first && step <= b.last && (step - b.first) % b.every == 0) return true;
-  }
+  for (std::size_t k = 0; k < inserts_.size(); ++k)
+    if (batch_due(k, step)) return true;
   return false;
 }
 
 void Simulation::insert_due_batches() {
+  for (std::size_t k = 0; k < inserts_.size(); ++k)
+    if (batch_due(k, step_)) insert_batch(k);
+}
+
+void Simulation::adopt_sources(const std::vector<std::string>& insert_names,
+                               const std::vector<InsertProgress>& inserts,
+                               const std::vector<std::string>& outlet_names,
+                               const std::vector<OutletPart>& outlets) {
+  // (a handful of sources: a search by name each)
+  std::vector<InsertProgress> progress(inserts_.size());
   for (std::size_t k = 0; k < inserts_.size(); ++k) {
-    const BatchSteps b = batch_steps(inserts_[k], config_.dt);
-    const bool full = inserts_[k].total >= 0 && insert_progress_[k].grains >= inserts_[k].total;
-    if (!full && step_ >= b.first && step_ <= b.last && (step_ - b.first) % b.every == 0)
-      insert_batch(k);
+    if (inserts_[k].held) progress[k].halted = 1;
+    for (std::size_t j = 0; j < insert_names.size(); ++j)
+      if (insert_names[j] == inserts_[k].name) progress[k] = inserts[j];
   }
+  std::vector<OutletPart> parts(outlets_.size());
+  for (std::size_t k = 0; k < outlets_.size(); ++k)
+    for (std::size_t j = 0; j < outlet_names.size(); ++j)
+      if (outlet_names[j] == outlets_[k].name) parts[k] = outlets[j];
+  insert_progress_ = std::move(progress);
+  outlet_part_ = std::move(parts);
+}
+
+void Simulation::start_insert(std::size_t k) {
+  const InsertSpec& s = inserts_.at(k);
+  InsertProgress& p = insert_progress_.at(k);
+  if (p.halted == 2)
+    throw std::invalid_argument(fmt::format("insert '{}' was stopped for good", s.name));
+  if (s.total >= 0 && p.grains >= s.total)
+    throw std::invalid_argument(
+        fmt::format("insert '{}' has poured its total of {} grains", s.name, s.total));
+  if (std::isfinite(s.end) && step_ + 1 > std::llround(s.end / config_.dt))
+    throw std::invalid_argument(
+        fmt::format("insert '{}' ends at t = {}, which has passed", s.name, s.end));
+  p.first_step = step_ + 1;
+  p.grains_before = p.grains;
+  p.mass_before = p.mass;
+  p.halted = 0;
+}
+
+void Simulation::pause_insert(std::size_t k) {
+  if (insert_progress_.at(k).halted == 2)
+    throw std::invalid_argument(fmt::format("insert '{}' was stopped for good", inserts_[k].name));
+  insert_progress_[k].halted = 1;
+}
+
+void Simulation::stop_insert(std::size_t k) {
+  insert_progress_.at(k).halted = 2;
+}
+
+void Simulation::add_insert(InsertSpec insert) {
+  for (const InsertSpec& s : inserts_)
+    if (s.name == insert.name)
+      throw std::invalid_argument(fmt::format("an insert named '{}' exists already", s.name));
+  const double r = insert.grains.size.largest();
+  if (2 * r + config_.skin > cell_edge_)
+    throw std::invalid_argument(fmt::format(
+        "insert '{}': grains of radius {} are larger than the linked cells allow ({}); the scene "
+        "must pour grains that large from the start",
+        insert.name, r, 0.5 * (cell_edge_ - config_.skin)));
+  const auto k = insert.grains.material;
+  if (k >= n_materials_)
+    throw std::invalid_argument(fmt::format("insert '{}': material {} is not one of the scene's {}",
+                                            insert.name, k, n_materials_));
+  InsertProgress p;
+  if (insert.held) p.halted = 1;
+  p.first_step =
+      std::max(step_ + 1, std::max<std::int64_t>(1, std::llround(insert.start / config_.dt)));
+  inserts_.push_back(std::move(insert));
+  insert_progress_.push_back(p);
 }
 
 void Simulation::insert_batch(std::size_t source) {
   const InsertSpec& s = inserts_[source];
   InsertProgress& progress = insert_progress_[source];
   const double dt = config_.dt;
-  const BatchSteps b = batch_steps(s, dt);
-  // What is due by the end of this batch's interval: a count, or grains until the mass is.
+  const BatchSteps b = batch_steps(source);
+  // What is due by the end of this batch's interval, from the pouring under way: a count, or
+  // grains until the mass is.
   const double elapsed = static_cast<double>(step_ - b.first + b.every) * dt;
   Random rng = batch_stream(s.grains.seed, progress.batches);
   ++progress.batches;
@@ -72,13 +143,14 @@ void Simulation::insert_batch(std::size_t source) {
   std::vector<Due> due;
   if (s.by_mass) {
     double mass = progress.mass;
-    while (mass < s.rate * elapsed && due.size() < 1000000) {
+    while (mass < progress.mass_before + s.rate * elapsed && due.size() < 1000000) {
       const double r = s.grains.size.draw(rng);
       due.push_back({r, s.grains.draw_velocity(rng)});
       mass += s.grains.mass_of(r);
     }
   } else {
-    auto target = static_cast<std::int64_t>(std::floor(s.rate * elapsed + 1e-9));
+    auto target =
+        progress.grains_before + static_cast<std::int64_t>(std::floor(s.rate * elapsed + 1e-9));
     if (s.total >= 0) target = std::min(target, s.total);
     for (std::int64_t n = progress.grains; n < target; ++n) {
       const double r = s.grains.size.draw(rng);

@@ -7,9 +7,11 @@
 #     first row equals the saved run's at that time (the change of stored energy is booked as
 #     `inserted`), and the run ends without a failure.
 #  3. The same branch on 2 ranks gives the energies of 1 rank to 1e-9 (relative).
-#  4. Refusals, exit code 2 and a message naming the problem: other materials, fewer grains
-#     than the checkpoint holds, an end time before the checkpoint's, and a domain that does
-#     not hold the saved grains.
+#  4. Refusals, exit code 2 and a message naming the problem: other materials, other wall
+#     particles than the checkpoint holds, an end time before the checkpoint's, and a domain
+#     that does not hold the saved grains.
+#  5. The grains are the checkpoint's: a scene that builds fewer takes them all, and so does a
+#     scene that builds none (its cells and skin sized for the saved grains).
 # usage: branch.sh YUXI MPIEXEC WORK_DIR
 set -euo pipefail
 yuxi=$1
@@ -90,8 +92,8 @@ refused() { # NAME PATTERN SCENE [ARGS...]: exit code 2 and a message matching P
 }
 sed 's/^materials = \["grain", "wall"\]/materials = ["sand", "wall"]/; s/"grain"/"sand"/g' "$basin" > other_materials.toml
 refused materials "materials: \[sand, wall\] are not the checkpoint's" other_materials.toml --from saved
-sed 's/^fill_layers = 5/fill_layers = 4/' "$basin" > fewer.toml
-refused fewer "the checkpoint holds .* grains, this scene builds" fewer.toml --from saved
+sed 's/^wall_height = .*/wall_height = 9/' "$basin" > lower.toml
+refused lower "the checkpoint holds .* wall particles, this scene builds" lower.toml --from saved
 refused early "is not after the checkpoint's time" same.toml --from saved --t-end 0.5
 
 # A grain thrown up to z ~ 8 by t = 1, and a branch whose domain ends at z = 5.
@@ -118,6 +120,21 @@ EOF
 sed 's/^hi = \[10.0, 10.0, 20.0\]/hi = [10.0, 10.0, 5.0]/; s/^t_end = 1.0/t_end = 2.0/' thrown.toml > low.toml
 run thrown.toml -o thrown > thrown.log 2>&1 || fail "the thrown grain's run failed"
 refused outside "outside this scene's domain" low.toml --from thrown
+
+# 5. The grains are the checkpoint's.
+column_at() { # FILE COLUMN: the column of the last row
+  awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i } END { print $c }' "$1"
+}
+sed 's/^fill_layers = 5/fill_layers = 4/' "$basin" > fewer.toml
+run fewer.toml --from saved -o fewer --t-end 1.05 > fewer.log 2>&1 ||
+  fail "a scene that builds fewer grains was refused: $(tail -2 fewer.log)"
+[[ $(column_at fewer/energies.csv grains) == $(column_at saved/energies.csv grains) ]] ||
+  fail "fewer: $(column_at fewer/energies.csv grains) grains, the checkpoint held $(column_at saved/energies.csv grains)"
+sed '/^\[\[particle\]\]/,$d; s/^t_end = 1.0/t_end = 1.5/' thrown.toml > empty.toml
+run empty.toml --from thrown -o empty > empty.log 2>&1 ||
+  fail "a scene with no grains of its own was refused: $(tail -2 empty.log)"
+[[ $(column_at empty/energies.csv grains) == 1 ]] || fail "empty: the thrown grain did not come along"
+grep -q "skin 0.2" empty.log || fail "empty: the skin was not sized for the saved grain"
 
 if ((failures > 0)); then
   echo "$failures check(s) failed"

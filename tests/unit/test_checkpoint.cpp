@@ -118,10 +118,10 @@ INSTANTIATE_TEST_SUITE_P(
                "checksum mismatch: the file is corrupt"},
         Damage{"wrong version",
                [](std::string b) {
-                 b[8] = 8;
+                 b[8] = 9;
                  return b;
                },
-               "checkpoint format version 8; this yuxi reads versions 5 to 7"},
+               "checkpoint format version 9; this yuxi reads versions 5 to 8"},
         Damage{"not a checkpoint", [](std::string) { return std::string("hello, world: no"); },
                "not a yuxi checkpoint"},
         Damage{"empty", [](std::string) { return std::string(); }, "not a yuxi checkpoint"},
@@ -139,11 +139,12 @@ TEST(Checkpoint, AFileWithNoRanksStateIsRefused) {
   ArchiveWriter head;
   std::string scene;
   std::int64_t step = 10;
-  double time = 1.0;
+  double time = 1.0, largest_grain_radius = 0.5;
   std::uint64_t sections = 0;
   head.string(scene);
   head.value(step);
   head.value(time);
+  head.value(largest_grain_radius);
   head.value(sections);
   const std::string payload = head.release();
   std::string bytes = "YUXICKPT";
