@@ -113,7 +113,11 @@ PyScene PyScene::from_toml(const std::string& text, const std::string& source) {
 }
 
 PyScene PyScene::from_dict(const py::dict& tables, const std::string& source) {
-  return from_toml(toml_of(tables), source);
+  // (errors name the key's path: the TOML text made from the dict is not the user's)
+  PyScene s;
+  s.scene = read_scene_text(toml_of(tables), source, false);
+  s.resolved = resolved_scene_toml(s.scene);
+  return s;
 }
 
 py::dict PyScene::resolved_dict() const {
@@ -139,7 +143,10 @@ void bind_scene(py::module_& m) {
       static const std::regex pattern(R"(:(\d+):(\d+): ([^:\s][^:]*): )");
       std::smatch match;
       py::object key = py::none();
-      if (std::regex_search(message, match, pattern)) key = py::str(match[3].str());
+      if (!e.key.empty())
+        key = py::str(e.key);
+      else if (std::regex_search(message, match, pattern))
+        key = py::str(match[3].str());
       py::object error = py::reinterpret_borrow<py::object>(scene_error)(message);
       error.attr("key") = key;
       PyErr_SetObject(scene_error.ptr(), error.ptr());

@@ -75,3 +75,18 @@ def test_a_folder_that_holds_a_run_is_not_overwritten(box_scene, tmp_path):
 def test_changed_merges_tables(box_scene):
     scene = yuxi.Scene(box_scene).changed({"run": {"t_end": 0.5}})
     assert scene.t_end == 0.5 and scene.dt == 2.0e-4
+
+
+def test_a_dict_scene_s_errors_name_the_key_and_its_misspelling(box_scene):
+    box_scene["fill"][0]["radious"] = box_scene["fill"][0].pop("radius")
+    with pytest.raises(yuxi.SceneError) as error:
+        yuxi.Scene(box_scene)
+    message = str(error.value)
+    assert message.startswith("<dict>: fill[1].radius:")  # no lines of a text never seen
+    assert "(the table has 'radious': misspelt?)" in message
+    assert error.value.key == "fill[1].radius"
+    box_scene["fill"][0]["radius"] = box_scene["fill"][0].pop("radious")
+    box_scene["contact"]["pair"][1]["gama_r"] = 3.0
+    with pytest.raises(yuxi.SceneError, match="did you mean 'gamma_r'") as error:
+        yuxi.Scene(box_scene)
+    assert error.value.key == "contact.pair[2].gama_r"

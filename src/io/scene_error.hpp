@@ -3,12 +3,17 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace yuxi {
 
+// `key`, where the reader knows it: the key's path in the scene ("contact.pair[1].k_n", "fill[2]"
+// for a table), which Python's SceneError carries as its `key`.
 class SceneError : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit SceneError(const std::string& message, std::string key_path = {})
+      : std::runtime_error(message), key(std::move(key_path)) {}
+  std::string key;
 };
 
 // A time step above a tenth of the stiffest contact's duration: the message ends with the

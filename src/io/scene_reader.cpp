@@ -607,9 +607,9 @@ void size_for_saved_grains(Scene& scene, double largest_grain_radius) {
   if (scene.skin_from_grains) scene.sim.skin = default_skin_fraction * 2.0 * largest_grain_radius;
 }
 
-Scene read_scene_text(std::string_view text, const std::string& source) {
+Scene read_scene_text(std::string_view text, const std::string& source, bool lines) {
   const toml::table doc = parse_toml(text, source);
-  TomlReader root(doc, "", source);
+  TomlReader root(doc, "", source, lines);
   Scene scene;
   scene.source = source;
   scene.run.name = std::filesystem::path(source).stem().string();

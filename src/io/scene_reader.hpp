@@ -11,7 +11,9 @@
 namespace yuxi {
 
 Scene read_scene_file(const std::string& path);
-Scene read_scene_text(std::string_view text, const std::string& source);
+// `lines`: errors give the text's line and column (false for a text made from a Python dict,
+// whose lines the user never saw: the key's path alone).
+Scene read_scene_text(std::string_view text, const std::string& source, bool lines = true);
 
 // Without a `skin` key, the skin is this fraction of the largest grain diameter.
 inline constexpr double default_skin_fraction = 0.2;

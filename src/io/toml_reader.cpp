@@ -1,5 +1,7 @@
 #include "io/toml_reader.hpp"
 
+#include "io/nearest_word.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 
@@ -25,8 +27,8 @@ std::string_view type_name(const toml::node& n) {
   }
 }
 
-std::string position(const std::string& file, const toml::source_region& r) {
-  if (r.begin.line == 0) return file;
+std::string position(const std::string& file, const toml::source_region& r, bool lines = true) {
+  if (r.begin.line == 0 || !lines) return file;
   return fmt::format("{}:{}:{}", file, r.begin.line, r.begin.column);
 }
 
@@ -41,22 +43,33 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   }
 }
 
-TomlReader::TomlReader(const toml::table& table, std::string path, std::string file)
-    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+TomlReader::TomlReader(const toml::table& table, std::string path, std::string file, bool lines)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)), lines_(lines) {}
 
 std::string TomlReader::key_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
 }
 
 std::string TomlReader::where(std::string_view key) const {
-  if (const toml::node* n = table_->get(key)) return position(file_, n->source());
-  return position(file_, table_->source());
+  if (const toml::node* n = table_->get(key)) return position(file_, n->source(), lines_);
+  return position(file_, table_->source(), lines_);
 }
 
 void TomlReader::fail(std::string_view key, std::string_view message) const {
   const std::string name =
       key.empty() ? (path_.empty() ? "scene" : "[" + path_ + "]") : key_path(key);
-  throw SceneError(fmt::format("{}: {}: {}", where(key), name, message));
+  const std::string hint = !key.empty() && !has(key) ? misspelling_hint(key) : "";
+  throw SceneError(fmt::format("{}: {}: {}{}", where(key), name, message, hint),
+                   key.empty() ? path_ : key_path(key));
+}
+
+std::string TomlReader::misspelling_hint(std::string_view key) const {
+  // A key of the table that nobody asked for and that is nearly this one.
+  std::vector<std::string> unasked;
+  for (auto&& [k, node] : *table_)
+    if (!asked_.contains(k.str())) unasked.emplace_back(k.str());
+  const auto near = nearest_word(key, unasked);
+  return near ? fmt::format(" (the table has '{}': misspelt?)", *near) : "";
 }
 
 void TomlReader::wrong_type(std::string_view key, std::string_view expected) const {
@@ -64,6 +77,7 @@ void TomlReader::wrong_type(std::string_view key, std::string_view expected) con
 }
 
 const toml::node* TomlReader::find(std::string_view key) {
+  asked_.emplace(key);
   const toml::node* n = table_->get(key);
   if (n) read_.emplace(key);
   return n;
@@ -71,7 +85,7 @@ const toml::node* TomlReader::find(std::string_view key) {
 
 const toml::node& TomlReader::require(std::string_view key) {
   const toml::node* n = find(key);
-  if (!n) fail("", fmt::format("missing key '{}'", key));
+  if (!n) fail("", fmt::format("missing key '{}'", key) + misspelling_hint(key));
   return *n;
 }
 
@@ -227,7 +241,7 @@ std::optional<TomlReader> TomlReader::table(std::string_view key) {
   const toml::node* n = find(key);
   if (!n) return std::nullopt;
   if (!n->is_table()) wrong_type(key, "a table");
-  return TomlReader(*n->as_table(), key_path(key), file_);
+  return TomlReader(*n->as_table(), key_path(key), file_, lines_);
 }
 
 std::vector<TomlReader> TomlReader::tables(std::string_view key) {
@@ -238,15 +252,24 @@ std::vector<TomlReader> TomlReader::tables(std::string_view key) {
   if (!a || !a->is_array_of_tables())
     wrong_type(key, "an array of tables ([[" + std::string(key) + "]])");
   for (std::size_t k = 0; k < a->size(); ++k)
-    out.emplace_back(*(*a)[k].as_table(), fmt::format("{}[{}]", key_path(key), k + 1), file_);
+    out.emplace_back(*(*a)[k].as_table(), fmt::format("{}[{}]", key_path(key), k + 1), file_,
+                     lines_);
   return out;
 }
 
 void TomlReader::finish() const {
   for (auto&& [key, node] : *table_) {
     if (read_.contains(key.str())) continue;
-    throw SceneError(fmt::format("{}: {}: unknown key (misspelt, or not valid here)",
-                                 position(file_, key.source()), key_path(key.str())));
+    std::vector<std::string> valid;
+    for (const std::string& k : asked_)
+      if (!table_->contains(k)) valid.push_back(k);
+    const auto near = nearest_word(key.str(), valid);
+    throw SceneError(fmt::format("{}: {}: unknown key '{}' ({})",
+                                 position(file_, key.source(), lines_), key_path(key.str()),
+                                 key.str(),
+                                 near ? fmt::format("did you mean '{}'?", *near)
+                                      : std::string("misspelt, or not valid here")),
+                     key_path(key.str()));
   }
 }
 

@@ -21,9 +21,14 @@ namespace yuxi {
 
 class TomlReader {
 public:
-  TomlReader(const toml::table& table, std::string path, std::string file);
+  // `lines`: the text is one the user wrote (a file, a string), so errors give its line and
+  // column; a text made from a dict (Python) gives the key's path alone.
+  TomlReader(const toml::table& table, std::string path, std::string file, bool lines = true);
 
-  bool has(std::string_view key) const { return table_->contains(key); }
+  bool has(std::string_view key) const {
+    asked_.emplace(key);
+    return table_->contains(key);
+  }
 
   double number(std::string_view key);
   double number(std::string_view key, double fallback);
@@ -50,7 +55,8 @@ public:
   std::optional<TomlReader> table(std::string_view key);
   std::vector<TomlReader> tables(std::string_view key); // an array of tables ([[key]])
 
-  // Throws on the first key that was never read.
+  // Throws on the first key that was never read, naming the key asked for that it is nearest
+  // (a misspelling).
   void finish() const;
 
   // An error located at `key` (or at this table when the key is absent).
@@ -63,11 +69,15 @@ private:
   const toml::node& require(std::string_view key);
   const toml::node* find(std::string_view key);
   [[noreturn]] void wrong_type(std::string_view key, std::string_view expected) const;
+  // " (the table has 'radious': misspelt?)" where a key nobody asked for is nearly `key`.
+  std::string misspelling_hint(std::string_view key) const;
 
   const toml::table* table_;
   std::string path_;
   std::string file_;
+  bool lines_ = true;
   std::set<std::string, std::less<>> read_;
+  mutable std::set<std::string, std::less<>> asked_; // every key asked for, read or not
 };
 
 // Parses a TOML document; syntax errors become SceneError with file:line:column.

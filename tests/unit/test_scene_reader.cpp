@@ -123,6 +123,9 @@ TEST_P(BadScenes, GiveOneClearError) {
   } catch (const SceneError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(c.expected), std::string::npos) << c.what << ": " << msg;
+    if (!e.key.empty()) { // (the key's path, as the message names it)
+      EXPECT_NE(msg.find(e.key), std::string::npos) << msg;
+    }
     if (c.line > 0) {
       EXPECT_EQ(msg.rfind("bad.toml:" + std::to_string(c.line) + ":", 0), 0u)
           << c.what << ": " << msg;
@@ -164,7 +167,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "contact.model: unknown value \"walton_braun\"", 15},
         BadScene{"unknown balance", "wall_material = \"wall\"",
                  "wall_material = \"wall\"\nbalance_by = \"luck\"",
-                 "domain.balance_by: unknown value \"luck\"", 13}),
+                 "domain.balance_by: unknown value \"luck\"", 13},
+        BadScene{"misspelt optional key", "mu_d = 0.4", "mu_d = 0.4\ngama_t = 3.0",
+                 "contact.pair[1].gama_t: unknown key 'gama_t' (did you mean 'gamma_t'?)", 24},
+        BadScene{"misspelt required key", "radius = 1.0", "radious = 1.0",
+                 "missing key 'radius' (the table has 'radious': misspelt?)", 0}),
     [](const ::testing::TestParamInfo<BadScene>& param_info) {
       std::string n = param_info.param.what;
       for (auto& ch : n)
