@@ -72,6 +72,23 @@ ContactResult HertzMindlin::evaluate(const ContactGeometry& g, const Coeffs& c, 
   r.add_contact_force(g, fn, t.force);
   r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = eta_n * vn * vn * g.dt + t.dissipated;
+  if (c.mu_r > 0 && c.rolling_model == RollingModel::constant_torque) {
+    const RollingTorque rr = constant_rolling_torque(g, fn, c.mu_r);
+    r.torque_i += rr.torque;
+    r.torque_j -= rr.torque;
+    r.dissipated += rr.dissipated;
+  } else if (c.mu_r > 0) {
+    // (LIGGGHTS epsd2: the torque stiffness 2.25 mu_r^2 S_n R*^2, as a force on u_r)
+    const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
+    const SliderLaw rolling{2.25 * c.mu_r * c.mu_r * s_n, 0.0, c.mu_r, c.mu_r, CapOn::total};
+    const SliderResult rr = slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r,
+                                  std::max(fn, 0.0), rolling, g.dt);
+    const Vec3 torque = g.r_eff * cross(g.n, rr.force);
+    r.torque_i += torque;
+    r.torque_j -= torque;
+    r.elastic += s.rolling.stored();
+    r.dissipated += rr.dissipated;
+  }
   return r;
 }
 

@@ -12,14 +12,21 @@
 // With this damping the normal restitution coefficient equals e at every impact speed
 // (Tsuji, Tanaka & Ishida 1992; docs/models/validation.md Test 3, "attractive force allowed").
 //
-// Energy: stored (8/15) E* sqrt(R*) delta^{5/2} + S_t |s_t|^2 / 2. The tangential spring's
-// stiffness follows the overlap (Mindlin's no-slip law), which is not conservative by itself:
-// each step books as dissipated the work done into the spring, S_t (s_old + s_new)/2 . ds, less
-// the change of its stored energy, so the energy books close whatever the path.
+// Optional rolling resistance, mu_r > 0 (rolling_resistance.hpp, docs/models/rolling.md): the
+// elastic-plastic model with the stiffness of LIGGGHTS' "epsd2", k_r = 2.25 mu_r^2 S_n on the
+// rolling displacement (a torque stiffness 2.25 mu_r^2 S_n R*^2), no damping, capped at
+// mu_r |F_n|; or, with rolling_model = "constant_torque", the torque mu_r R* |F_n| against the
+// relative rolling.
+//
+// Energy: stored (8/15) E* sqrt(R*) delta^{5/2} + S_t |s_t|^2 / 2 (+ the rolling spring's). The
+// tangential spring's stiffness follows the overlap (Mindlin's no-slip law), which is not
+// conservative by itself: each step books as dissipated the work done into the spring, S_t (s_old +
+// s_new)/2 . ds, less the change of its stored energy, so the energy books close whatever the path.
 #pragma once
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/rolling_resistance.hpp"
 #include "contact/scene_fields.hpp"
 
 #include <cstdint>
@@ -36,6 +43,8 @@ struct HertzMindlin {
     double restitution = 1; // e, speed-independent normal restitution [-]
     double friction = 0;    // mu [-]
     double beta = 0;        // ln e / sqrt(ln^2 e + pi^2), derived from e [-]
+    double mu_r = 0;        // rolling friction coefficient [-]; 0: no rolling resistance
+    RollingModel rolling_model = RollingModel::elastic_plastic;
   };
 
   // Derived coefficients from the two materials (a rigid material has E = infinity).
@@ -46,11 +55,16 @@ struct HertzMindlin {
   template <class V> static void fields(V& v, Coeffs& c) {
     v.fraction("restitution", c.restitution);
     v.optional("friction", c.friction);
+    v.optional("mu_r", c.mu_r);
+    rolling_model_field(v, c.rolling_model);
   }
   // The coefficients read from a scene completed with the two materials' elastic constants.
   static Coeffs with_materials(const Coeffs& c, double youngs_1, double poisson_1, double youngs_2,
                                double poisson_2) {
-    return mix(youngs_1, poisson_1, youngs_2, poisson_2, c.restitution, c.friction);
+    Coeffs mixed = mix(youngs_1, poisson_1, youngs_2, poisson_2, c.restitution, c.friction);
+    mixed.mu_r = c.mu_r;
+    mixed.rolling_model = c.rolling_model;
+    return mixed;
   }
   // Example coefficients in model units (example_units.hpp): (4/3) E* sqrt(R*) = 1, restitution
   // 0.88, friction 0.5.

@@ -18,10 +18,12 @@
 // lever arm = radius; no clamp of the attractive dashpot force, so e = exp(-gamma_n t_c / 2)
 // exactly (docs/models/validation.md L1).
 //
-// Optional rolling resistance (k_r > 0 or mu_r > 0): a spring-dashpot-slider on the rolling
-// displacement, u_r = -a n x (w_i - w_j) with a = a_i a_j / (a_i + a_j), torque a n x F_r on i
-// and the opposite on j, Coulomb limit mu_r |F_n| (Ai, Chen, Rotter & Ooi, Powder Technol. 206
-// (2011), model C; Luding 2008).
+// Optional rolling resistance (rolling_resistance.hpp, docs/models/rolling.md): by default
+// (k_r > 0) a spring-dashpot-slider on the rolling displacement, u_r = -a n x (w_i - w_j) with
+// a = a_i a_j / (a_i + a_j), torque a n x F_r on i and the opposite on j, Coulomb limit
+// mu_r |F_n| (Ai, Chen, Rotter & Ooi, Powder Technol. 206 (2011), model C; Luding 2008); or,
+// with rolling_model = "constant_torque", the torque mu_r a |F_n| against the relative rolling
+// (their model A).
 //
 // Energy: springs store k_n delta^2/2 + k_t |s_t|^2/2 (+ k_r |s_r|^2/2); dashpots and sliding
 // dissipate as booked by the slider; the spring energy left when a contact opens is lost.
@@ -29,6 +31,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "contact/rolling_resistance.hpp"
 #include "contact/scene_fields.hpp"
 #include "core/always_inline.hpp"
 
@@ -53,6 +56,7 @@ struct LinearSpringDashpot {
     double mu_r = 0;    // rolling friction coefficient [-]
     CapOn friction_cap = CapOn::spring;
     Carry carry = Carry::rotate;
+    RollingModel rolling_model = RollingModel::elastic_plastic;
 
     bool rolling() const { return k_r > 0 || mu_r > 0; }
   };
@@ -65,6 +69,11 @@ struct LinearSpringDashpot {
     v.optional("gamma_t", c.gamma_t);
     friction_fields(v, c.mu_s, c.mu_d);
     slider_fields(v, "k_r", c.k_r, "gamma_r", c.gamma_r, "mu_r", c.mu_r);
+    rolling_model_field(v, c.rolling_model);
+    v.check(!(c.rolling_model == RollingModel::elastic_plastic && c.mu_r > 0 && c.k_r == 0), "mu_r",
+            "mu_r without k_r resists nothing in the elastic-plastic rolling model: give k_r "
+            "(2.25 mu_r^2 k_n is usual: docs/models/rolling.md), or rolling_model = "
+            "\"constant_torque\"");
     v.choice("friction_cap", c.friction_cap,
              {{"spring", CapOn::spring},
               {"total", CapOn::total},
@@ -112,7 +121,12 @@ YUXI_ALWAYS_INLINE ContactResult LinearSpringDashpot::evaluate(const ContactGeom
   r.elastic = 0.5 * c.k_n * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = g.m_eff * c.gamma_n * vn * vn * g.dt + t.dissipated;
 
-  if (c.rolling()) {
+  if (c.rolling() && c.rolling_model == RollingModel::constant_torque) {
+    const RollingTorque rr = constant_rolling_torque(g, fn, c.mu_r);
+    r.torque_i += rr.torque;
+    r.torque_j -= rr.torque;
+    r.dissipated += rr.dissipated;
+  } else if (c.rolling()) {
     const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
     const SliderLaw rolling{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total};
     const SliderResult rr =

@@ -37,6 +37,12 @@ void slider_fields(V& v, std::string_view k, double& stiffness, std::string_view
   v.optional(mu, friction);
 }
 
+// Which rolling-resistance model (rolling_resistance.hpp).
+template <class V, class E> void rolling_model_field(V& v, E& model) {
+  v.choice("rolling_model", model,
+           {{"elastic_plastic", E::elastic_plastic}, {"constant_torque", E::constant_torque}});
+}
+
 // A visitor that accepts every field and does nothing: the registry (contact_model.hpp) checks
 // with it that each model's fields() is written against the interface above.
 struct IgnoreFields {

@@ -170,6 +170,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "domain.balance_by: unknown value \"luck\"", 13},
         BadScene{"misspelt optional key", "mu_d = 0.4", "mu_d = 0.4\ngama_t = 3.0",
                  "contact.pair[1].gama_t: unknown key 'gama_t' (did you mean 'gamma_t'?)", 24},
+        BadScene{"rolling friction without a spring", "mu_d = 0.4", "mu_d = 0.4\nmu_r = 0.1",
+                 "mu_r without k_r resists nothing in the elastic-plastic rolling model", 0},
         BadScene{"misspelt required key", "radius = 1.0", "radious = 1.0",
                  "missing key 'radius' (the table has 'radious': misspelt?)", 0}),
     [](const ::testing::TestParamInfo<BadScene>& param_info) {

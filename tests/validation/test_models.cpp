@@ -48,6 +48,22 @@ AnyContactLaw luding() {
   return law;
 }
 
+// Hertz-Mindlin with rolling resistance (`model`: elastic_plastic or constant_torque).
+AnyContactLaw hertz_rolling(RollingModel model, double mu_r = 0.1, double youngs = 1e5) {
+  ContactLaw<HertzMindlin> law{PairTable<HertzMindlin::Coeffs>(1)};
+  HertzMindlin::Coeffs c = HertzMindlin::mix(youngs, 0.3, youngs, 0.3, 0.7, 0.8);
+  c.mu_r = mu_r;
+  c.rolling_model = model;
+  law.coeffs.set(0, 0, c);
+  return law;
+}
+AnyContactLaw hertz_epsd() {
+  return hertz_rolling(RollingModel::elastic_plastic);
+}
+AnyContactLaw hertz_torque() {
+  return hertz_rolling(RollingModel::constant_torque);
+}
+
 AnyContactLaw linear_rolling() {
   test::Coeffs c{1e4, 2.5e3, 20.0, 10.0, 0.5, 0.3};
   c.k_r = 1e3;
@@ -83,7 +99,9 @@ TEST_P(EnergyBooks, CloseForEveryModel) {
 INSTANTIATE_TEST_SUITE_P(Models, EnergyBooks,
                          ::testing::Values(ModelCase{"hertz_mindlin", hertz, 1e-4},
                                            ModelCase{"luding", luding, 2e-4},
-                                           ModelCase{"linear_rolling", linear_rolling, 2e-4}),
+                                           ModelCase{"linear_rolling", linear_rolling, 2e-4},
+                                           ModelCase{"hertz_epsd", hertz_epsd, 1e-4},
+                                           ModelCase{"hertz_constant_torque", hertz_torque, 1e-4}),
                          [](const ::testing::TestParamInfo<ModelCase>& p) {
                            return std::string(p.param.name);
                          });
@@ -110,6 +128,80 @@ TEST(RollingResistance, StopsARollingSphereAtFiveSeventhsMuRG) {
   const auto e = sim.energies();
   ASSERT_GT(e.dissipated, 0.05);
   EXPECT_LT(std::abs(e.balance() - b0), 1e-3 * e.dissipated);
+}
+
+// A sphere (R = 1, m = 1, g = 1) set rolling without slip at v0 = 1 on a level plane: each
+// rolling-resistance model resists with the torque mu_r R m g once its spring has yielded, so
+// the sphere decelerates at (5/7) mu_r g and stops after 7 v0^2 / (10 mu_r g) (Ai et al. 2011,
+// model A; model C once sliding). The linear law's constant torque, and Hertz-Mindlin's
+// constant torque and elastic-plastic spring (k_r = 2.25 mu_r^2 S_n).
+struct RollingCase {
+  const char* name;
+  AnyContactLaw law;
+};
+void PrintTo(const RollingCase& c, std::ostream* os) {
+  *os << c.name;
+}
+class RollingStop : public ::testing::TestWithParam<RollingCase> {};
+
+TEST_P(RollingStop, TheSphereStopsWhereTheTorqueSays) {
+  const double mu_r = 0.05, v0 = 1.0, dt = 1e-4;
+  auto cfg = test::open_box(30, {0, 0, -1}, dt);
+  Simulation sim(
+      cfg, test::store_of({test::sphere({-20, 0, 1.0 - 1e-5}, 1.0, 1.0, {v0, 0, 0}, {0, v0, 0})}),
+      {test::plane({0, 0, 0}, {0, 0, 1})}, {}, GetParam().law);
+  const double b0 = sim.energies().balance();
+  while (sim.particles().v[0].x > 1e-3 * v0 && sim.time() < 40) sim.step();
+  const double travelled = sim.particles().x[0].x + 20;
+  // (14.000 for each when written)
+  EXPECT_NEAR(travelled, 7 * v0 * v0 / (10 * mu_r), 1e-3 * 7 * v0 * v0 / (10 * mu_r));
+  const auto e = sim.energies();
+  EXPECT_LT(std::abs(e.balance() - b0), 1e-3 * e.dissipated); // the torque's work is booked
+}
+
+AnyContactLaw linear_torque() {
+  test::Coeffs c{1e5, 2.0 / 7.0 * 1e5, 30.0, 150.0, 0.8, 0.8};
+  c.mu_r = 0.05;
+  c.rolling_model = RollingModel::constant_torque;
+  return test::linear_law(c);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Models, RollingStop,
+    ::testing::Values(RollingCase{"linear_constant_torque", linear_torque()},
+                      RollingCase{"hertz_constant_torque",
+                                  hertz_rolling(RollingModel::constant_torque, 0.05, 1e7)},
+                      RollingCase{"hertz_elastic_plastic",
+                                  hertz_rolling(RollingModel::elastic_plastic, 0.05, 1e7)}),
+    [](const ::testing::TestParamInfo<RollingCase>& p) { return std::string(p.param.name); });
+
+// On a slope of angle theta, the rolling torque holds a sphere at rest while it can balance the
+// friction that holds its centre, m g sin(theta) R <= mu_r R m g cos(theta): up to
+// tan(theta) = mu_r. The elastic-plastic springs hold it (linear with k_r, Hertz-Mindlin's own
+// stiffness); beyond, it rolls away.
+TEST(RollingResistance, HoldsASphereOnASlopeUpToTanThetaMuR) {
+  const double mu_r = 0.1;
+  test::Coeffs lin{1e5, 2.0 / 7.0 * 1e5, 30.0, 150.0, 0.8, 0.8};
+  lin.k_r = 2.25 * mu_r * mu_r * lin.k_n;
+  lin.gamma_r = 10;
+  lin.mu_r = mu_r;
+  for (const auto& [name, law] :
+       {std::pair{"linear", test::linear_law(lin)},
+        std::pair{"hertz", hertz_rolling(RollingModel::elastic_plastic, mu_r, 1e7)}})
+    for (const double ratio : {0.7, 1.3}) {
+      const double theta = std::atan(ratio * mu_r);
+      auto cfg = test::open_box(30, {std::sin(theta), 0, -std::cos(theta)}, 1e-4);
+      Simulation sim(cfg, test::store_of({test::sphere({0, 0, 1.0 - 1e-5}, 1.0, 1.0)}),
+                     {test::plane({0, 0, 0}, {0, 0, 1})}, {}, law);
+      sim.run(50000); // t = 5
+      const double x5 = sim.particles().x[0].x;
+      sim.run(50000); // t = 10
+      const double moved = sim.particles().x[0].x - x5;
+      if (ratio < 1)
+        EXPECT_LT(std::abs(moved), 1e-4) << name << " held at tan(theta) = " << ratio << " mu_r";
+      else
+        EXPECT_GT(moved, 0.1) << name << " rolls at tan(theta) = " << ratio << " mu_r";
+    }
 }
 
 // Luding's adhesion: pulled apart slowly, the contact holds until the tension reaches the
