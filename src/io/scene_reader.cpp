@@ -506,32 +506,40 @@ void read_lammps_data_section(Scene& scene, TomlReader& root) {
 void check_consistency(Scene& scene, TomlReader& root) {
   double rg = 0.0, rw = 0.0;
   std::vector<bool> grain_mat(scene.materials.size()), other_mat(scene.materials.size());
+  // How many grains of each material the scene may hold (2: two or more): a pair of grains of
+  // one material needs coefficients only where two of them can meet.
+  std::vector<std::size_t> grains_of(scene.materials.size(), 0);
   if (scene.basin) {
     rg = scene.basin->radius_mean + 3.0 * scene.basin->radius_sd;
     rw = scene.basin->wall_radius;
     grain_mat[scene.basin->grain_material] = true;
     other_mat[scene.basin->wall_material] = true;
+    grains_of[scene.basin->grain_material] += 2;
   }
   for (const auto& p : scene.particles) {
     const bool grain = p.kind == Kind::grain;
     double& largest = grain ? rg : rw;
     largest = std::max(largest, p.radius);
     (grain ? grain_mat : other_mat)[p.material] = true;
+    grains_of[p.material] += grain ? 1 : 0;
   }
   for (const auto& f : scene.fills) {
     rg = std::max(rg, f.grains.size.largest());
     grain_mat[f.grains.material] = true;
+    grains_of[f.grains.material] +=
+        f.amount == FillSpec::Amount::count ? static_cast<std::size_t>(f.value) : 2;
   }
   // Grains poured later need cells as wide as their contacts from the start.
   double poured = 0.0;
   for (const auto& i : scene.inserts) {
     poured = std::max(poured, i.grains.size.largest());
     grain_mat[i.grains.material] = true;
+    grains_of[i.grains.material] += 2;
   }
   rg = std::max(rg, poured);
   if (poured > 0) scene.sim.min_contact_reach = std::max(2.0 * rg, rg + rw);
-  // (a scene without grains may continue a saved state: the run that builds it from t = 0
-  // refuses it, open_scene())
+  // (a scene without grains may continue a saved state: a run that builds it from t = 0
+  // refuses it, build_simulation())
   scene.largest_grain_radius = rg;
   for (const auto& w : scene.planes) other_mat[w.material] = true;
   for (const auto& w : scene.walls) other_mat[wall_material(w)] = true;
@@ -588,7 +596,8 @@ void check_consistency(Scene& scene, TomlReader& root) {
   for (std::size_t a = 0; a < scene.materials.size(); ++a) {
     if (!grain_mat[a]) continue;
     for (std::size_t b = 0; b < scene.materials.size(); ++b)
-      if ((grain_mat[b] || other_mat[b]) && !has_pair(a, b)) {
+      if ((grain_mat[b] || other_mat[b]) && !has_pair(a, b) &&
+          !(a == b && grains_of[a] < 2 && !other_mat[a])) {
         auto contact = root.table("contact");
         contact->fail("pair",
                       fmt::format("no [[contact.pair]] for materials (\"{}\", \"{}\"), which "

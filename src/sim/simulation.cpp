@@ -501,12 +501,14 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> m_min(n_mat, inf), r_min(n_mat, inf);
   std::vector<bool> on_wall(n_mat, false);
+  std::vector<double> grains(n_mat, 0.0); // (two grains of a material must exist to meet)
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     const auto k = store_.material[i];
     if (k >= n_mat) continue;
     if (store_.is_grain(i)) {
       m_min[k] = std::min(m_min[k], store_.mass[i]);
       r_min[k] = std::min(r_min[k], store_.radius[i]);
+      grains[k] += 1.0;
     } else {
       on_wall[k] = true;
     }
@@ -522,7 +524,9 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
     const double r = insert.grains.size.smallest();
     m_min[k] = std::min(m_min[k], insert.grains.mass_of(r));
     r_min[k] = std::min(r_min[k], r);
+    grains[k] += 2.0;
   }
+  if (n_mat > 0) comm_.sum(grains.data(), static_cast<int>(n_mat));
   for (std::size_t k = 0; k < n_mat; ++k) { // over all ranks
     m_min[k] = -comm_.max(-m_min[k]);
     r_min[k] = -comm_.max(-r_min[k]);
@@ -542,7 +546,7 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
                 best = {tc, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(b), m_eff,
                         M::contact_time(table(a, b), m_eff, r_eff, 2.0 * impact_speed) != tc};
             };
-            if (m_min[b] < inf)
+            if (m_min[b] < inf && (a != b || grains[a] >= 2.0))
               consider(m_min[a] * m_min[b] / (m_min[a] + m_min[b]),
                        r_min[a] * r_min[b] / (r_min[a] + r_min[b]));
             if (on_wall[b]) consider(m_min[a], r_min[a]);

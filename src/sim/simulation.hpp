@@ -466,6 +466,9 @@ private:
   // Throws std::invalid_argument naming the first new grain that overlaps a particle this rank
   // owns, a new grain before it or a flat wall (add_grains()).
   void check_clear_of_particles(std::span<const ParticleSpec> grains) const;
+  // Throws std::invalid_argument, naming `who`, where grains of `material` could touch a
+  // material (a particle's of this rank, a wall's, their own) with no contact pair.
+  void check_pairs_for(std::uint8_t material, const std::string& who) const;
   // Collective: sums and checks the books that a list build left due.
   void settle_energy_books();
   std::string describe_particle(std::size_t i) const;

@@ -110,6 +110,26 @@ void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Ve
       });
 }
 
+void Simulation::check_pairs_for(std::uint8_t material, const std::string& who) const {
+  // The materials this grain can meet: this rank's particles' (every rank checks its own), the
+  // flat walls' and the shaped walls'.
+  std::vector<bool> present(n_materials_, false);
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    if (store_.material[i] < n_materials_) present[store_.material[i]] = true;
+  for (const PlaneWall& p : planes_)
+    if (p.material < n_materials_) present[p.material] = true;
+  for (const ShapedWall& w : walls_)
+    if (wall_material(w) < n_materials_) present[wall_material(w)] = true;
+  present[material] = true; // (with the grains like it)
+  for (std::size_t m = 0; m < n_materials_; ++m) {
+    const bool has = std::visit([&](const auto& law) { return law.coeffs.has(material, m); }, law_);
+    if (present[m] && !has)
+      throw std::invalid_argument(
+          fmt::format("{}: the scene has no contact pair for materials {} and {}, which can touch",
+                      who, material, m));
+  }
+}
+
 void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) const {
   // This rank's particles and the new grains before each, hashed on cells as wide as the
   // widest contact; along a periodic axis a grain near a face is looked for at its image too.
@@ -182,16 +202,21 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
     ids.push_back(next_gid_ + static_cast<GlobalId>(k));
   }
   // (edit_particles books their energy with the change of the contacts')
-  edit_particles([&] { check_clear_of_particles(grains); },
-                 [&] {
-                   for (const ParticleSpec& spec : grains) {
-                     const GlobalId id = next_gid_++;
-                     if (!decomp_.owns(config_.box.wrap(spec.position))) continue;
-                     ParticleSpec p = spec;
-                     p.kind = Kind::grain;
-                     store_.add(p, id);
-                   }
-                 });
+  edit_particles(
+      [&] {
+        for (std::size_t k = 0; k < grains.size(); ++k)
+          check_pairs_for(grains[k].material, fmt::format("new grain {}", k));
+        check_clear_of_particles(grains);
+      },
+      [&] {
+        for (const ParticleSpec& spec : grains) {
+          const GlobalId id = next_gid_++;
+          if (!decomp_.owns(config_.box.wrap(spec.position))) continue;
+          ParticleSpec p = spec;
+          p.kind = Kind::grain;
+          store_.add(p, id);
+        }
+      });
   return ids;
 }
 

@@ -118,6 +118,14 @@ void Simulation::add_insert(InsertSpec insert) {
   if (k >= n_materials_)
     throw std::invalid_argument(fmt::format("insert '{}': material {} is not one of the scene's {}",
                                             insert.name, k, n_materials_));
+  std::string error;
+  try {
+    check_pairs_for(k, fmt::format("insert '{}'", insert.name));
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  error = comm_.first_error(error);
+  if (!error.empty()) throw std::invalid_argument(error);
   InsertProgress p;
   if (insert.held) p.halted = 1;
   p.first_step =

@@ -62,6 +62,57 @@ TEST(SceneReader, BaseSceneIsValidAndBuilds) {
   EXPECT_EQ(sim->planes().size(), 2u); // the two z faces
 }
 
+// One grain and no source: it can meet the walls, never a grain like it, so the scene needs no
+// grain-grain pair, and that pair's contact time does not limit dt.
+TEST(SceneReader, ALoneGrainNeedsNoPairWithItself) {
+  const std::string one_grain = R"(materials = ["ball", "wall"]
+[run]
+dt = 1.0e-3
+t_end = 1.0
+[domain]
+lo = [-2.0, -2.0, -1.0]
+hi = [2.0, 2.0, 2.0]
+gravity = [0.0, 0.0, -9.81]
+[[contact.pair]]
+materials = ["ball", "wall"]
+k_n = 400.0
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "wall"
+[[particle]]
+position = [0.0, 0.0, 0.5]
+radius = 0.5
+mass = 1.0
+material = "ball"
+)";
+  const Scene scene = read_scene_text(one_grain, "one.toml");
+  BuildReport report;
+  const auto sim = build_simulation(scene, false, &report, Comm::self());
+  EXPECT_EQ(report.stiffest.material_b, 1); // the wall
+  // A second grain of that material could meet the first: adding one is refused.
+  ParticleSpec more;
+  more.position = {1.0, 1.0, 1.0};
+  more.radius = 0.5;
+  more.mass = 1.0;
+  EXPECT_THROW(
+      {
+        try {
+          sim->add_grains(std::vector<ParticleSpec>{more});
+        } catch (const std::invalid_argument& e) {
+          EXPECT_NE(std::string(e.what()).find("no contact pair for materials 0 and 0"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      std::invalid_argument);
+  // Two grains need the pair.
+  std::string two = one_grain + "[[particle]]\nposition = [1.0, 1.0, 0.5]\nradius = 0.5\nmass = "
+                                "1.0\nmaterial = \"ball\"\n";
+  EXPECT_THROW(read_scene_text(two, "two.toml"), SceneError);
+}
+
 TEST(SceneReader, ShippedScenesAreValid) {
   for (const char* name : {"basin-small", "basin-paper", "basin-paper-m3"}) {
     const Scene s = read_scene_file(std::string(YUXI_SCENES_DIR) + "/" + name + ".toml");
