@@ -5,7 +5,8 @@
 # validation, CLI and MPI tests there (but those labelled heavy, minutes each there; the crash
 # and resume runs labelled reliability run in Release, and their checkpoint code under the
 # sanitizers through the unit tests and the checkpoint fuzzer), then
-# each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, then every test
+# each fuzzer on its kept corpus for a fixed number of inputs from a fixed seed, and random
+# sequences of calls on the Python module built with the sanitizers, then every test
 # in Release, the Python module's (pytest, with the examples' short forms) among them. Long
 # validation cases: ctest --preset long.
 set -euo pipefail
@@ -25,6 +26,8 @@ ctest --test-dir build/asan -L "unit|validation|cli|mpi" -LE "heavy|long|reliabi
 
 echo "== fuzzers (bounded)"
 tests/fuzz/run.sh --runs "${YUXI_FUZZ_RUNS:-20000}"
+# The Python module under the sanitizers, driven by random sequences of calls.
+ctest --test-dir build/asan -L fuzz --output-on-failure
 
 echo "== release"
 ctest --preset release
