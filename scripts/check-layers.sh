@@ -5,7 +5,8 @@
 #   contact, domain, scene, analysis   on core
 #   thermo                             on contact
 #   sim                                on contact, domain, scene (never analysis)
-#   io                                 on sim
+#   io                                 on sim's settings, books and state layout, never the
+#                                      engine itself (sim/simulation.hpp): run/ joins the two
 #   run                                on io, sim, analysis
 #   validation                         on run, thermo
 # apps/, python/ (the Python module), tests/ and bench/ may include any layer.
@@ -42,5 +43,10 @@ for dir in src/*/; do
     fi
   done < <(grep -rnoE '^#include "[a-z_]+/[^"]+"' "$dir" | sed -E 's/#include "([^"]+)"/\1/')
 done
+# The file formats know the engine's settings, books and state layout, not the engine.
+while IFS=: read -r file line _; do
+  echo "$file:$line: io includes the engine (sim/simulation.hpp); join the two in run/"
+  status=1
+done < <(grep -rnE '^#include "sim/simulation\.hpp"' src/io || true)
 if ((status == 0)); then echo "layers: every include follows the layer order"; fi
 exit $status

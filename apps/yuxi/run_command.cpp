@@ -1,7 +1,6 @@
 #include "run_command.hpp"
 
 #include "default_scene.hpp"
-#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "plot_script.hpp"
@@ -9,6 +8,7 @@
 #include "run/run_driver.hpp"
 #include "run/run_opening.hpp"
 #include "run/scene_builder.hpp"
+#include "run/simulation_checkpoint.hpp"
 
 #include <algorithm>
 #include <csignal>

@@ -1,10 +1,10 @@
 #include "py_simulation.hpp"
 
-#include "io/checkpoint_file.hpp"
 #include "io/scene_error.hpp"
 #include "io/scene_writer.hpp"
 #include "io/source_scene_reader.hpp"
 #include "py_contacts.hpp"
+#include "run/simulation_checkpoint.hpp"
 #include "scene/particle_fill.hpp"
 #include "scene/wall_controller.hpp"
 

@@ -62,40 +62,27 @@ std::uint32_t combined_crc(const Comm& comm, std::uint32_t part_crc, std::uint64
 
 } // namespace
 
-void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
-                      Simulation& sim) {
-  sim.stop_if_unhealthy(); // only good states are kept
-  const Comm& comm = sim.comm();
+void write_checkpoint_file(const std::filesystem::path& file, const Comm& comm,
+                           const CheckpointHead& h, const std::string& section_bytes) {
   // Every rank writes its own section into the one file (SharedFile), in rank order:
   //   header (magic, version, byte order, payload size) | head (scene, step, time, number of
   //   sections) | per rank: section length, section | CRC-32 of the payload
   // Rank 0's part starts with the head. The CRC is combined from the ranks' CRCs of their parts.
-  ArchiveWriter section;
-  sim.checkpoint(section);
-  // The largest grain's radius, for a branch that builds no grain: of the grains now, or of
-  // those the cells were sized for (a run that itself built none keeps its size for a resume).
-  double largest = 0.5 * sim.config().min_contact_reach;
-  const ParticleStore& s = sim.particles();
-  for (std::size_t i = 0; i < s.n_owned(); ++i)
-    if (s.is_grain(i)) largest = std::max(largest, s.radius[i]);
-  largest = comm.max(largest);
   std::string part; // what precedes the section in this rank's part
   if (comm.root()) {
     ArchiveWriter head;
-    std::string scene = scene_text;
+    std::string scene = h.scene_text;
     head.string(scene);
-    std::int64_t step = sim.step_count();
-    double time = sim.time();
-    head.value(step);
-    head.value(time);
-    head.value(largest);
+    head.value(h.step);
+    head.value(h.time);
+    head.value(h.largest_grain_radius);
     auto n = static_cast<std::uint64_t>(comm.size());
     head.value(n);
     part = head.release();
   }
-  put(part, static_cast<std::uint64_t>(section.data().size())); // as ArchiveWriter::string
-  const std::uint64_t part_bytes = part.size() + section.data().size();
-  const std::uint32_t part_crc = crc_of(section.data(), crc_of(part));
+  put(part, static_cast<std::uint64_t>(section_bytes.size())); // as ArchiveWriter::string
+  const std::uint64_t part_bytes = part.size() + section_bytes.size();
+  const std::uint32_t part_crc = crc_of(section_bytes, crc_of(part));
   const std::uint64_t payload =
       static_cast<std::uint64_t>(comm.sum(static_cast<std::int64_t>(part_bytes)));
   const std::uint32_t crc = combined_crc(comm, part_crc, part_bytes);
@@ -108,7 +95,7 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
     SharedFile out(comm, tmp, SharedFile::Mode::truncate);
     const std::uint64_t at = header_size + comm.sum_below(part_bytes);
     out.write_at(at, part);
-    out.write_at(at + part.size(), section.data());
+    out.write_at(at + part.size(), section_bytes);
     if (comm.root()) {
       std::string header(magic, sizeof magic);
       put(header, checkpoint_format_version);
@@ -217,9 +204,9 @@ CheckpointIndex read_index(CheckpointBytes& bytes, const std::string& name) {
   if (header.size() < header_size || std::memcmp(header.data(), magic, sizeof magic) != 0)
     fail("not a yuxi checkpoint (no YUXICKPT header)");
   const auto version = get<std::uint32_t>(header, 8);
-  if (version < Simulation::oldest_state_layout || version > checkpoint_format_version)
+  if (version < oldest_state_layout || version > checkpoint_format_version)
     fail(fmt::format("checkpoint format version {}; this yuxi reads versions {} to {}", version,
-                     Simulation::oldest_state_layout, checkpoint_format_version));
+                     oldest_state_layout, checkpoint_format_version));
   if (get<std::uint32_t>(header, 12) != byte_order_mark)
     fail("written on a machine of another byte order");
   const auto size = get<std::uint64_t>(header, 16);
@@ -368,14 +355,6 @@ CheckpointData read_checkpoint(const std::filesystem::path& file, const Comm& co
   return read_share(*source, file.string(), comm);
 }
 
-void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
-  try {
-    sim.load(data.sections, data.n_sections, data.format_version);
-  } catch (const std::invalid_argument& e) { // the same on every rank (Simulation::load)
-    throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
-  }
-}
-
 CheckpointSet::CheckpointSet(std::filesystem::path run_folder, int keep)
     : folder_(std::move(run_folder) / "checkpoints"), keep_(std::max(keep, 1)) {}
 
@@ -383,16 +362,18 @@ std::filesystem::path CheckpointSet::path_for(std::int64_t step) const {
   return folder_ / fmt::format("checkpoint_{:012d}.yxc", step);
 }
 
-std::filesystem::path CheckpointSet::write(const std::string& scene_text, Simulation& sim) {
-  if (sim.comm().root()) {
+std::filesystem::path
+CheckpointSet::write(const Comm& comm, std::int64_t step,
+                     const std::function<void(const std::filesystem::path&)>& write_file) const {
+  if (comm.root()) {
     std::filesystem::create_directories(folder_);
     for (const auto& e : std::filesystem::directory_iterator(folder_)) // left by a crash
       if (e.path().extension() == ".tmp") std::filesystem::remove(e.path());
   }
-  sim.comm().barrier(); // every rank opens the file in the folder rank 0 has made
-  const std::filesystem::path file = path_for(sim.step_count());
-  write_checkpoint(file, scene_text, sim);
-  if (!sim.comm().root()) return file;
+  comm.barrier(); // every rank opens the file in the folder rank 0 has made
+  const std::filesystem::path file = path_for(step);
+  write_file(file);
+  if (!comm.root()) return file;
   const auto files = list();
   for (std::size_t k = static_cast<std::size_t>(keep_); k < files.size(); ++k)
     std::filesystem::remove(files[k]);

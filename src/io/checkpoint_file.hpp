@@ -13,11 +13,13 @@
 // crash at any moment leaves either the previous checkpoint or the new one, never half of one.
 #pragma once
 
-#include "sim/simulation.hpp"
+#include "domain/comm.hpp"
+#include "sim/state_layout.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -26,17 +28,26 @@
 namespace yuxi {
 
 // The format version a checkpoint is written in: the layout of Simulation::checkpoint. Files
-// of older layouts down to Simulation::oldest_state_layout are read too.
-inline constexpr std::uint32_t checkpoint_format_version = Simulation::state_layout;
+// of older layouts down to oldest_state_layout are read too.
+inline constexpr std::uint32_t checkpoint_format_version = state_layout;
 
 class CheckpointError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
 
-// Writes `file` atomically with the scene and every rank's state (collective).
-void write_checkpoint(const std::filesystem::path& file, const std::string& scene_text,
-                      Simulation& sim);
+// What the head of a checkpoint says besides the sections.
+struct CheckpointHead {
+  std::string scene_text; // the resolved scene
+  std::int64_t step = 0;
+  double time = 0;
+  double largest_grain_radius = 0; // the cells of a branch whose scene builds no grain
+};
+
+// Collective: writes `file` atomically with the head (rank 0's) and every rank's `section`
+// (a simulation's saved state: run/simulation_checkpoint.hpp writes a simulation's).
+void write_checkpoint_file(const std::filesystem::path& file, const Comm& comm,
+                           const CheckpointHead& head, const std::string& section);
 
 // A verified checkpoint's head and this rank's share of its sections, not yet applied to a
 // simulation.
@@ -63,16 +74,17 @@ CheckpointData read_checkpoint(const std::filesystem::path& file, const Comm& co
 // Verifies checkpoint bytes (for the fuzzer and tests), with every section as the share;
 // `name` labels the messages.
 CheckpointData parse_checkpoint(std::string bytes, const std::string& name);
-// Collective: loads the shares into a simulation built from the checkpoint's scene.
-void apply_checkpoint(const CheckpointData& data, Simulation& sim);
 
 // The checkpoints of a run folder: `<run>/checkpoints/checkpoint_<step>.yxc`.
 class CheckpointSet {
 public:
   explicit CheckpointSet(std::filesystem::path run_folder, int keep = 3);
   std::filesystem::path path_for(std::int64_t step) const;
-  // Writes one and removes the oldest beyond `keep`; returns the file written.
-  std::filesystem::path write(const std::string& scene_text, Simulation& sim);
+  // Collective: writes the checkpoint of `step` through `write_file(path)` (every rank calls
+  // it, once the folder exists) and removes the oldest beyond `keep`; returns the file.
+  std::filesystem::path
+  write(const Comm& comm, std::int64_t step,
+        const std::function<void(const std::filesystem::path&)>& write_file) const;
   // Files present, newest first.
   std::vector<std::filesystem::path> list() const;
   // Collective: the newest checkpoint that verifies (rank 0's listing of the folder); each

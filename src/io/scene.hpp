@@ -8,7 +8,8 @@
 #include "scene/particle_fill.hpp"
 #include "scene/particle_source.hpp"
 #include "scene/plane_wall.hpp"
-#include "sim/simulation.hpp"
+#include "scene/shaped_wall.hpp"
+#include "sim/simulation_config.hpp"
 
 #include <array>
 #include <cstdint>

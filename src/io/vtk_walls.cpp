@@ -1,7 +1,5 @@
 #include "io/vtk_walls.hpp"
 
-#include "sim/simulation.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -86,20 +84,6 @@ double WallSurface::pressure(std::size_t k) const {
   const double n2 = norm2(n);
   // |f . n / |n|| / (|n| / 2)
   return n2 > 0.0 ? 2.0 * std::abs(dot(force[k], n)) / n2 : 0.0;
-}
-
-WallSurface wall_surface(const Simulation& sim) {
-  WallSurface s;
-  const std::vector<ShapedWall>& walls = sim.walls();
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    if (!wall_active(walls[w], sim.time())) continue; // (the same on every rank)
-    const auto index = static_cast<std::int32_t>(w);
-    if (const auto* mesh = std::get_if<MeshWall>(&walls[w]))
-      s.add_mesh(*mesh, sim.triangle_forces(w), index); // collective
-    else
-      s.add_cylinder(std::get<CylinderWall>(walls[w]), sim.config().box, sim.time(), index);
-  }
-  return s;
 }
 
 void write_vtp(const std::filesystem::path& path, const WallSurface& s) {

@@ -16,8 +16,6 @@
 
 namespace yuxi {
 
-class Simulation;
-
 struct WallSurface {
   std::vector<Vec3> points;
   std::vector<std::array<std::uint32_t, 3>> triangles; // point indices
@@ -36,11 +34,6 @@ struct WallSurface {
   // |force . unit normal| / area of triangle k (0 for a degenerate one).
   double pressure(std::size_t k) const;
 };
-
-// Every shaped wall that is active at the simulation's time, meshes loaded with the forces of
-// the last force evaluation. Collective (the forces are summed over the ranks); the same on
-// every rank.
-WallSurface wall_surface(const Simulation& sim);
 
 // Writes `surface` to `path` (.vtp) from this process alone; throws std::runtime_error if the
 // file cannot be written.

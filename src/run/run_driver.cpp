@@ -1,13 +1,13 @@
 #include "run/run_driver.hpp"
 
-#include "io/checkpoint_file.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
-#include "io/vtk_walls.hpp"
 #include "io/vtk_writer.hpp"
 #include "run/bed_measurements.hpp"
 #include "run/progress.hpp"
 #include "run/run_analysis.hpp"
+#include "run/simulation_checkpoint.hpp"
+#include "run/wall_snapshot.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -213,7 +213,7 @@ bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
 
 std::filesystem::path RunDriver::Impl::write_checkpoint() {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::filesystem::path file = checkpoints->write(options.scene_text, sim);
+  const std::filesystem::path file = yuxi::write_checkpoint(*checkpoints, options.scene_text, sim);
   last_checkpoint = std::chrono::steady_clock::now();
   summary.checkpoint_seconds += seconds_since(t0);
   return file;

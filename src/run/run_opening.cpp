@@ -1,8 +1,8 @@
 #include "run/run_opening.hpp"
 
-#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
+#include "run/simulation_checkpoint.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

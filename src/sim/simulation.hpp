@@ -30,6 +30,8 @@
 #include "sim/energy_books.hpp"
 #include "sim/near_wall_elements.hpp"
 #include "sim/phase_times.hpp"
+#include "sim/simulation_config.hpp"
+#include "sim/state_layout.hpp"
 
 #include <array>
 #include <chrono>
@@ -44,36 +46,6 @@
 #include <vector>
 
 namespace yuxi {
-
-// What to do with a grain that leaves the box through an open face.
-enum class EscapePolicy { stop, remove };
-
-// The load the cut planes of a multi-rank run balance (SimulationConfig::balance_by).
-enum class BalanceBy { pairs, time };
-
-struct SimulationConfig {
-  Box box;
-  Vec3 gravity;
-  double dt = 1e-4;
-  double skin = 0.2;      // Verlet skin [length]
-  double cell_size = 0.0; // linked-cell edge; 0 = the smallest valid (2 r_max + skin)
-  EscapePolicy on_escape = EscapePolicy::stop;
-  std::uint8_t box_wall_material = 0; // material of the flat walls on Boundary::wall faces
-  double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
-  std::array<int, 3> ranks{0, 0, 0};  // MPI ranks per axis; 0 = chosen automatically
-  int rebalance_every = 50;           // move the cut planes every this many rebuilds (0: never)
-  // What the cut planes balance: each particle's count of listed pairs (the same cuts on every
-  // run: reproducible to the bit), or the compute time each rank measured since the last
-  // balancing (a rank on a slower or busier core gets less; the cuts, and so the round-off of
-  // the sums, then differ from run to run).
-  BalanceBy balance_by = BalanceBy::pairs;
-  // The near pairs' margin as a fraction of the skin (core/near_pairs.hpp; 0: scan the whole
-  // list every step). The trajectory is the same either way.
-  double near_fraction = 0.25;
-  // The linked cells are at least this wide beyond the skin: grains that come later
-  // ([[insert]]) may be larger than any at the start [length].
-  double min_contact_reach = 0.0;
-};
 
 // The run cannot go on; what() holds the diagnosis (step, grain, position, velocity).
 class SimulationError : public std::runtime_error {
@@ -91,13 +63,9 @@ struct StiffestContact {
 
 class Simulation {
 public:
-  // The layout of checkpoint(), which the checkpoint file's format version names: layout 6
-  // added the sources' part; a state of layout 5 loads with no insert or outlet under way.
-  // Layout 7 added each servo's offset at the last list build; a state of layout 6 takes the
-  // offset it was saved with. Layout 8 names each insert and outlet with its progress (a
-  // branch matches them by name) and keeps the inserts' pourings started, paused or stopped
-  // from outside the scene; a state of layout 6 or 7 matches them by position.
-  static constexpr std::uint32_t state_layout = 8, oldest_state_layout = 5;
+  // The layout of checkpoint() (sim/state_layout.hpp).
+  static constexpr std::uint32_t state_layout = yuxi::state_layout,
+                                 oldest_state_layout = yuxi::oldest_state_layout;
 
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).

@@ -1,11 +1,11 @@
 #include "validation/scene_run.hpp"
 
-#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "run/run_driver.hpp"
 #include "run/run_opening.hpp"
 #include "run/scene_builder.hpp"
+#include "run/simulation_checkpoint.hpp"
 
 #include <cmath>
 #include <cstdlib>

@@ -2,9 +2,9 @@
 // checksum checks, and (since mutations rarely keep a valid CRC) the state decoder behind them,
 // fed the input as the state of a small simulation. Refusals (CheckpointError) are fine;
 // anything else is a finding.
-#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "run/scene_builder.hpp"
+#include "run/simulation_checkpoint.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -2,10 +2,10 @@
 // same state byte for byte; damaged checkpoint files are refused with messages that name the
 // file and the problem, and the newest valid one is used.
 #include "core/archive.hpp"
-#include "io/checkpoint_file.hpp"
 #include "io/scene_reader.hpp"
 #include "io/scene_writer.hpp"
 #include "run/scene_builder.hpp"
+#include "run/simulation_checkpoint.hpp"
 #include "temp_folder.hpp"
 
 #include <filesystem>
@@ -176,7 +176,7 @@ TEST(Checkpoint, ACorruptNewestCheckpointFallsBackToThePreviousOne) {
   CheckpointSet set(dir, 3);
   for (int k = 1; k <= 4; ++k) {
     run_to(*sim, 1000 * k, 1000);
-    set.write(resolved_scene_toml(scene), *sim);
+    write_checkpoint(set, resolved_scene_toml(scene), *sim);
   }
   ASSERT_EQ(set.list().size(), 3u); // keeps the newest three
   {

@@ -1,6 +1,6 @@
 // A contact that overlaps beyond max_overlap_ratio times the smaller radius stops the run with
 // a diagnosis: the time step is too large for the stiffness, or the impact too fast.
-#include "io/checkpoint_file.hpp"
+#include "run/simulation_checkpoint.hpp"
 #include "temp_folder.hpp"
 #include "test_support.hpp"
 

@@ -3,6 +3,7 @@
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/wall_snapshot.hpp"
 #include "temp_folder.hpp"
 #include "test_support.hpp"
 

@@ -1,0 +1,16 @@
+// The layout of a simulation's saved state (Simulation::checkpoint), which a checkpoint file's
+// format version names (io/checkpoint_file.hpp): layout 6 added the sources' part; a state of
+// layout 5 loads with no insert or outlet under way. Layout 7 added each servo's offset at the
+// last list build; a state of layout 6 takes the offset it was saved with. Layout 8 names each
+// insert and outlet with its progress (a branch matches them by name) and keeps the inserts'
+// pourings started, paused or stopped from outside the scene; a state of layout 6 or 7 matches
+// them by position.
+#pragma once
+
+#include <cstdint>
+
+namespace yuxi {
+
+inline constexpr std::uint32_t state_layout = 8, oldest_state_layout = 5;
+
+} // namespace yuxi
