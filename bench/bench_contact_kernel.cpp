@@ -32,8 +32,9 @@ void BM_LinearEvaluate(benchmark::State& st) {
 }
 BENCHMARK(BM_LinearEvaluate);
 
-// N grains on a jittered simple-cubic lattice, slightly compressed, periodic, no gravity.
-void BM_DenseStep(benchmark::State& st) {
+// N grains on a jittered simple-cubic lattice, slightly compressed, periodic, no gravity, under
+// `law` (the linear law's by default).
+void dense_steps(benchmark::State& st, const AnyContactLaw& law) {
   const int side = static_cast<int>(st.range(0));
   Random rng(1);
   SimulationConfig cfg;
@@ -55,14 +56,36 @@ void BM_DenseStep(benchmark::State& st) {
         s.mass = s.radius * s.radius * s.radius;
         p.add(s, id++);
       }
-  ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(1)};
-  law.coeffs.set(0, 0, {2.5e5, 0.57e5, 100.0, 32.0, 0.84, 0.4});
   Simulation sim(cfg, std::move(p), {}, {}, law);
   for (auto _ : st) sim.step();
   st.counters["particle_steps_per_s"] = benchmark::Counter(
       static_cast<double>(side * side * side), benchmark::Counter::kIsIterationInvariantRate);
 }
+
+void BM_DenseStep(benchmark::State& st) {
+  ContactLaw<LinearSpringDashpot> law{PairTable<LinearSpringDashpot::Coeffs>(1)};
+  law.coeffs.set(0, 0, {2.5e5, 0.57e5, 100.0, 32.0, 0.84, 0.4});
+  dense_steps(st, law);
+}
 BENCHMARK(BM_DenseStep)->Arg(16)->Arg(24)->Unit(benchmark::kMillisecond);
+
+// The same packing under Hertz-Mindlin (e = 0.7, mu = 0.5) and the thermodynamic law (REF): the
+// laws evaluated one contact at a time.
+void BM_DenseStepHertz(benchmark::State& st) {
+  ContactLaw<HertzMindlin> law{PairTable<HertzMindlin::Coeffs>(1)};
+  law.coeffs.set(0, 0, HertzMindlin::mix(2e7, 0.3, 2e7, 0.3, 0.7, 0.5));
+  dense_steps(st, law);
+}
+BENCHMARK(BM_DenseStepHertz)->Arg(24)->Unit(benchmark::kMillisecond);
+
+void BM_DenseStepThermodynamic(benchmark::State& st) {
+  ContactLaw<Thermodynamic> law{PairTable<Thermodynamic::Coeffs>(1)};
+  Thermodynamic::Coeffs c;
+  c.e_star = 2e7 / (2 * (1 - 0.09));
+  law.coeffs.set(0, 0, c);
+  dense_steps(st, law);
+}
+BENCHMARK(BM_DenseStepThermodynamic)->Arg(24)->Unit(benchmark::kMillisecond);
 
 // A 64 x 64 layer of grains (radius 0.5, spacing 1.2) under gravity, at their resting overlap
 // on what `support` puts beneath them: 0 nothing (gravity off), 1 a fixed sphere each, 2 a flat

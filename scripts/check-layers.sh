@@ -43,6 +43,30 @@ for dir in src/*/; do
     fi
   done < <(grep -rnoE '^#include "[a-z_]+/[^"]+"' "$dir" | sed -E 's/#include "([^"]+)"/\1/')
 done
+# The seam for a second backend (docs/ARCHITECTURE.md): the contact laws and what they use are
+# plain data and YUXI_HD functions that nvcc compiles too. Their headers include only one
+# another and a few standard headers; fmt, io/, std::string, std::variant, the host containers
+# and the rest of the host-only world stay out.
+seam=(src/core/host_device.hpp src/core/always_inline.hpp src/core/units.hpp src/core/vec3.hpp
+  src/contact/contact_geometry.hpp src/contact/frictional_spring.hpp
+  src/contact/rolling_resistance.hpp src/contact/hooke.hpp src/contact/linear_spring_dashpot.hpp
+  src/contact/hertz_mindlin.hpp src/contact/luding.hpp src/contact/thermodynamic.hpp
+  src/contact/thermodynamic_law.hpp)
+standard=" cmath cstdint cstddef algorithm limits string_view numbers type_traits array "
+for header in "${seam[@]}"; do
+  while IFS= read -r line; do
+    if [[ $line =~ ^#include\ \"([^\"]+)\" ]]; then
+      [[ " ${seam[*]} " == *" src/${BASH_REMATCH[1]} "* ]] && continue
+      echo "$header: includes ${BASH_REMATCH[1]}, which is not a seam header"
+      status=1
+    elif [[ $line =~ ^#include\ \<([^\>]+)\> ]]; then
+      [[ $standard == *" ${BASH_REMATCH[1]} "* ]] && continue
+      echo "$header: includes <${BASH_REMATCH[1]}>, which the seam's headers do not use"
+      status=1
+    fi
+  done < <(grep -E '^#include' "$header")
+done
+
 # The file formats know the engine's settings, books and state layout, not the engine.
 while IFS=: read -r file line _; do
   echo "$file:$line: io includes the engine (sim/simulation.hpp); join the two in run/"

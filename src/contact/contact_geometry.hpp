@@ -22,7 +22,7 @@ struct ContactGeometry {
 
   // Velocity of i's surface point relative to j's at the contact (docs/models/validation.md 0.3):
   // v_c = v_i - v_j - (a_i w_i + a_j w_j) x n.
-  Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
+  YUXI_HD Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
 };
 
 // The contact-point velocity split into its normal component and tangential vector.
@@ -31,7 +31,7 @@ struct SplitVelocity {
   Vec3 tangential; // v_c - (v_c . n) n
 };
 
-inline SplitVelocity split_contact_velocity(const ContactGeometry& g) {
+YUXI_HD inline SplitVelocity split_contact_velocity(const ContactGeometry& g) {
   const Vec3 vc = g.contact_velocity();
   const double vn = dot(vc, g.n);
   return {vn, vc - vn * g.n};
@@ -48,7 +48,7 @@ struct ContactResult {
 
   // Adds a force normal_force n + f_t acting on i at the contact point (lever arm -a_i n on i,
   // +a_j n on j where -F acts): torques -a_i n x f_t on i and -a_j n x f_t on j.
-  void add_contact_force(const ContactGeometry& g, double normal_force, const Vec3& f_t) {
+  YUXI_HD void add_contact_force(const ContactGeometry& g, double normal_force, const Vec3& f_t) {
     force += normal_force * g.n + f_t;
     const Vec3 nxf = cross(g.n, f_t);
     torque_i -= g.a_i * nxf;

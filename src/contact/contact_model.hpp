@@ -2,35 +2,38 @@
 // picks one model for the whole simulation; its coefficients are given per pair of materials.
 // The scene reader and writer, `yuxi collide` and the pair loop take every model from here.
 //
-// Every model is a struct (ContactModel below) with:
+// Every model is a struct (ContactModel below), its law in one header of plain data and YUXI_HD
+// functions that any backend compiles (docs/ARCHITECTURE.md, "The seam for a second backend"):
 //   name                            the scene's [contact] model, unique
 //   Coeffs                          the coefficients of one pair of materials
-//   fields(visitor, coeffs)         their scene keys (scene_fields.hpp)
-//   example()                       coefficients in the model units of `yuxi collide`
-//                                   (example_units.hpp)
 //   State                           per contact: trivially copyable (saved as bytes), with
 //                                   operator== and mirrored() (the contact seen from j)
-//   contact_time(c, m*, R*, v)      for the time-step check
+//   contact_time(c, m*, R*, v)      for the time-step check (host)
 //   evaluate(geometry, c, state)    a touching contact: force, torques and energies, pure
 //   release(c, state)               a contact that opens: resets the state and returns the
 //                                   energy it still held
-// and optionally:
-//   with_materials(c, E1, nu1, E2, nu2)  coefficients that also depend on the two materials'
-//                                        youngs_modulus and poisson_ratio (the reader requires
-//                                        them in [material.<name>])
-//   lammps_preset(c)                the defaults of the scene's preset = "lammps"
+// and optionally
 //   using Batch = ...               SIMD lanes for the pair loop (sim/contact_forces.hpp)
+// and, beside the law in <model>_scene.hpp, its scene side ModelScene<Model> (model_scene.hpp):
+//   fields(visitor, coeffs)         the scene keys (scene_fields.hpp)
+//   example()                       coefficients in the model units of `yuxi collide`
+//                                   (example_units.hpp)
+//   with_materials(c, E1, nu1, E2, nu2)  (optional) coefficients that also depend on the two
+//                                   materials' youngs_modulus and poisson_ratio
+//   lammps_preset(c)                (optional) the defaults of the scene's preset = "lammps"
+//   columns(state, f)               the state's fields as named columns (state_columns.hpp)
 // The pair loop is templated on the model and dispatched once per step through the variant, so
 // the inner loop has no virtual call. docs/adding-a-contact-model.md walks through adding one.
 #pragma once
 
-#include "contact/hertz_mindlin.hpp"
-#include "contact/hooke.hpp"
-#include "contact/linear_spring_dashpot.hpp"
-#include "contact/luding.hpp"
+#include "contact/hertz_mindlin_scene.hpp"
+#include "contact/hooke_scene.hpp"
+#include "contact/linear_batch.hpp" // (the linear law's CPU batches, host only)
+#include "contact/linear_spring_dashpot_scene.hpp"
+#include "contact/luding_scene.hpp"
 #include "contact/pair_table.hpp"
 #include "contact/scene_fields.hpp"
-#include "contact/thermodynamic.hpp"
+#include "contact/thermodynamic_scene.hpp"
 
 #include <array>
 #include <concepts>
@@ -44,8 +47,8 @@ template <class Model>
 concept ContactModel = requires(const ContactGeometry& g, typename Model::Coeffs& c,
                                 typename Model::State& s, IgnoreFields& v) {
   { Model::name } -> std::convertible_to<std::string_view>;
-  Model::fields(v, c);
-  { Model::example() } -> std::same_as<typename Model::Coeffs>;
+  ModelScene<Model>::fields(v, c);
+  { ModelScene<Model>::example() } -> std::same_as<typename Model::Coeffs>;
   { Model::evaluate(g, c, s) } -> std::same_as<ContactResult>;
   { s.mirrored() } -> std::same_as<typename Model::State>;
   { s == s } -> std::convertible_to<bool>;

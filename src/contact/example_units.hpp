@@ -1,8 +1,8 @@
-// The model units in which every contact model gives example coefficients (Model::example()),
-// the parameter sets of `yuxi collide` (docs/models/thermodynamic-contact.md section 8): two grains
-// of mass m = 1 and radius a = 0.5, so d = 2a = 1 and m* = 1/2; every model's normal stiffness is 1
-// there (Hertz: (4/3) E* sqrt(R*) = 1 at R* = 1/4, i.e. E* = 1.5), friction 0.5, tangential
-// stiffness 2/7 of the normal one where it is free.
+// The model units in which every contact model gives example coefficients (ModelScene<Model>::
+// example()), the parameter sets of `yuxi collide` (docs/models/thermodynamic-contact.md section
+// 8): two grains of mass m = 1 and radius a = 0.5, so d = 2a = 1 and m* = 1/2; every model's normal
+// stiffness is 1 there (Hertz: (4/3) E* sqrt(R*) = 1 at R* = 1/4, i.e. E* = 1.5), friction 0.5,
+// tangential stiffness 2/7 of the normal one where it is free.
 #pragma once
 
 #include "core/units.hpp"

@@ -23,12 +23,11 @@
 #pragma once
 
 #include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 #include "core/vec3.hpp"
 
 #include <cmath>
 #include <cstdint>
-#include <string>
-#include <string_view>
 
 namespace yuxi {
 
@@ -49,14 +48,7 @@ struct SliderState {
   bool operator==(const SliderState&) const = default;
   // k |s|^2 / 2 after the last step [energy] (computed: the state stays small, 40 bytes, and
   // the pair loop reads less memory)
-  double stored() const { return 0.5 * k * norm2(spring); }
-  // Its columns for analysis (contact/state_columns.hpp), named after the degree of freedom.
-  template <class Field> void fields(std::string_view dof, Field&& f) const {
-    const std::string name(dof);
-    f(name + "_spring", spring);
-    f(name + "_sliding", static_cast<double>(sliding));
-    f(name + "_stiffness", k);
-  }
+  YUXI_HD double stored() const { return 0.5 * k * norm2(spring); }
 };
 
 // The springs of a frictional contact: tangential and (optional) rolling.
@@ -66,14 +58,10 @@ struct TangentialRollingState {
   bool operator==(const TangentialRollingState&) const = default;
   // The same contact seen from the partner: n turns over, so the tangential spring changes
   // sign; the rolling displacement -a n x (w_i - w_j) does not.
-  TangentialRollingState mirrored() const {
+  YUXI_HD TangentialRollingState mirrored() const {
     TangentialRollingState m = *this;
     m.tangential.spring = -tangential.spring;
     return m;
-  }
-  template <class Field> void fields(Field&& f) const {
-    tangential.fields("tangential", f);
-    rolling.fields("rolling", f);
   }
 };
 
@@ -91,7 +79,7 @@ struct SliderResult {
 };
 
 // Keeps s in the plane normal to n with its length (tangential and rolling springs).
-inline Vec3 carry_in_plane(const Vec3& s, const Vec3& n) {
+YUXI_HD inline Vec3 carry_in_plane(const Vec3& s, const Vec3& n) {
   const double len2 = norm2(s);
   if (len2 == 0.0) return s;
   const Vec3 p = s - dot(s, n) * n;
@@ -100,14 +88,14 @@ inline Vec3 carry_in_plane(const Vec3& s, const Vec3& n) {
 }
 
 // Keeps s along n with its length and sign (torsion spring).
-inline Vec3 carry_along(const Vec3& s, const Vec3& n) {
+YUXI_HD inline Vec3 carry_along(const Vec3& s, const Vec3& n) {
   const double along = dot(s, n);
   return (along >= 0 ? 1.0 : -1.0) * norm(s) * n;
 }
 
 // One step of the slider. `carried` is the spring already carried into the current frame.
-YUXI_ALWAYS_INLINE SliderResult slide(SliderState& st, const Vec3& carried, const Vec3& u,
-                                      double normal, const SliderLaw& law, double dt) {
+YUXI_ALWAYS_INLINE YUXI_HD SliderResult slide(SliderState& st, const Vec3& carried, const Vec3& u,
+                                              double normal, const SliderLaw& law, double dt) {
   SliderResult r;
   const Vec3 increment = u * dt;
   Vec3 spring = carried + increment;
@@ -144,7 +132,7 @@ YUXI_ALWAYS_INLINE SliderResult slide(SliderState& st, const Vec3& carried, cons
 }
 
 // The spring of a contact that opens: its energy is lost.
-inline double release(SliderState& st) {
+YUXI_HD inline double release(SliderState& st) {
   const double e = st.stored();
   st = SliderState{};
   return e;

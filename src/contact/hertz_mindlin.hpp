@@ -27,7 +27,8 @@
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
 #include "contact/rolling_resistance.hpp"
-#include "contact/scene_fields.hpp"
+#include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 
 #include <cstdint>
 #include <string_view>
@@ -51,25 +52,6 @@ struct HertzMindlin {
   static Coeffs mix(double youngs_1, double poisson_1, double youngs_2, double poisson_2,
                     double restitution, double friction);
 
-  // The scene keys of the coefficients (scene_fields.hpp); E* and G* come from the materials.
-  template <class V> static void fields(V& v, Coeffs& c) {
-    v.fraction("restitution", c.restitution);
-    v.optional("friction", c.friction);
-    v.optional("mu_r", c.mu_r);
-    rolling_model_field(v, c.rolling_model);
-  }
-  // The coefficients read from a scene completed with the two materials' elastic constants.
-  static Coeffs with_materials(const Coeffs& c, double youngs_1, double poisson_1, double youngs_2,
-                               double poisson_2) {
-    Coeffs mixed = mix(youngs_1, poisson_1, youngs_2, poisson_2, c.restitution, c.friction);
-    mixed.mu_r = c.mu_r;
-    mixed.rolling_model = c.rolling_model;
-    return mixed;
-  }
-  // Example coefficients in model units (example_units.hpp): (4/3) E* sqrt(R*) = 1, restitution
-  // 0.88, friction 0.5.
-  static Coeffs example();
-
   using State = TangentialRollingState;
 
   // Hertz contact time at impact speed v (docs/models/validation.md section 2):
@@ -77,8 +59,56 @@ struct HertzMindlin {
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
 
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
-  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
-  static double release(const Coeffs&, State& s);
+  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  YUXI_HD static double release(const Coeffs&, State& s) {
+    const double e = yuxi::release(s.tangential) + yuxi::release(s.rolling);
+    s = State{};
+    return e;
+  }
 };
+
+// Defined here so that the pair loop, templated on the model, inlines it.
+YUXI_ALWAYS_INLINE YUXI_HD ContactResult HertzMindlin::evaluate(const ContactGeometry& g,
+                                                                const Coeffs& c, State& s) {
+  const double sqrt_5_6 = std::sqrt(5.0 / 6.0);
+  ContactResult r;
+  r.touching = true;
+  const auto [vn, vt] = split_contact_velocity(g);
+
+  const double root = std::sqrt(g.r_eff * g.overlap); // sqrt(R* delta)
+  const double s_n = 2 * c.e_star * root;             // normal tangent stiffness dF/d(delta)
+  const double s_t = 8 * c.g_star * root;             // Mindlin tangential stiffness
+  const double eta_n = -2 * sqrt_5_6 * c.beta * std::sqrt(s_n * g.m_eff);
+  const double eta_t = -2 * sqrt_5_6 * c.beta * std::sqrt(s_t * g.m_eff);
+
+  const double fn = (4.0 / 3.0) * c.e_star * root * g.overlap - eta_n * vn;
+  const SliderLaw tangential{s_t, eta_t, c.friction, c.friction, CapOn::total};
+  // No friction while the dashpot pulls the surfaces together (F_n < 0 at the end of an
+  // impact): there is no compression to resist sliding.
+  const SliderResult t = slide(s.tangential, carry_in_plane(s.tangential.spring, g.n), vt,
+                               std::max(fn, 0.0), tangential, g.dt);
+
+  r.add_contact_force(g, fn, t.force);
+  r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored();
+  r.dissipated = eta_n * vn * vn * g.dt + t.dissipated;
+  if (c.mu_r > 0 && c.rolling_model == RollingModel::constant_torque) {
+    const RollingTorque rr = constant_rolling_torque(g, fn, c.mu_r);
+    r.torque_i += rr.torque;
+    r.torque_j -= rr.torque;
+    r.dissipated += rr.dissipated;
+  } else if (c.mu_r > 0) {
+    // (LIGGGHTS epsd2: the torque stiffness 2.25 mu_r^2 S_n R*^2, as a force on u_r)
+    const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
+    const SliderLaw rolling{2.25 * c.mu_r * c.mu_r * s_n, 0.0, c.mu_r, c.mu_r, CapOn::total};
+    const SliderResult rr = slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r,
+                                  std::max(fn, 0.0), rolling, g.dt);
+    const Vec3 torque = g.r_eff * cross(g.n, rr.force);
+    r.torque_i += torque;
+    r.torque_j -= torque;
+    r.elastic += s.rolling.stored();
+    r.dissipated += rr.dissipated;
+  }
+  return r;
+}
 
 } // namespace yuxi

@@ -21,9 +21,8 @@
 #pragma once
 
 #include "contact/contact_geometry.hpp"
-#include "contact/example_units.hpp"
-#include "contact/scene_fields.hpp"
 #include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 #include "core/units.hpp"
 
 #include <cmath>
@@ -40,23 +39,10 @@ struct Hooke {
     double gamma_n = 0; // normal damping rate (force = m_e gamma_n v_n) [1/time]
   };
 
-  // The scene keys of the coefficients (scene_fields.hpp).
-  template <class V> static void fields(V& v, Coeffs& c) {
-    v.required("k_n", c.k_n);
-    v.optional("gamma_n", c.gamma_n);
-  }
-  // Example coefficients in model units (example_units.hpp): k_n = 1 and the damping of
-  // restitution 0.88.
-  static Coeffs example() {
-    using namespace example_units;
-    return {normal_stiffness, linear_damping_rate(restitution, normal_stiffness, reduced_mass)};
-  }
-
   // Nothing to remember between steps: the force follows from the overlap and the velocity.
   struct State {
     bool operator==(const State&) const = default;
-    State mirrored() const { return *this; }
-    template <class Field> void fields(Field&&) const {}
+    YUXI_HD State mirrored() const { return *this; }
   };
 
   // t_c = pi / sqrt(k_n/m_eff - gamma_n^2/4) [time]; infinite when overdamped.
@@ -66,8 +52,8 @@ struct Hooke {
   }
 
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
-  YUXI_ALWAYS_INLINE static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c,
-                                                   State&) {
+  YUXI_ALWAYS_INLINE YUXI_HD static ContactResult evaluate(const ContactGeometry& g,
+                                                           const Coeffs& c, State&) {
     ContactResult r;
     r.touching = true;
     const double vn = dot(g.v_rel, g.n);
@@ -79,7 +65,7 @@ struct Hooke {
   }
 
   // The contact has opened: the state is fresh again and no energy is left in it.
-  static double release(const Coeffs&, State& s) {
+  YUXI_HD static double release(const Coeffs&, State& s) {
     s = State{};
     return 0.0;
   }

@@ -1,6 +1,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 
 #include "contact/example_units.hpp"
+#include "contact/linear_spring_dashpot_scene.hpp"
 #include "core/units.hpp"
 
 #include <limits>
@@ -12,7 +13,7 @@ double LinearSpringDashpot::contact_time(const Coeffs& c, double m_eff, double, 
   return w2 > 0 ? pi / std::sqrt(w2) : std::numeric_limits<double>::infinity();
 }
 
-LinearSpringDashpot::Coeffs LinearSpringDashpot::example() {
+LinearSpringDashpot::Coeffs ModelScene<LinearSpringDashpot>::example() {
   using namespace example_units;
   Coeffs c;
   c.k_n = normal_stiffness;
@@ -20,12 +21,6 @@ LinearSpringDashpot::Coeffs LinearSpringDashpot::example() {
   c.gamma_n = linear_damping_rate(restitution, normal_stiffness, reduced_mass);
   c.mu_s = c.mu_d = friction;
   return c;
-}
-
-double LinearSpringDashpot::release(const Coeffs&, State& s) {
-  const double e = yuxi::release(s.tangential) + yuxi::release(s.rolling);
-  s = State{};
-  return e;
 }
 
 } // namespace yuxi

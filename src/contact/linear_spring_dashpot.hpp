@@ -32,8 +32,8 @@
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
 #include "contact/rolling_resistance.hpp"
-#include "contact/scene_fields.hpp"
 #include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 
 #include <string_view>
 
@@ -58,36 +58,8 @@ struct LinearSpringDashpot {
     Carry carry = Carry::rotate;
     RollingModel rolling_model = RollingModel::elastic_plastic;
 
-    bool rolling() const { return k_r > 0 || mu_r > 0; }
+    YUXI_HD bool rolling() const { return k_r > 0 || mu_r > 0; }
   };
-
-  // The scene keys of the coefficients (scene_fields.hpp).
-  template <class V> static void fields(V& v, Coeffs& c) {
-    v.required("k_n", c.k_n);
-    v.optional("k_t", c.k_t);
-    v.optional("gamma_n", c.gamma_n);
-    v.optional("gamma_t", c.gamma_t);
-    friction_fields(v, c.mu_s, c.mu_d);
-    slider_fields(v, "k_r", c.k_r, "gamma_r", c.gamma_r, "mu_r", c.mu_r);
-    rolling_model_field(v, c.rolling_model);
-    v.check(!(c.rolling_model == RollingModel::elastic_plastic && c.mu_r > 0 && c.k_r == 0), "mu_r",
-            "mu_r without k_r resists nothing in the elastic-plastic rolling model: give k_r "
-            "(2.25 mu_r^2 k_n is usual: docs/models/rolling.md), or rolling_model = "
-            "\"constant_torque\"");
-    v.choice("friction_cap", c.friction_cap,
-             {{"spring", CapOn::spring},
-              {"total", CapOn::total},
-              {"total_lammps", CapOn::total_lammps}});
-    v.choice("tangential_carry", c.carry, {{"rotate", Carry::rotate}, {"project", Carry::project}});
-  }
-  // The scene's preset = "lammps": LAMMPS gran/hooke/history's conventions as the defaults.
-  static void lammps_preset(Coeffs& c) {
-    c.friction_cap = CapOn::total_lammps;
-    c.carry = Carry::project;
-  }
-  // Example coefficients in model units (example_units.hpp): k_n = 1, k_t = 2/7, mu = 0.5 and
-  // the damping of restitution 0.88.
-  static Coeffs example();
 
   using State = TangentialRollingState;
   // The pair loop evaluates the law in SIMD batches where every pair of materials allows it.
@@ -98,14 +70,18 @@ struct LinearSpringDashpot {
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
 
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
-  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
   // The contact has opened: resets the state and returns the elastic energy it still held.
-  static double release(const Coeffs& c, State& s);
+  YUXI_HD static double release(const Coeffs&, State& s) {
+    const double e = yuxi::release(s.tangential) + yuxi::release(s.rolling);
+    s = State{};
+    return e;
+  }
 };
 
 // Defined here so that the pair loop, templated on the model, inlines it.
-YUXI_ALWAYS_INLINE ContactResult LinearSpringDashpot::evaluate(const ContactGeometry& g,
-                                                               const Coeffs& c, State& s) {
+YUXI_ALWAYS_INLINE YUXI_HD ContactResult LinearSpringDashpot::evaluate(const ContactGeometry& g,
+                                                                       const Coeffs& c, State& s) {
   ContactResult r;
   r.touching = true;
   const auto [vn, vt] = split_contact_velocity(g);
@@ -141,6 +117,3 @@ YUXI_ALWAYS_INLINE ContactResult LinearSpringDashpot::evaluate(const ContactGeom
 }
 
 } // namespace yuxi
-
-// The batch evaluates the law above: every user of the model gets both.
-#include "contact/linear_batch.hpp" // IWYU pragma: export

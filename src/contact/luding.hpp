@@ -28,8 +28,10 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
-#include "contact/scene_fields.hpp"
+#include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 
+#include <algorithm>
 #include <string_view>
 
 namespace yuxi {
@@ -48,24 +50,6 @@ struct Luding {
     double k_o = 0, gamma_o = 0, mu_o = 0;           // torsion
   };
 
-  // The scene keys of the coefficients (scene_fields.hpp).
-  template <class V> static void fields(V& v, Coeffs& c) {
-    v.required("k1", c.k1);
-    v.optional_or("kp", c.kp, c.k1);
-    v.check(c.kp >= c.k1, "kp", fmt::format("kp = {} must be at least k1 = {}", c.kp, c.k1));
-    v.optional("kc", c.kc);
-    v.fraction("phi_f", c.phi_f);
-    v.optional("gamma_n", c.gamma_n);
-    v.optional("k_t", c.k_t);
-    v.optional("gamma_t", c.gamma_t);
-    friction_fields(v, c.mu_s, c.mu_d);
-    slider_fields(v, "k_r", c.k_r, "gamma_r", c.gamma_r, "mu_r", c.mu_r);
-    slider_fields(v, "k_o", c.k_o, "gamma_o", c.gamma_o, "mu_o", c.mu_o);
-  }
-  // Example coefficients in model units (example_units.hpp): k1 = 1 and plastic hysteresis up
-  // to kp = 5, so e = sqrt(k1/k2(delta_max)) falls from 1 to sqrt(1/5); k_t = 2/7, mu = 0.5.
-  static Coeffs example();
-
   struct State {
     double delta_max = 0; // largest overlap reached (lowered on the adhesive branch)
     double delta = 0;     // overlap at the last step
@@ -75,28 +59,87 @@ struct Luding {
     bool operator==(const State&) const = default;
     // Seen from the partner, n turns over: the tangential and torsion springs change sign,
     // the rolling spring does not.
-    State mirrored() const {
+    YUXI_HD State mirrored() const {
       State m = *this;
       m.tangential.spring = -tangential.spring;
       m.torsion.spring = -torsion.spring;
       return m;
-    }
-    template <class Field> void fields(Field&& f) const {
-      f("delta_max", delta_max);
-      f("delta", delta);
-      f("f_hys", f_hys);
-      f("stored_n", stored_n);
-      tangential.fields("tangential", f);
-      rolling.fields("rolling", f);
-      torsion.fields("torsion", f);
     }
   };
 
   // Half period of the stiffest (unloading) spring with damping: pi / sqrt(kp/m - gamma^2/4).
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
-  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
-  static double release(const Coeffs& c, State& s);
+  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  YUXI_HD static double release(const Coeffs&, State& s) {
+    const double e = s.stored_n + yuxi::release(s.tangential) + yuxi::release(s.rolling) +
+                     yuxi::release(s.torsion);
+    s = State{};
+    return e;
+  }
+  // k2(delta_max) (above): kp once delta_max >= delta_p.
+  YUXI_HD static double unloading_stiffness(const Coeffs& c, double delta_max, double a12) {
+    if (c.kp <= c.k1) return c.k1;
+    const double delta_p = c.kp / (c.kp - c.k1) * c.phi_f * 2 * a12;
+    return delta_max >= delta_p ? c.kp : c.k1 + (c.kp - c.k1) * delta_max / delta_p;
+  }
 };
+
+// Defined here so that the pair loop, templated on the model, inlines it.
+YUXI_ALWAYS_INLINE YUXI_HD ContactResult Luding::evaluate(const ContactGeometry& g, const Coeffs& c,
+                                                          State& s) {
+  ContactResult r;
+  r.touching = true;
+  const double delta = g.overlap;
+  const double a12 = g.r_eff;
+
+  // Hysteretic normal spring.
+  double k2 = unloading_stiffness(c, s.delta_max, a12);
+  double delta0 = (1 - c.k1 / k2) * s.delta_max;
+  double f_hys = k2 * (delta - delta0);
+  if (f_hys >= c.k1 * delta) { // virgin loading
+    f_hys = c.k1 * delta;
+    s.delta_max = delta;
+    k2 = unloading_stiffness(c, delta, a12);
+    delta0 = (1 - c.k1 / k2) * delta;
+  } else if (f_hys <= -c.kc * delta) { // adhesive limit: move the unloading branch here
+    f_hys = -c.kc * delta;
+    s.delta_max = (k2 + c.kc) / (k2 - c.k1) * delta;
+    delta0 = (1 - c.k1 / k2) * s.delta_max;
+  }
+  const double stored_n = 0.5 * k2 * (delta - delta0) * (delta - delta0);
+  const double work_in = 0.5 * (s.f_hys + f_hys) * (delta - s.delta);
+  const double normal_loss = work_in - (stored_n - s.stored_n);
+  s.delta = delta;
+  s.f_hys = f_hys;
+  s.stored_n = stored_n;
+
+  const auto [vn, vt] = split_contact_velocity(g);
+  const double fn = f_hys - g.m_eff * c.gamma_n * vn;
+  const double pressing = std::max(fn + c.kc * delta, 0.0); // no friction without compression
+
+  const SliderLaw tangential{c.k_t, g.m_eff * c.gamma_t, c.mu_s, c.mu_d, CapOn::total};
+  const SliderResult t =
+      slide(s.tangential, carry_in_plane(s.tangential.spring, g.n), vt, pressing, tangential, g.dt);
+  const Vec3 w_rel = g.w_i - g.w_j;
+  const Vec3 u_r = -a12 * cross(g.n, w_rel);
+  const SliderLaw rolling{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total};
+  const SliderResult rr =
+      slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r, pressing, rolling, g.dt);
+  const Vec3 u_o = (a12 * dot(w_rel, g.n)) * g.n;
+  const SliderLaw torsion{c.k_o, g.m_eff * c.gamma_o, c.mu_o, c.mu_o, CapOn::total};
+  const SliderResult tor =
+      slide(s.torsion, carry_along(s.torsion.spring, g.n), u_o, pressing, torsion, g.dt);
+
+  r.add_contact_force(g, fn, t.force);
+  const Vec3 roll = a12 * cross(g.n, rr.force);
+  const Vec3 twist = a12 * tor.force;
+  r.torque_i += roll + twist;
+  r.torque_j -= roll + twist;
+  r.elastic = stored_n + s.tangential.stored() + s.rolling.stored() + s.torsion.stored();
+  r.dissipated = g.m_eff * c.gamma_n * vn * vn * g.dt + normal_loss + t.dissipated + rr.dissipated +
+                 tor.dissipated;
+  return r;
+}
 
 } // namespace yuxi

@@ -30,8 +30,8 @@ struct RollingTorque {
 
 // The constant-torque model: mu_r R* |F_n| against the relative rolling. Its work this step,
 // |torque| |w_r| dt, is dissipated.
-inline RollingTorque constant_rolling_torque(const ContactGeometry& g, double normal_force,
-                                             double mu_r) {
+YUXI_HD inline RollingTorque constant_rolling_torque(const ContactGeometry& g, double normal_force,
+                                                     double mu_r) {
   RollingTorque r;
   const Vec3 w = g.w_i - g.w_j;
   const Vec3 w_r = w - dot(w, g.n) * g.n;

@@ -1,10 +1,12 @@
 // A contact model's per-contact state as named numeric columns, for analysis (the Python API's
-// sim.contacts()). Every model's State lists its fields in one member,
-//   template <class Field> void fields(Field&& f) const;
+// sim.contacts()). Every model's State lists its fields in one function beside the model
+// (model_scene.hpp), found by argument-dependent lookup,
+//   template <class Field> void columns(const State& s, Field&& f);
 // which calls f(name, value) with a double or a Vec3 (three columns) for each field, in a fixed
 // order. Booleans and counters come out as 0 and 1.
 #pragma once
 
+#include "contact/frictional_spring.hpp"
 #include "core/vec3.hpp"
 
 #include <cstddef>
@@ -13,6 +15,18 @@
 #include <vector>
 
 namespace yuxi {
+
+// A spring-dashpot-slider's columns, named after its degree of freedom.
+template <class Field> void columns(const SliderState& s, std::string_view dof, Field&& f) {
+  const std::string name(dof);
+  f(name + "_spring", s.spring);
+  f(name + "_sliding", static_cast<double>(s.sliding));
+  f(name + "_stiffness", s.k);
+}
+template <class Field> void columns(const TangentialRollingState& s, Field&& f) {
+  columns(s.tangential, "tangential", f);
+  columns(s.rolling, "rolling", f);
+}
 
 struct StateField {
   std::string name;
@@ -29,7 +43,7 @@ template <class State> std::vector<StateField> state_fields() {
     }
   };
   std::vector<StateField> out;
-  State{}.fields(Names{out});
+  columns(State{}, Names{out});
   return out;
 }
 
@@ -42,7 +56,7 @@ template <class State> void append_state_values(const State& state, std::vector<
       out.insert(out.end(), {v.x, v.y, v.z});
     }
   };
-  state.fields(Values{out});
+  columns(state, Values{out});
 }
 
 } // namespace yuxi

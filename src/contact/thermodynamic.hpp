@@ -35,9 +35,13 @@
 #pragma once
 
 #include "contact/contact_geometry.hpp"
-#include "contact/scene_fields.hpp"
+#include "contact/frictional_spring.hpp"
 #include "contact/thermodynamic_law.hpp"
+#include "core/always_inline.hpp"
+#include "core/host_device.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string_view>
 
@@ -58,31 +62,19 @@ struct Thermodynamic {
     double tau_hat = 5;     // decay time of w_R in units of t0 (22) [-]
     ViscosityChannel viscosity_to = ViscosityChannel::relaxation;
 
-    thermo::ExampleModel model() const;
+    YUXI_HD thermo::ExampleModel model() const {
+      thermo::ExampleModel m;
+      m.xi = thermo::xi_of_friction(friction);
+      m.gear = gear;
+      m.eta_hat = eta_hat;
+      m.eta_power = eta_power;
+      m.lambda_hat = lambda_hat;
+      m.tau_hat = tau_hat;
+      m.epsilon = 0;
+      m.viscosity_to_heat = viscosity_to == ViscosityChannel::heat;
+      return m;
+    }
   };
-
-  // The scene keys: the example model of the law in dimensionless numbers (scene_fields.hpp);
-  // E* comes from the materials.
-  template <class V> static void fields(V& v, Coeffs& c) {
-    v.optional("friction", c.friction);
-    v.check(c.friction > 0, "friction",
-            "must be positive: it fixes xi = 2 / friction^2 of the elastic energy");
-    v.fraction("gear", c.gear);
-    v.optional("eta_hat", c.eta_hat);
-    v.optional("eta_power", c.eta_power);
-    v.optional("lambda_hat", c.lambda_hat);
-    v.optional("tau_hat", c.tau_hat);
-    v.check(c.tau_hat > 0, "tau_hat", "the decay time of the relaxation energy must be positive");
-    v.choice("viscosity_to", c.viscosity_to,
-             {{"relaxation", ViscosityChannel::relaxation}, {"heat", ViscosityChannel::heat}});
-  }
-  // The coefficients read from a scene completed with the two materials' elastic constants:
-  // E* mixed as for Hertz-Mindlin, so that k = (4/3) E* sqrt(R*).
-  static Coeffs with_materials(const Coeffs& c, double youngs_1, double poisson_1, double youngs_2,
-                               double poisson_2);
-  // Example coefficients in model units (example_units.hpp): k = (4/3) E* sqrt(R*) = 1 and the
-  // spec's parameter set REF (section 6.3).
-  static Coeffs example();
 
   struct State {
     double un = 0;          // normal spring deformation u_n <= 0 [length]
@@ -96,39 +88,112 @@ struct Thermodynamic {
     double owed_energy = 0; // eta |v_c|^2 dt/2 of the last step, booked if the contact opens
     bool operator==(const State&) const = default;
     // Seen from the partner, n turns over and with it the tangential spring.
-    State mirrored() const {
+    YUXI_HD State mirrored() const {
       State m = *this;
       m.ut = -ut;
       m.n_prev = -n_prev;
       m.owed = -owed;
       return m;
     }
-    template <class Field> void fields(Field&& f) const {
-      f("un", un);
-      f("ut", ut);
-      f("w_relax", w_relax);
-      f("stored", stored);
-      f("n_prev", n_prev);
-      f("delta_prev", delta_prev);
-      f("owed", owed);
-      f("owed_energy", owed_energy);
-    }
   };
 
   // The spring constant of (19) for a contact of reduced radius R*: k = (4/3) E* sqrt(R*).
-  static double spring_constant(const Coeffs& c, double r_eff) {
+  YUXI_HD static double spring_constant(const Coeffs& c, double r_eff) {
     return 4.0 / 3.0 * c.e_star * std::sqrt(r_eff);
   }
   // The example coefficients of one contact: k = (4/3) E* sqrt(R*), d = a_i + a_j (2 a_i against
   // a flat wall), reference mass 2 m*.
-  static thermo::ExampleCoefficients coefficients(const Coeffs& c, double m_eff, double r_eff,
-                                                  double d);
+  YUXI_HD static thermo::ExampleCoefficients coefficients(const Coeffs& c, double m_eff,
+                                                          double r_eff, double d) {
+    return thermo::ExampleCoefficients::of(c.model(), spring_constant(c, r_eff), m_eff, d);
+  }
 
   // Hertz contact time (T1): t_c = 2.9432 (5 m* / (4 k G^{5/2}))^{2/5} v^{-1/5}.
   static double contact_time(const Coeffs& c, double m_eff, double r_eff, double v_impact);
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
-  static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
-  static double release(const Coeffs& c, State& s);
+  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
+  YUXI_HD static double release(const Coeffs&, State& s) {
+    const double e = s.stored + s.w_relax + s.owed_energy;
+    s = State{};
+    return e;
+  }
+  // u rotated by the rotation that takes the unit vector `from` to the unit vector `to` about
+  // their common normal (Rodrigues, with a = from x to, c = from . to):
+  // u' = c u + a x u + a (a . u) / (1 + c).
+  YUXI_HD static Vec3 rotate_minimal(const Vec3& u, const Vec3& from, const Vec3& to) {
+    const double c = dot(from, to);
+    if (c <= -1.0 + 1e-12) return -u; // the normal turned over in one step: no unique rotation
+    const Vec3 a = cross(from, to);
+    return c * u + cross(a, u) + a * (dot(a, u) / (1 + c));
+  }
 };
+
+// Defined here so that the pair loop, templated on the model, inlines it.
+YUXI_ALWAYS_INLINE YUXI_HD ContactResult Thermodynamic::evaluate(const ContactGeometry& g,
+                                                                 const Coeffs& c, State& s) {
+  ContactResult r;
+  r.touching = true;
+  const double delta = g.overlap;
+  const bool flat_wall = g.a_j == 0.0;
+  const double d = flat_wall ? 2 * g.a_i : g.a_i + g.a_j;
+  const thermo::ExampleCoefficients co = coefficients(c, g.m_eff, g.r_eff, d);
+  const double k = co.k, xi = co.xi, dt = g.dt;
+
+  // Branch lengths (spec 2.2): the contact point sits delta/2 inside each sphere (at the plane
+  // of a flat wall).
+  ContactGeometry b = g;
+  b.a_i = flat_wall ? g.a_i - delta : g.a_i - 0.5 * delta;
+  b.a_j = flat_wall ? 0.0 : g.a_j - 0.5 * delta;
+  const auto [vn, vt] = split_contact_velocity(b);
+
+  // a. carry the tangential spring into the current tangent plane.
+  Vec3 ut = s.ut;
+  if (norm2(s.n_prev) > 0) ut = carry_in_plane(rotate_minimal(ut, s.n_prev, g.n), g.n);
+  // b. gearbox, (30)-(31) with lambda_n = 0: exact primitive for u_n, midpoint G for u_t.
+  double un = s.un - co.gear * (thermo::heaviside_primitive(delta, d, co.epsilon) -
+                                thermo::heaviside_primitive(s.delta_prev, d, co.epsilon));
+  un = std::min(un, 0.0);
+  ut += co.gearbox(0.5 * (delta + s.delta_prev)) * dt * vt;
+  const double w_before = thermo::elastic_energy(k, xi, un, norm2(ut));
+  // c. tangential relaxation (40), exact for fixed u_n.
+  const double kappa = thermo::tangential_stiffness(k, xi, un);
+  ut *= std::exp(-co.relaxation_rate(s.w_relax) * kappa * dt);
+  // d. yield (41): back onto the stability boundary (35).
+  const double limit = thermo::yield_limit(xi, un);
+  const double ut_len = norm(ut);
+  if (ut_len > limit) ut *= ut_len > 0 ? limit / ut_len : 0.0;
+  const double w_el = thermo::elastic_energy(k, xi, un, norm2(ut));
+  double heat = w_before - w_el;
+  // e. w_R decays into heat (22).
+  double w_relax = s.w_relax * std::exp(-dt / co.tau);
+  heat += s.w_relax - w_relax;
+
+  // Force (28)-(29) and the viscous power of (32)/(33).
+  const double gear = co.gearbox(delta);
+  const double eta = co.viscosity(delta);
+  const double pi_n = thermo::normal_spring_force(k, xi, un, norm2(ut));
+  const Vec3 pi_t = -kappa * ut;
+  r.add_contact_force(b, gear * pi_n - eta * vn, gear * pi_t - eta * vt);
+  const Vec3 vc = vn * g.n + vt;
+  const double viscous = eta * norm2(vc) * dt;
+  const double booked = dot(s.owed, vc) + 0.5 * viscous;
+  s.owed = 0.5 * eta * dt * vc;
+  s.owed_energy = 0.5 * viscous;
+  if (co.viscosity_to_heat)
+    heat += booked;
+  else
+    w_relax += booked;
+
+  s.un = un;
+  s.ut = ut;
+  s.w_relax = w_relax;
+  s.stored = w_el;
+  s.n_prev = g.n;
+  s.delta_prev = delta;
+  r.elastic = w_el;
+  r.relaxation = w_relax;
+  r.dissipated = heat;
+  return r;
+}
 
 } // namespace yuxi

@@ -10,6 +10,8 @@
 // relaxation energy, a buffer between mechanical energy and heat (the "two-stage irreversibility").
 #pragma once
 
+#include "core/host_device.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,7 +19,7 @@ namespace yuxi::thermo {
 
 // Elastic energy (19) [RECON-H], c = 0: w = k (-u_n)^{1/2} ((2/5) u_n^2 + u_t^2 / xi) [J],
 // k in N/m^{3/2}, xi dimensionless; ut2 = |u_t|^2.
-inline double elastic_energy(double k, double xi, double un, double ut2) {
+YUXI_HD inline double elastic_energy(double k, double xi, double un, double ut2) {
   const double x = std::max(-un, 0.0);
   return k * std::sqrt(x) * (0.4 * x * x + ut2 / xi);
 }
@@ -25,7 +27,7 @@ inline double elastic_energy(double k, double xi, double un, double ut2) {
 // Normal spring force (20) [RECON-H]: pi_n = -dw/du_n = k ((-u_n)^{3/2} + u_t^2 / (2 xi
 // (-u_n)^{1/2})). Inside the stable region (35) u_t = 0 whenever u_n = 0, so the second term is
 // taken as 0 there.
-inline double normal_spring_force(double k, double xi, double un, double ut2) {
+YUXI_HD inline double normal_spring_force(double k, double xi, double un, double ut2) {
   const double x = std::max(-un, 0.0);
   if (x == 0.0) return 0.0;
   const double root = std::sqrt(x);
@@ -34,26 +36,26 @@ inline double normal_spring_force(double k, double xi, double un, double ut2) {
 
 // Tangential stiffness in (21) [RECON-H]: pi_t = -dw/du_t = -kappa u_t, kappa =
 // (2k/xi)(-u_n)^{1/2}.
-inline double tangential_stiffness(double k, double xi, double un) {
+YUXI_HD inline double tangential_stiffness(double k, double xi, double un) {
   return 2 * k / xi * std::sqrt(std::max(-un, 0.0));
 }
 
 // Stability (yield) limit (35) [RECON-H]: w is convex iff |u_t| <= sqrt(2 xi) (-u_n), the same
 // as the Coulomb condition (36) |pi_t| <= sqrt(2/xi) pi_n, i.e. a friction coefficient sqrt(2/xi).
-inline double yield_limit(double xi, double un) {
+YUXI_HD inline double yield_limit(double xi, double un) {
   return std::sqrt(2 * xi) * std::max(-un, 0.0);
 }
 
 // The friction coefficient the energy implies (36) and its inverse, xi = 2 / mu^2.
-inline double friction_of(double xi) {
+YUXI_HD inline double friction_of(double xi) {
   return std::sqrt(2 / xi);
 }
-inline double xi_of_friction(double mu) {
+YUXI_HD inline double xi_of_friction(double mu) {
   return 2 / (mu * mu);
 }
 
 // Smoothed Heaviside (42) [RECON-M]: Theta_eps(x) = (1 + tanh(x/eps))/2; eps = 0 is the sharp step.
-inline double heaviside(double x, double eps) {
+YUXI_HD inline double heaviside(double x, double eps) {
   if (eps <= 0) return x > 0 ? 1.0 : 0.0;
   return 0.5 * (1 + std::tanh(x / eps));
 }
@@ -61,7 +63,7 @@ inline double heaviside(double x, double eps) {
 // Its primitive Phi(delta) = integral_{-inf}^{delta} Theta_eps(s/d) ds = (eps d/2) ln(1 + e^{2
 // delta/(eps d)}) (section 5): with G = Theta and lambda_n = 0, u_n = -Phi(delta) exactly. Written
 // to avoid overflow: Phi = max(delta, 0) + (eps d/2) ln(1 + e^{-2|delta|/(eps d)}).
-inline double heaviside_primitive(double delta, double d, double eps) {
+YUXI_HD inline double heaviside_primitive(double delta, double d, double eps) {
   if (eps <= 0) return std::max(delta, 0.0);
   const double w = eps * d;
   return std::max(delta, 0.0) + 0.5 * w * std::log1p(std::exp(-2 * std::abs(delta) / w));
@@ -71,7 +73,7 @@ inline double heaviside_primitive(double delta, double d, double eps) {
 // time t0 = sqrt(m / (k d^{1/2})). The example model's dimensionless numbers are given in them.
 struct Scales {
   double mass, size, time;
-  static Scales of(double k, double m_eff, double d) {
+  YUXI_HD static Scales of(double k, double m_eff, double d) {
     const double m = 2 * m_eff;
     return {m, d, std::sqrt(m / (k * std::sqrt(d)))};
   }
@@ -96,8 +98,8 @@ struct ExampleModel {
   double epsilon = 0;     // width of the smoothed Heaviside (0: sharp)
   bool viscosity_to_heat = false;
 
-  static ExampleModel ref() { return {}; }
-  static ExampleModel e1(double eta_hat) {
+  YUXI_HD static ExampleModel ref() { return {}; }
+  YUXI_HD static ExampleModel e1(double eta_hat) {
     ExampleModel m;
     m.eta_hat = eta_hat;
     m.eta_power = 0;
@@ -110,7 +112,7 @@ struct ExampleCoefficients {
   double k, xi, gear, eta_scale, eta_power, lambda, tau, d, epsilon;
   bool viscosity_to_heat;
 
-  static ExampleCoefficients of(const ExampleModel& p, double k, double m_eff, double d) {
+  YUXI_HD static ExampleCoefficients of(const ExampleModel& p, double k, double m_eff, double d) {
     const Scales s = Scales::of(k, m_eff, d);
     const double root_d = std::sqrt(d);
     return {k,
@@ -124,13 +126,13 @@ struct ExampleCoefficients {
             p.epsilon,
             p.viscosity_to_heat};
   }
-  double gearbox(double delta) const { return gear * heaviside(delta / d, epsilon); }
-  double viscosity(double delta) const {
+  YUXI_HD double gearbox(double delta) const { return gear * heaviside(delta / d, epsilon); }
+  YUXI_HD double viscosity(double delta) const {
     const double on = heaviside(delta / d, epsilon);
     if (on == 0.0) return 0.0;
     return eta_scale * on * (eta_power == 0 ? 1.0 : std::pow(std::max(delta, 0.0) / d, eta_power));
   }
-  double relaxation_rate(double w_relax) const {
+  YUXI_HD double relaxation_rate(double w_relax) const {
     return lambda * std::sqrt(std::max(w_relax, 0.0));
   }
 };

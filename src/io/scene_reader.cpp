@@ -228,7 +228,8 @@ void read_materials(Scene& scene, TomlReader& root) {
   props->finish();
 }
 
-// Reads one model's pair keys (Model::fields, scene_fields.hpp) from a [[contact.pair]] table.
+// Reads one model's pair keys (ModelScene<Model>::fields, scene_fields.hpp) from a [[contact.pair]]
+// table.
 struct FieldReader {
   TomlReader& t;
   void required(std::string_view k, double& x) { x = t.positive(k); }
@@ -264,13 +265,13 @@ struct FieldReader {
 // A model whose coefficients also depend on the materials' elastic constants.
 template <class M>
 concept UsesElasticMaterials = requires(const typename M::Coeffs& c) {
-  { M::with_materials(c, 1.0, 0.3, 1.0, 0.3) } -> std::same_as<typename M::Coeffs>;
+  { ModelScene<M>::with_materials(c, 1.0, 0.3, 1.0, 0.3) } -> std::same_as<typename M::Coeffs>;
 };
 
 // A model that takes the scene's preset = "lammps".
 template <class M>
 concept HasLammpsPreset = requires(typename M::Coeffs& c) {
-  M::lammps_preset(c);
+  ModelScene<M>::lammps_preset(c);
 };
 
 // The names of the models that take preset = "lammps", joined by "or".
@@ -287,9 +288,9 @@ template <class M>
 typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, std::uint8_t b) {
   typename M::Coeffs c{};
   if constexpr (HasLammpsPreset<M>)
-    if (scene.contact_preset == "lammps") M::lammps_preset(c);
+    if (scene.contact_preset == "lammps") ModelScene<M>::lammps_preset(c);
   FieldReader reader{p};
-  M::fields(reader, c);
+  ModelScene<M>::fields(reader, c);
   if constexpr (UsesElasticMaterials<M>) {
     for (std::uint8_t k : {a, b}) {
       const auto& m = scene.material_properties[k];
@@ -302,8 +303,8 @@ typename M::Coeffs read_pair(const Scene& scene, TomlReader& p, std::uint8_t a, 
     const auto& mb = scene.material_properties[b];
     if (std::isinf(ma.youngs_modulus) && std::isinf(mb.youngs_modulus))
       p.fail("materials", "both materials are rigid (youngs_modulus = inf)");
-    c = M::with_materials(c, ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
-                          mb.poisson_ratio);
+    c = ModelScene<M>::with_materials(c, ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                                      mb.poisson_ratio);
   }
   return c;
 }

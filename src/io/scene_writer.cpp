@@ -206,7 +206,7 @@ void write_window(const ActiveWindow& w, toml::table& t) {
   if (std::isfinite(w.until)) t.insert("active_until", w.until);
 }
 
-// Writes one model's pair keys (Model::fields, scene_fields.hpp) into a table.
+// Writes one model's pair keys (ModelScene<Model>::fields, scene_fields.hpp) into a table.
 struct FieldWriter {
   toml::table& t;
   void required(std::string_view k, double& x) { t.insert(k, x); }
@@ -316,7 +316,7 @@ std::string resolved_scene_toml(const Scene& s) {
             toml::table pair{{"materials", toml::array{s.materials[i], s.materials[j]}}};
             auto coeffs = law.coeffs(i, j);
             FieldWriter writer{pair};
-            Model::fields(writer, coeffs);
+            ModelScene<Model>::fields(writer, coeffs);
             pairs.push_back(pair);
           }
       },

@@ -17,7 +17,7 @@ AnyContactLaw builtin_law(const std::string& model) {
   std::visit(
       [](auto& l) {
         using Model = typename std::decay_t<decltype(l)>::model_type;
-        l.coeffs.set(0, 0, Model::example());
+        l.coeffs.set(0, 0, ModelScene<Model>::example());
       },
       law);
   return law;

@@ -12,8 +12,9 @@
 
 namespace yuxi::validation {
 
-// A contact law of the study: a built-in model's example coefficients (Model::example(), in
-// the model units of contact/example_units.hpp) or a scene's first material pair.
+// A contact law of the study: a built-in model's example coefficients
+// (ModelScene<Model>::example(), in the model units of contact/example_units.hpp) or a scene's
+// first material pair.
 struct StudyLaw {
   std::string name;
   AnyContactLaw law;

@@ -33,7 +33,7 @@ std::vector<AnyContactLaw> example_laws() {
   ContactModels::for_each([&](auto model) {
     using Model = typename decltype(model)::type;
     ContactLaw<Model> law{PairTable<typename Model::Coeffs>(1)};
-    law.coeffs.set(0, 0, Model::example());
+    law.coeffs.set(0, 0, ModelScene<Model>::example());
     laws.push_back(law);
   });
   return laws;

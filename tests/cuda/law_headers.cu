@@ -1,0 +1,42 @@
+// Every contact law's header compiles for the device (compile only: no GPU is needed): the
+// laws are written once, as YUXI_HD functions of plain data, and a kernel instantiates each
+// model's evaluate() and release(). CTest compiles this with nvcc where one is installed
+// (tests/CMakeLists.txt); scripts/check-layers.sh keeps host-only includes out of the headers.
+#include "contact/hertz_mindlin.hpp"
+#include "contact/hooke.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/luding.hpp"
+#include "contact/rolling_resistance.hpp"
+#include "contact/thermodynamic.hpp"
+
+namespace yuxi {
+
+template <class Model>
+__global__ void evaluate_contacts(const ContactGeometry* g, const typename Model::Coeffs* c,
+                                  typename Model::State* s, ContactResult* out, double* released,
+                                  int n) {
+  const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (k >= n) return;
+  out[k] = Model::evaluate(g[k], c[0], s[k]);
+  const typename Model::State mirrored = s[k].mirrored();
+  released[k] = Model::release(c[0], s[k]) + (mirrored == s[k] ? 0.0 : 1.0);
+}
+
+template __global__ void evaluate_contacts<LinearSpringDashpot>(const ContactGeometry*,
+                                                                const LinearSpringDashpot::Coeffs*,
+                                                                LinearSpringDashpot::State*,
+                                                                ContactResult*, double*, int);
+template __global__ void evaluate_contacts<HertzMindlin>(const ContactGeometry*,
+                                                         const HertzMindlin::Coeffs*,
+                                                         HertzMindlin::State*, ContactResult*,
+                                                         double*, int);
+template __global__ void evaluate_contacts<Luding>(const ContactGeometry*, const Luding::Coeffs*,
+                                                   Luding::State*, ContactResult*, double*, int);
+template __global__ void evaluate_contacts<Thermodynamic>(const ContactGeometry*,
+                                                          const Thermodynamic::Coeffs*,
+                                                          Thermodynamic::State*, ContactResult*,
+                                                          double*, int);
+template __global__ void evaluate_contacts<Hooke>(const ContactGeometry*, const Hooke::Coeffs*,
+                                                  Hooke::State*, ContactResult*, double*, int);
+
+} // namespace yuxi
