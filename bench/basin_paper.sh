@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # yuxi against LAMMPS on the fish basin at the paper's size (scenes/basin-paper.toml: about
-# 296,000 particles) in LAMMPS conventions (bench/lammps_basin_scene.py: one friction
+# 296,000 particles) in LAMMPS conventions (bench/peers/lammps_basin_scene.py: one friction
 # coefficient, the grain-grain law for every pair). yuxi settles the scene to t = 10 tau on
 # SETTLE_RANKS ranks (about 10 minutes on 2 cores; the settled folder is kept and reused by later
-# invocations), bench/lammps_data_from_dump.py hands that state to LAMMPS (bench/in.basin), and
+# invocations), bench/peers/lammps_data_from_dump.py hands that state to LAMMPS (bench/peers/in.basin), and
 # both codes run STEPS steps of the m = 2 excitation from there, on 1 and 2 ranks, alternating
 # (LAMMPS, yuxi, ...) REPEATS times. Prints the medians, the yuxi/LAMMPS ratios, each code's
 # time breakdown and peak memory per particle, and yuxi's parallel efficiency on this scene.
@@ -18,14 +18,14 @@ settle_ranks=${4:-2}
 yuxi=$PWD/build/release/apps/yuxi/yuxi
 source bench/side_by_side.sh
 
-python3 bench/lammps_basin_scene.py scenes/basin-paper.toml "$work"
+python3 bench/peers/lammps_basin_scene.py scenes/basin-paper.toml "$work"
 if [[ ! -s $settled/particles.lammpstrj ]] || ! ls "$settled"/checkpoints/* > /dev/null 2>&1; then
   echo "settling basin-paper to t = 10 tau on $settle_ranks ranks into $settled"
   "${mpi[@]}" -np "$settle_ranks" "$yuxi" run "$work/basin-vibrating.toml" --t-end 10 \
     -o "$settled" --overwrite --no-progress --no-plots > "$work/settle.log" 2>&1 ||
     { cat "$work/settle.log"; exit 1; }
 fi
-python3 bench/lammps_data_from_dump.py "$settled/particles.lammpstrj" "$work/basin.data" --heavy 2
+python3 bench/peers/lammps_data_from_dump.py "$settled/particles.lammpstrj" "$work/basin.data" --heavy 2
 particles=$(grep -oP '^\d+(?= atoms)' "$work/basin.data")
 skin=$(run_skin "$settled")
 t_end=$(awk -v s="$steps" 'BEGIN {printf "%.6f", 10 + s * 1e-4}')
@@ -36,7 +36,7 @@ for r in $(seq 1 "$repeats"); do
   for np in 1 2; do
     run_lammps paper "$np" "$particles" "$steps" -var datafile "$work/basin.data" \
       -var steps "$steps" -var excite 1 -var xc "$centre" -var yc "$centre" \
-      -var skin "$skin" -in "$PWD/bench/in.basin"
+      -var skin "$skin" -in "$PWD/bench/peers/in.basin"
     rm -rf "$work/resumed" && cp -r "$settled" "$work/resumed"
     run_yuxi paper "$np" --resume "$work/resumed" --t-end "$t_end"
   done

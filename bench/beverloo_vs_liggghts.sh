@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Beverloo case at D_o = 8 d (scenes/bulk/beverloo-Do8.toml: about 38,500 grains in a flat
 # silo of D = 30 d, the orifice opened at 25 tau, refilled from above, 65 tau in all) in yuxi
-# and in LIGGGHTS 3.8 (Debian's `liggghts`, bench/in.beverloo.liggghts: insert/rate/region, the
+# and in LIGGGHTS 3.8 (Debian's `liggghts`, bench/peers/in.beverloo.liggghts: insert/rate/region, the
 # same annulus STL), on NP ranks, one after the other, from the same filled silo (yuxi's state
 # at t = 0). Prints each code's loop time and its discharge rate W [m/tau] over the middle 60 %
 # of the open time (as the validation case B3 measures it: a line fitted to the cumulative mass
@@ -12,7 +12,7 @@ default_work=/tmp/yuxi-beverloo-liggghts default_np=2
 source "$(dirname "$0")/liggghts_side.sh"
 mpi "$np" "$yuxi" run "$repo/scenes/bulk/beverloo-Do8.toml" -o yuxi --overwrite --no-progress \
   --no-plots > yuxi.log 2>&1
-/usr/bin/python3 "$repo/bench/lammps_data_from_dump.py" yuxi/particles.lammpstrj start.data \
+/usr/bin/python3 "$repo/bench/peers/lammps_data_from_dump.py" yuxi/particles.lammpstrj start.data \
   --frame first > /dev/null
 /usr/bin/python3 - "$repo/scenes" <<'PY'
 import math
@@ -24,7 +24,7 @@ ring = [(radius * math.cos(2 * math.pi * k / n), radius * math.sin(2 * math.pi *
         for k in range(n + 1)]
 write_ascii_stl("plug.stl", [((0.0, 0.0, 0.0), ring[k], ring[k + 1]) for k in range(n)], "plug")
 PY
-mpi "$np" liggghts -in "$repo/bench/in.beverloo.liggghts" -var data start.data \
+mpi "$np" liggghts -in "$repo/bench/peers/in.beverloo.liggghts" -var data start.data \
   -var floor "$repo/scenes/bulk/annulus-Do8.stl" -var plug plug.stl -var thermo 625 \
   -log liggghts.log -echo none > liggghts.out 2>&1
 /usr/bin/python3 - <<'PY'

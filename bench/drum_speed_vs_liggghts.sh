@@ -4,7 +4,7 @@
 # size (scenes/drum/make_drum.py --rings --bands), settled by yuxi for 20 tau, then STEPS steps
 # (default 5,000) turning at Froude number 0.1 from the same settled state in both codes, on 1
 # and on NP ranks, yuxi and LIGGGHTS one after the other (REPEATS times, alternating). The
-# contact law is the drum benchmark's (bench/in.drum.liggghts). Prints each run's loop time
+# contact law is the drum benchmark's (bench/peers/in.drum.liggghts). Prints each run's loop time
 # (yuxi: the log's "steps in"; LIGGGHTS: "Loop time of"), without the set-up, and the ratio.
 # usage: bench/drum_speed_vs_liggghts.sh [YUXI] [WORK] [NP] [STEPS] [REPEATS]
 set -euo pipefail
@@ -24,7 +24,7 @@ scene() { # NAME DATA OMEGA T_END SNAPSHOT
 if [ ! -f settled.data ]; then
   scene settle grains.data 0.0 20.0 20.0
   mpi "$np" "$yuxi" run settle.toml -o settle --overwrite --no-progress --no-plots > settle.log 2>&1
-  /usr/bin/python3 "$repo/bench/lammps_data_from_dump.py" settle/particles.lammpstrj settled.data \
+  /usr/bin/python3 "$repo/bench/peers/lammps_data_from_dump.py" settle/particles.lammpstrj settled.data \
     --frame last > /dev/null
 fi
 omega=$(/usr/bin/python3 -c "import math; print(math.sqrt(0.1 / $radius))")
@@ -37,7 +37,7 @@ for repeat in $(seq "$repeats"); do
     mpi "$n" "$yuxi" run turn.toml -o "yuxi-np$n" --overwrite --no-progress --no-plots \
       > "yuxi-np$n.log" 2>&1
     y=$(sed -n 's/.* \([0-9]*\) steps in \([0-9.]*\) s.*/\2/p' "yuxi-np$n.log" | tail -1)
-    mpi "$n" liggghts -in "$repo/bench/in.drum.liggghts" -var data settled.data \
+    mpi "$n" liggghts -in "$repo/bench/peers/in.drum.liggghts" -var data settled.data \
       -var stl drum_ascii.stl -var omega_period "$period" -var steps "$steps" -var every "$steps" \
       -var dump /dev/null -log "liggghts-np$n.log" -echo none > "liggghts-np$n.out" 2>&1
     l=$(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "liggghts-np$n.log" | tail -1)

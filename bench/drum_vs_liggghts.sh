@@ -35,7 +35,7 @@ for kind in stl cylinder; do
   echo "yuxi $kind: $(echo "$end - $start" | bc) s; angle ${a#-} +- $err degrees ($frames frames)"
 done
 start=$(date +%s.%N)
-mpi "$np" liggghts -in "$repo/bench/in.drum.liggghts" \
+mpi "$np" liggghts -in "$repo/bench/peers/in.drum.liggghts" \
   -var data grains.data -var stl drum_ascii.stl -var omega_period "$period" -var steps "$steps" \
   -var every 500 -var dump liggghts.dump -log liggghts.log -echo none > liggghts.out 2>&1
 end=$(date +%s.%N)

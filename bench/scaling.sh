@@ -17,7 +17,7 @@
 # exchanges, the waits and the imbalance cost. On a shared virtual machine the two cores' speeds
 # can differ by a third for seconds at a time, which the rate of 1 rank alone does not see.
 # Last, a 2-rank step's time, its share in exchanges and waits ("comm" in the log), and what MPI
-# alone takes to move the same bytes between the two ranks (bench/exchange_cost.cpp, with the
+# alone takes to move the same bytes between the two ranks (bench/kernels/exchange_cost.cpp, with the
 # ghost count of the run's "halo:" line): the part of the exchanges no engine can save.
 # usage: bench/scaling.sh [REPEATS] [SCENE]   (build first: cmake --build --preset release)
 #        SCENE: run only the scenes whose file name contains it (chute, basin-small,
@@ -30,7 +30,7 @@ only=${2:-}
 # shellcheck source=bench/stats.sh
 source bench/stats.sh
 yuxi=build/release/apps/yuxi/yuxi
-exchange_cost=build/release/bench/exchange_cost # (bench/exchange_cost.cpp)
+exchange_cost=build/release/bench/exchange_cost # (bench/kernels/exchange_cost.cpp)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # scene | simulated time | label. The basin runs whole: settling, then the vibrating wall (its

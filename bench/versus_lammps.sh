@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# yuxi against LAMMPS on LAMMPS's own granular chute benchmark (bench/in.chute, the
+# yuxi against LAMMPS on LAMMPS's own granular chute benchmark (bench/peers/in.chute, the
 # 32,000-sphere data/lammps/data.chute, gran/hooke/history), the same number of steps, on 1
 # and 2 ranks, side by side in one invocation: runs alternate (LAMMPS, yuxi, LAMMPS, yuxi, ...)
 # so that machine drift affects both alike. Prints per code and rank count the median
 # particle-steps/s, the yuxi/LAMMPS ratio, each code's time breakdown, and peak memory per
 # particle (largest resident set of one rank / particles on that rank).
 # Then the fish basin (scenes/basin-small.toml, 4,220 particles) in LAMMPS conventions, with one
-# friction coefficient (mu_s = mu_d) and the grain-grain law for every pair, as bench/in.basin
+# friction coefficient (mu_s = mu_d) and the grain-grain law for every pair, as bench/peers/in.basin
 # runs it in LAMMPS: yuxi settles it to t = 10 tau, both codes start from that state for
 # BASIN_STEPS steps, once with every wall particle still and once with the side wall vibrating.
 # Last the whole scene as it is shipped: both codes start from yuxi's initial state (t = 0), let
@@ -24,18 +24,18 @@ particles=32000
 source bench/side_by_side.sh
 
 # The basin scenes in LAMMPS conventions (excited from t0 = 10 tau, and never), settled by yuxi.
-python3 bench/lammps_basin_scene.py scenes/basin-small.toml "$work"
+python3 bench/peers/lammps_basin_scene.py scenes/basin-small.toml "$work"
 for motion in vibrating still; do
   "$yuxi" run "$work/basin-$motion.toml" --t-end 10 -o "$work/settled-$motion" --no-progress \
     --no-plots > /dev/null
-  python3 bench/lammps_data_from_dump.py "$work/settled-$motion/particles.lammpstrj" \
+  python3 bench/peers/lammps_data_from_dump.py "$work/settled-$motion/particles.lammpstrj" \
     "$work/basin-$motion.data" --heavy 2
 done
 basin_particles=$(grep -oP '^\d+(?= atoms)' "$work/basin-still.data")
 basin_skin=$(run_skin "$work/settled-still")
 t_basin=$(awk -v s="$basin_steps" 'BEGIN {printf "%.6f", 10 + s * 1e-4}')
 # The whole run: yuxi's first frame (t = 0) for LAMMPS; steps to t0 and from t0 to t_end.
-python3 bench/lammps_data_from_dump.py "$work/settled-vibrating/particles.lammpstrj" \
+python3 bench/peers/lammps_data_from_dump.py "$work/settled-vibrating/particles.lammpstrj" \
   "$work/basin-start.data" --frame first --heavy 2
 scene_value() { grep -oP "^ *$1 *= *\K[0-9.e+-]+" "$work/basin-vibrating.toml" | head -1; }
 settle_steps=$(awk -v t="$(scene_value t0)" -v dt="$(scene_value dt)" 'BEGIN {printf "%d", t / dt + 0.5}')
@@ -45,20 +45,20 @@ shake_steps=$(awk -v t="$(scene_value t_end)" -v t0="$(scene_value t0)" -v dt="$
 for r in $(seq 1 "$repeats"); do
   for np in 1 2; do
     run_lammps chute "$np" "$particles" "$steps" -var datafile "$data" -var steps "$steps" \
-      -in "$PWD/bench/in.chute"
+      -in "$PWD/bench/peers/in.chute"
     t_end=$(awk -v s="$steps" 'BEGIN {printf "%.6f", s * 1e-4}')
     run_yuxi chute "$np" scenes/chute-lammps.toml --t-end "$t_end" -o "$work/yuxi" --overwrite
     for motion in still vibrating; do
       run_lammps "basin-$motion" "$np" "$basin_particles" "$basin_steps" \
         -var datafile "$work/basin-$motion.data" -var steps "$basin_steps" \
         -var excite "$([[ $motion == vibrating ]] && echo 1 || echo 0)" \
-        -var skin "$basin_skin" -in "$PWD/bench/in.basin"
+        -var skin "$basin_skin" -in "$PWD/bench/peers/in.basin"
       rm -rf "$work/resumed" && cp -r "$work/settled-$motion" "$work/resumed"
       run_yuxi "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
     done
     run_lammps basin-whole "$np" "$basin_particles" $((settle_steps + shake_steps)) \
       -var datafile "$work/basin-start.data" -var settle "$settle_steps" \
-      -var steps "$shake_steps" -var excite 1 -var skin "$basin_skin" -in "$PWD/bench/in.basin"
+      -var steps "$shake_steps" -var excite 1 -var skin "$basin_skin" -in "$PWD/bench/peers/in.basin"
     run_yuxi basin-whole "$np" "$work/basin-vibrating.toml" -o "$work/whole" --overwrite
   done
 done

@@ -8,7 +8,7 @@ namespace yuxi {
 
 bool run_plot_script(const std::string& script, const std::string& arguments) {
   const std::string cmd =
-      fmt::format("/usr/bin/python3 '{}/scripts/{}' {}", YUXI_SOURCE_DIR, script, arguments);
+      fmt::format("/usr/bin/python3 '{}/plots/{}' {}", YUXI_SOURCE_DIR, script, arguments);
   if (std::system(cmd.c_str()) == 0) return true;
   spdlog::warn("plotting failed (are /usr/bin/python3 and python3-matplotlib installed?): {}", cmd);
   return false;

@@ -1,4 +1,4 @@
-// Draws plots with the Python scripts in scripts/ (matplotlib from Debian belongs to the system
+// Draws plots with the Python scripts in plots/ (matplotlib from Debian belongs to the system
 // interpreter, /usr/bin/python3). A missing interpreter or library costs a warning, not the run.
 #pragma once
 
@@ -6,7 +6,7 @@
 
 namespace yuxi {
 
-// Runs scripts/<script> with the arguments (each quoted); false (with a warning) on failure.
+// Runs plots/<script> with the arguments (each quoted); false (with a warning) on failure.
 bool run_plot_script(const std::string& script, const std::string& arguments);
 
 } // namespace yuxi

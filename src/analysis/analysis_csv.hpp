@@ -3,7 +3,7 @@
 // numpy.genfromtxt and Python's float() both read).
 //
 // File names of analyses taken at one instant carry the time: timed_file_name("surface", 10.25)
-// is "surface_t10.25.csv"; scripts/plot_basin.py finds them by the "_t<time>.csv" suffix.
+// is "surface_t10.25.csv"; plots/plot_basin.py finds them by the "_t<time>.csv" suffix.
 #pragma once
 
 #include <filesystem>

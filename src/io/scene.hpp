@@ -56,7 +56,7 @@ struct LammpsDataSpec {
 };
 
 // What the fish-basin analysis computes during a run (docs/models/fish-basin.md section 7; the
-// figures are drawn by scripts/plot_basin.py from the CSV files it writes into <run>/analysis/).
+// figures are drawn by plots/plot_basin.py from the CSV files it writes into <run>/analysis/).
 struct AnalysisSettings {
   std::array<int, 2> grid{48, 48};            // x-y cells of the maps over the domain
   std::vector<double> surface_times;          // Fig. 5-6: free surface [time]

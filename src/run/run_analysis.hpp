@@ -5,7 +5,7 @@
 // horizontal slabs averaged over the period (Fig. 9) and the densities of per-grain kinetic,
 // elastic and total energy with power-law fits (Fig. 10). Grids and histograms are reduced
 // over ranks (no particle is gathered), and rank 0 writes CSV files into <run>/analysis/;
-// scripts/plot_basin.py draws the figures from them. At regular intervals it also follows the
+// plots/plot_basin.py draws the figures from them. At regular intervals it also follows the
 // surface's peaks and profiles along the antinodes and nodes (peaks.csv, surface_profile.csv),
 // the elastic energy's profiles (elastic_profile.csv), and saves every grain's energies
 // (grains/grains_t<time>.npy, which every rank writes its part of).

@@ -1,6 +1,6 @@
 // The bulk benchmarks (docs/models/validation.md section 4): each runs a scene of scenes/bulk/
 // into a folder (scene_run.hpp), reads back measurements.csv, inflow.csv and outflow.csv, and
-// checks them; the plot scripts draw the same folders (scripts/plot_bulk.py).
+// checks them; the plot scripts draw the same folders (plots/plot_bulk.py).
 //   B2s, B2   the Janssen silos (scenes/bulk/janssen-small.toml, janssen.toml)
 //   B3s, B3   Beverloo discharge (scenes/bulk/beverloo-small.toml, beverloo-Do<N>.toml)
 //   B1s, B1   heaps poured on a rough floor (scenes/bulk/heap-small.toml, heap-*.toml)

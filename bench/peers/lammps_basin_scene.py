@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes a basin scene in LAMMPS conventions, for the speed comparison with LAMMPS
-(bench/in.basin): one friction coefficient (mu_s = mu_d = 0.5, gran/hooke/history has one), the
+(bench/peers/in.basin): one friction coefficient (mu_s = mu_d = 0.5, gran/hooke/history has one), the
 grain-grain law of the scene for every pair, the LAMMPS preset of the linear model, no analysis,
 and snapshots only every 10 tau (so that the settled state at t = 10 tau is written as a dump).
 

@@ -49,7 +49,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plots"))
 from plot_basin import basin_geometry, line_fit, read_resolved_scene  # noqa: E402
 
 RANGES = {"A": (0.2, 2.0), "B": (10.0, 1e4)}
