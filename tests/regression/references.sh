@@ -10,7 +10,14 @@
 #   drum-stl-np1, -np2    scenes/drum/drum-stl.toml (575 grains in a turning 96-facet STL drum)
 #                         to t = 4 tau (2,000 steps) on 1 and 2 ranks: energies.csv, walls.csv
 #                         and the digest of the last frame
-#   drum-cylinder         scenes/drum/drum-cylinder.toml, the same drum as an analytic cylinder
+#   drum-cylinder-np1,    scenes/drum/drum-cylinder.toml, the same drum as an analytic cylinder,
+#   drum-cylinder-np2     on 1 and 2 ranks
+#   basin-mesh-np1, -np2  scenes/basin-mesh.toml (the basin's side wall an STL mesh) to t = 10.3
+#                         tau on 1 and 2 ranks: energies.csv, walls.csv and the digest
+#   bulk-np1, bulk-np2    the small bulk cases of scenes/bulk/ (*-small.toml: the drum to t = 12,
+#                         Beverloo's silo to 12 with its refill and outlet, the heap to 20 with
+#                         its pour, the Janssen column to 15 while it fills) on 1 and 2 ranks:
+#                         energies.csv, measurements.csv, inflow/outflow.csv, walls.csv, digest
 # usage: references.sh [--update] YUXI MPIEXEC CASE|all WORK_DIR
 # With --update the references are rewritten from this build instead (regenerate them only in a
 # commit that changes the trajectory on purpose, and say so in it):
@@ -80,6 +87,34 @@ run_drum() { # NAME SCENE NP
   compare "$name" energies.csv walls.csv state.sha256
 }
 
+# run_scene NAME SCENE T_END NP FILE...: the scene on NP ranks to T_END; the FILEs and the
+# digest of the last frame compared.
+run_scene() {
+  local name=$1 scene=$2 t_end=$3 np=$4 out=$work/$1
+  shift 4
+  rm -rf "$out"
+  mkdir -p "$(dirname "$out")"
+  mpirun "$np" "$yuxi" run "$repo/scenes/$scene" --t-end "$t_end" -o "$out" --no-progress \
+    --no-plots > "$work/$name.log" 2>&1 || { cat "$work/$name.log"; exit 1; }
+  local frames=("$out"/particles_*.vtu)
+  digest "${frames[-1]}" > "$out/state.sha256"
+  compare "$name" "$@" state.sha256
+}
+
+run_bulk() { # NP
+  local kind
+  for kind in drum:12 beverloo:12 heap:20 janssen:15; do
+    local name=bulk-np$1/${kind%%:*} files=(energies.csv measurements.csv)
+    case ${kind%%:*} in
+      drum) files+=(walls.csv) ;;
+      beverloo) files+=(inflow.csv outflow.csv walls.csv) ;;
+      heap) files+=(inflow.csv outflow.csv) ;;
+      janssen) files+=(inflow.csv walls.csv) ;;
+    esac
+    run_scene "$name" "bulk/${kind%%:*}-small.toml" "${kind##*:}" "$1" "${files[@]}"
+  done
+}
+
 run_collide() {
   local out=$work/collide
   rm -rf "$out"
@@ -96,11 +131,19 @@ case $case_name in
   collide) run_collide ;;
   drum-stl-np1) run_drum drum-stl-np1 drum-stl 1 ;;
   drum-stl-np2) run_drum drum-stl-np2 drum-stl 2 ;;
-  drum-cylinder) run_drum drum-cylinder drum-cylinder 1 ;;
+  drum-cylinder-np1) run_drum drum-cylinder-np1 drum-cylinder 1 ;;
+  drum-cylinder-np2) run_drum drum-cylinder-np2 drum-cylinder 2 ;;
+  basin-mesh-np1) run_scene basin-mesh-np1 basin-mesh.toml 10.3 1 energies.csv walls.csv ;;
+  basin-mesh-np2) run_scene basin-mesh-np2 basin-mesh.toml 10.3 2 energies.csv walls.csv ;;
+  bulk-np1) run_bulk 1 ;;
+  bulk-np2) run_bulk 2 ;;
   all)
     run_basin 1; run_basin 2; run_c1; run_collide
     run_drum drum-stl-np1 drum-stl 1; run_drum drum-stl-np2 drum-stl 2
-    run_drum drum-cylinder drum-cylinder 1
+    run_drum drum-cylinder-np1 drum-cylinder 1; run_drum drum-cylinder-np2 drum-cylinder 2
+    run_scene basin-mesh-np1 basin-mesh.toml 10.3 1 energies.csv walls.csv
+    run_scene basin-mesh-np2 basin-mesh.toml 10.3 2 energies.csv walls.csv
+    run_bulk 1; run_bulk 2
     ;;
   *) echo "unknown case $case_name" >&2; exit 2 ;;
 esac
