@@ -160,7 +160,7 @@ int run_command(const RunCommandOptions& o) {
                  sim->decomposition().describe(), sim->imbalance());
   // The simulation counts list builds from t = 0 (a checkpoint keeps the count); the log gives
   // this run's.
-  const std::int64_t builds_before = sim->rebuilds();
+  const std::int64_t builds_before = sim->list_builds();
   const RunSummary s = run_to_end(scene, *sim, ro);
   const auto& t = sim->timers();
   const auto& e = s.final_energies;
@@ -185,7 +185,7 @@ int run_command(const RunCommandOptions& o) {
   const auto outflow = sim->outflow(); // collective
   // Of each still mesh, a rank holds only the triangles near its sub-domain.
   std::vector<std::string> held_meshes;
-  for (const ShapedWall& w : sim->walls())
+  for (const ShapedWall& w : sim->shaped_walls())
     if (const auto* mesh = std::get_if<MeshWall>(&w)) {
       const double held = static_cast<double>(mesh->mesh.n_triangles());
       const double most = sim->comm().max(held), least = -sim->comm().max(-held);
@@ -208,7 +208,7 @@ int run_command(const RunCommandOptions& o) {
       "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%)  ({} list builds){}",
       100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
       100 * (wall - t.total()) / wall, 100 * s.snapshot_seconds / wall,
-      100 * s.checkpoint_seconds / wall, sim->rebuilds() - builds_before,
+      100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before,
       sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
                                            "{:.3f} in listed pairs, {:.3f} in compute time",
                                            imbalance, pair_imbalance, busy_imbalance)

@@ -73,8 +73,8 @@ py::dict contact_arrays(const Simulation& sim) {
   // Meshes and cylinders: the element is the triangle or the cylinder's patch.
   for (const WallContactRecord& r : rec.wall) {
     const WallContactRef ref = list.walls[r.candidate];
-    c.add(p.gid[ref.particle], -1, wall_name(sim.walls()[ref.wall]), r.element, r.force, r.normal,
-          r.point, r.overlap, r.elastic);
+    c.add(p.gid[ref.particle], -1, wall_name(sim.shaped_walls()[ref.wall]), r.element, r.force,
+          r.normal, r.point, r.overlap, r.elastic);
     states.wall_state(r.candidate, r.contact, c.state);
   }
 

@@ -51,10 +51,10 @@ std::size_t insert_index(const Simulation& sim, const std::string& name) {
 }
 
 std::size_t wall_index(Simulation& sim, const std::string& name) {
-  for (std::size_t w = 0; w < sim.walls().size(); ++w)
-    if (wall_name(sim.walls()[w]) == name) return w;
+  for (std::size_t w = 0; w < sim.shaped_walls().size(); ++w)
+    if (wall_name(sim.shaped_walls()[w]) == name) return w;
   std::vector<std::string> names;
-  for (const auto& w : sim.walls()) names.push_back(wall_name(w));
+  for (const auto& w : sim.shaped_walls()) names.push_back(wall_name(w));
   throw py::key_error(fmt::format("no mesh or cylinder named '{}' (the scene has: {})", name,
                                   fmt::join(names, ", ")));
 }
@@ -393,9 +393,9 @@ void bind_simulation(py::module_& m) {
       .def("wall_loads",
            [](PySimulation& s) {
              py::dict d;
-             const auto shaped = s.sim().wall_loads(); // collective
+             const auto shaped = s.sim().shaped_wall_loads(); // collective
              for (std::size_t w = 0; w < shaped.size(); ++w)
-               d[py::str(wall_name(s.sim().walls()[w]))] = load_dict(shaped[w]);
+               d[py::str(wall_name(s.sim().shaped_walls()[w]))] = load_dict(shaped[w]);
              const auto planes = s.sim().plane_loads(); // collective
              for (std::size_t p = 0; p < planes.size(); ++p)
                d[py::str(s.sim().planes()[p].name)] = load_dict(planes[p]);
@@ -446,16 +446,16 @@ void bind_simulation(py::module_& m) {
       .def("set_wall_speed",
            [](PySimulation& s, const std::string& name, double speed) {
              const std::size_t w = wall_index(s.sim(), name);
-             s.sim().set_wall_controller(w, std::make_shared<HeldSpeed>(speed));
+             s.sim().set_servo_controller(w, std::make_shared<HeldSpeed>(speed));
            })
       .def("set_wall_controller",
            [](PySimulation& s, const std::string& name, py::function f) {
              const std::size_t w = wall_index(s.sim(), name);
-             s.sim().set_wall_controller(w, std::make_shared<PythonController>(std::move(f)));
+             s.sim().set_servo_controller(w, std::make_shared<PythonController>(std::move(f)));
            })
       .def("wall_motion",
            [](PySimulation& s, const std::string& name) {
-             const auto [speed, offset] = s.sim().wall_servo_state(wall_index(s.sim(), name));
+             const auto [speed, offset] = s.sim().servo_state(wall_index(s.sim(), name));
              py::dict d;
              d["speed"] = speed;
              d["offset"] = offset;

@@ -113,7 +113,7 @@ public:
   virtual void give(const std::string& bytes) = 0;
   virtual std::string stashed_bytes() const = 0;
   // Checkpoints: the states of the current list saved, or loaded into the stash.
-  virtual void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) = 0;
+  virtual void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) const = 0;
   virtual void load(ArchiveReader& ar) = 0;
   // Drops every stashed state: the next list build opens every contact fresh (a run that
   // branches from another's state under another contact law).
@@ -248,7 +248,7 @@ public:
   }
 
   // Saves the states of the current list, or loads them into the stash for the next restore().
-  void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) override {
+  void save(ArchiveWriter& ar, const ParticleStore& s, const NeighborList& list) const override {
     std::vector<Entry> all = entries(s, list);
     ar.vector(all);
     std::vector<WallEntry> walls = wall_entries(s, list);

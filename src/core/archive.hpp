@@ -1,7 +1,9 @@
-// Binary archives for checkpoints. One templated function per class describes its state, and
-// the same function both saves (ArchiveWriter) and loads (ArchiveReader), so the two directions
-// cannot drift apart (the GROMACS modular simulator's approach). Values are stored in the
-// machine's byte order; the checkpoint header records it.
+// Binary archives for checkpoints. A plain record (a part of the state with no layout history)
+// describes itself in one templated function that both saves (ArchiveWriter) and loads
+// (ArchiveReader), so the two directions cannot drift apart (the GROMACS modular simulator's
+// approach). A part whose section changed with the state layout (sim/state_layout.hpp) has a
+// const save() and a load(reader, layout) of its own. Values are stored in the machine's byte
+// order; the checkpoint header records it.
 #pragma once
 
 #include <cstdint>
@@ -32,12 +34,12 @@ public:
     static_assert(std::is_trivially_copyable_v<T>);
     bytes(data, n * sizeof(T));
   }
-  template <class T> void vector(std::vector<T>& v) {
+  template <class T> void vector(const std::vector<T>& v) {
     const std::uint64_t n = v.size();
     value(n);
     elements(v.data(), n);
   }
-  void string(std::string& s) {
+  void string(const std::string& s) {
     const std::uint64_t n = s.size();
     value(n);
     bytes(s.data(), n);

@@ -129,6 +129,13 @@ public:
     }
     for_each_field([&](auto& field) { ar.elements(field.data(), n); });
   }
+  // The saving half of checkpoint() for a store that stays as it is.
+  template <class Writer> void save(Writer& ar) const {
+    static_assert(!Writer::loading);
+    const std::uint64_t n = n_owned_;
+    ar.value(n);
+    for_each_field([&](const auto& field) { ar.elements(field.data(), n); });
+  }
   double max_radius() const;
   // Indices of the owned particles in ascending global id (the order of the output files).
   std::vector<std::uint32_t> owned_in_id_order() const;

@@ -3,7 +3,7 @@
 // Layout: "YUXICKPT" | u32 format version | u32 byte-order mark 0x01020304 | u64 payload size |
 // payload | u32 CRC-32 of the payload (zlib). The payload holds the resolved scene (TOML), the
 // step and time, the largest grain's radius (from format 8), and one section per MPI rank with
-// that rank's Simulation::checkpoint(). Every
+// that rank's Simulation::save_state(). Every
 // rank writes its own section, and reads only its share back: rank 0 reads the head and where
 // the sections start, each rank reads its sections, and the CRC of the whole is combined from
 // the ranks' CRCs of what they read. A run resumed on the same number of ranks takes each
@@ -27,7 +27,7 @@
 
 namespace yuxi {
 
-// The format version a checkpoint is written in: the layout of Simulation::checkpoint. Files
+// The format version a checkpoint is written in: the layout of Simulation::save_state. Files
 // of older layouts down to oldest_state_layout are read too.
 inline constexpr std::uint32_t checkpoint_format_version = state_layout;
 
@@ -59,7 +59,7 @@ struct CheckpointData {
   // The largest grain's radius in the saved state (NaN in files before format 8): the cells of
   // a branch whose scene builds no grain.
   double largest_grain_radius = NAN;
-  // Simulation::checkpoint of ranks first_section, first_section + 1, ... of the run that wrote
+  // Simulation::save_state of ranks first_section, first_section + 1, ... of the run that wrote
   // the file, which had n_sections ranks. On as many ranks, each rank's share is its own
   // section; on others, a block of consecutive sections (possibly none).
   std::vector<std::string> sections;

@@ -87,8 +87,8 @@ BedMeasurements::BedMeasurements(std::vector<MeasureSpec> specs, const Simulatio
     if (specs_[k].quantity != Quantity::wall_force) continue;
     const std::string& name = specs_[k].wall;
     bool found = false;
-    for (std::size_t w = 0; w < sim.walls().size() && !found; ++w)
-      if (wall_name(sim.walls()[w]) == name) walls_[k] = {false, w}, found = true;
+    for (std::size_t w = 0; w < sim.shaped_walls().size() && !found; ++w)
+      if (wall_name(sim.shaped_walls()[w]) == name) walls_[k] = {false, w}, found = true;
     for (std::size_t w = 0; w < sim.planes().size() && !found; ++w)
       if (sim.planes()[w].name == name) walls_[k] = {true, w}, found = true;
     if (!found)
@@ -124,8 +124,8 @@ std::vector<double> BedMeasurements::values(const Simulation& sim) const {
   });
   std::vector<WallLoad> wall_loads, plane_loads;
   if (any_wall) {
-    if (!sim.walls().empty()) wall_loads = sim.wall_loads();    // collective
-    if (!sim.planes().empty()) plane_loads = sim.plane_loads(); // collective
+    if (!sim.shaped_walls().empty()) wall_loads = sim.shaped_wall_loads(); // collective
+    if (!sim.planes().empty()) plane_loads = sim.plane_loads();            // collective
   }
   std::vector<double> out;
   for (std::size_t k = 0; k < specs_.size(); ++k) {

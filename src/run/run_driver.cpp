@@ -80,7 +80,7 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
     energies = std::make_unique<EnergyCsv>(dir / "energies.csv", resume_after(energy_every));
   // walls.csv: per shaped wall, the force and torque the grains put on it and its cumulative
   // work on them (docs/scene-format.md, "walls.csv").
-  if (root && !(sim.walls().empty() && sim.planes().empty()))
+  if (root && !(sim.shaped_walls().empty() && sim.planes().empty()))
     walls = std::make_unique<EnergyCsv>(dir / "walls.csv", resume_after(energy_every),
                                         "step,time,wall,fx,fy,fz,torque_x,torque_y,torque_z,"
                                         "work,contacts");
@@ -167,10 +167,10 @@ void RunDriver::Impl::write_energies() {
                                  l.force.z, l.torque.x, l.torque.y, l.torque.z, l.work,
                                  l.contacts));
   };
-  if (!sim.walls().empty()) {
-    const std::vector<WallLoad> loads = sim.wall_loads(); // collective
+  if (!sim.shaped_walls().empty()) {
+    const std::vector<WallLoad> loads = sim.shaped_wall_loads(); // collective
     for (std::size_t w = 0; walls && w < loads.size(); ++w)
-      row(wall_name(sim.walls()[w]), loads[w]);
+      row(wall_name(sim.shaped_walls()[w]), loads[w]);
   }
   if (!sim.planes().empty()) {
     const std::vector<WallLoad> loads = sim.plane_loads(); // collective
@@ -183,7 +183,7 @@ void RunDriver::Impl::snapshot() {
   if (vtk) {
     // The shaped walls beside the particles, in the same frame (none: no walls file).
     std::optional<WallSurface> surface;
-    if (!sim.walls().empty()) surface = wall_surface(sim); // collective
+    if (!sim.shaped_walls().empty()) surface = wall_surface(sim); // collective
     vtk->write(sim.particles(), sim.step_count(), sim.time(),
                surface ? &*surface : nullptr); // collective
   }
@@ -199,7 +199,7 @@ bool RunDriver::Impl::stop_requested() const {
 }
 
 // A checkpoint may follow any step and leaves the trajectory untouched (see
-// Simulation::checkpoint): a run repeats itself to the bit whenever its checkpoints were
+// Simulation::save_state): a run repeats itself to the bit whenever its checkpoints were
 // written, by step count, by the clock, on a signal or at the end.
 bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
   const auto& policy = scene.checkpoint;

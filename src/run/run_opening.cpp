@@ -142,7 +142,8 @@ OpenedRun open_branch(Scene scene, const fs::path& from, bool force_dt) {
           "springs and model state) is dropped, and contacts open afresh under the new law",
           saved.contact_model, r.scene.contact_model));
     try {
-      r.sim->branch(data->sections, data->n_sections, {r.report.walls, keep}, data->format_version);
+      r.sim->branch({data->sections, data->n_sections, data->format_version},
+                    {r.report.walls, keep});
     } catch (const std::invalid_argument& e) {
       throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
     }

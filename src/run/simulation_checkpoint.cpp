@@ -12,7 +12,7 @@ void write_checkpoint(const std::filesystem::path& file, const std::string& scen
                       Simulation& sim) {
   sim.stop_if_unhealthy(); // only good states are kept
   ArchiveWriter section;
-  sim.checkpoint(section);
+  sim.save_state(section);
   // The largest grain's radius, for a branch that builds no grain: of the grains now, or of
   // those the cells were sized for (a run that itself built none keeps its size for a resume).
   double largest = 0.5 * sim.config().min_contact_reach;
@@ -32,7 +32,7 @@ std::filesystem::path write_checkpoint(const CheckpointSet& set, const std::stri
 
 void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
   try {
-    sim.load(data.sections, data.n_sections, data.format_version);
+    sim.load({data.sections, data.n_sections, data.format_version});
   } catch (const std::invalid_argument& e) { // the same on every rank (Simulation::load)
     throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
   }

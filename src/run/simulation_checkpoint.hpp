@@ -1,4 +1,4 @@
-// A simulation's checkpoints: its saved state (Simulation::checkpoint) in the checkpoint file
+// A simulation's checkpoints: its saved state (Simulation::save_state) in the checkpoint file
 // format of io/checkpoint_file.hpp, written and loaded. Here, above both, so that the file
 // format knows nothing of the engine.
 #pragma once

@@ -4,7 +4,7 @@ namespace yuxi {
 
 WallSurface wall_surface(const Simulation& sim) {
   WallSurface s;
-  const std::vector<ShapedWall>& walls = sim.walls();
+  const std::vector<ShapedWall>& walls = sim.shaped_walls();
   for (std::size_t w = 0; w < walls.size(); ++w) {
     if (!wall_active(walls[w], sim.time())) continue; // (the same on every rank)
     const auto index = static_cast<std::int32_t>(w);

@@ -41,4 +41,17 @@ struct SimulationConfig {
   double min_contact_reach = 0.0;
 };
 
+// Gravity's components along periodic axes (no potential: a grain that wraps around would jump
+// in height; their work is booked apart) and along the others (docs/ARCHITECTURE.md, "Energy
+// books").
+inline Vec3 periodic_gravity(const SimulationConfig& c) {
+  Vec3 g;
+  for (int a = 0; a < 3; ++a)
+    if (c.box.periodic(a)) g[a] = c.gravity[a];
+  return g;
+}
+inline Vec3 potential_gravity(const SimulationConfig& c) {
+  return c.gravity - periodic_gravity(c);
+}
+
 } // namespace yuxi

@@ -1,7 +1,7 @@
 // Changes to a simulation's state between steps from outside the equations of motion: the
 // Python API's writes to velocities and positions, grains added and removed by a script, and
-// a controlled wall given another controller. Each change books the mechanical energy it makes
-// or takes (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
+// inserts added. Each change books the mechanical energy it makes or takes
+// (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
 #include "contact/contact_history.hpp"
 #include "scene/ball_hash.hpp"
 #include "sim/simulation.hpp"
@@ -11,7 +11,7 @@
 
 namespace yuxi {
 
-std::vector<std::size_t> Simulation::owned_grains(std::span<const GlobalId> ids) const {
+std::vector<std::size_t> Simulation::grain_indices(std::span<const GlobalId> ids) const {
   const OwnedIndex index(store_);
   std::vector<std::size_t> out;
   out.reserve(ids.size());
@@ -20,7 +20,7 @@ std::vector<std::size_t> Simulation::owned_grains(std::span<const GlobalId> ids)
     if (i == OwnedIndex::none)
       throw std::invalid_argument(
           fmt::format("particle id {} is not one of this rank's particles (rank {} owns {})", id,
-                      comm_.rank(), store_.n_owned()));
+                      comm().rank(), store_.n_owned()));
     if (!store_.is_grain(i))
       throw std::invalid_argument(fmt::format(
           "particle id {} is a wall particle: its motion is the scene's, not set from outside",
@@ -41,20 +41,20 @@ void check_sizes(std::size_t ids, std::size_t values, const char* what) {
 
 void Simulation::set_velocities(std::span<const GlobalId> ids, std::span<const Vec3> v) {
   check_sizes(ids.size(), v.size(), "velocities");
-  const std::vector<std::size_t> at = owned_grains(ids);
+  const std::vector<std::size_t> at = grain_indices(ids);
   for (std::size_t k = 0; k < ids.size(); ++k)
     if (!is_finite(v[k]))
       throw std::invalid_argument(fmt::format("velocity of particle id {} is not finite", ids[k]));
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const std::size_t i = at[k];
-    books_.inserted += 0.5 * store_.mass[i] * (norm2(v[k]) - norm2(store_.v[i]));
+    ledger_.books().inserted += 0.5 * store_.mass[i] * (norm2(v[k]) - norm2(store_.v[i]));
     store_.v[i] = v[k];
   }
 }
 
 void Simulation::set_angular_velocities(std::span<const GlobalId> ids, std::span<const Vec3> w) {
   check_sizes(ids.size(), w.size(), "angular velocities");
-  const std::vector<std::size_t> at = owned_grains(ids);
+  const std::vector<std::size_t> at = grain_indices(ids);
   for (std::size_t k = 0; k < ids.size(); ++k)
     if (!is_finite(w[k]))
       throw std::invalid_argument(
@@ -63,11 +63,12 @@ void Simulation::set_angular_velocities(std::span<const GlobalId> ids, std::span
     const std::size_t i = at[k];
     const double before = rotational_energy(i);
     store_.w[i] = w[k];
-    books_.inserted += rotational_energy(i) - before;
+    ledger_.books().inserted += rotational_energy(i) - before;
   }
 }
 
-void Simulation::edit_particles(const std::function<void()>& check, std::function<void()> change) {
+void Simulation::edit_particles(const std::function<void()>& check,
+                                const std::function<void()>& change) {
   // Every rank checks its part first, so that none is left waiting in the list build.
   std::string error;
   try {
@@ -75,27 +76,27 @@ void Simulation::edit_particles(const std::function<void()>& check, std::functio
   } catch (const std::invalid_argument& e) {
     error = e.what();
   }
-  error = comm_.first_error(error);
+  error = comm().first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
   const EnergyBooks before = energies(); // collective
-  edit_ = std::move(change);             // (made in the list build, once the history is stashed)
-  rebuild(BuildAfter::edit);
-  edit_ = nullptr;
+  // (the change is made in the list build, once the history is stashed)
+  build_lists({ListBuildPlan::After::edit, &change});
   start_forces_from_gravity();
   compute_forces(false);
   stop_if_unhealthy();
   // What came in: the change of mechanical energy, and what the removed grains took away.
   const EnergyBooks after = energies();
-  if (comm_.root())
-    books_.inserted += (after.mechanical() + after.relaxation) -
-                       (before.mechanical() + before.relaxation) + (after.removed - before.removed);
+  if (comm().root())
+    ledger_.books().inserted += (after.mechanical() + after.relaxation) -
+                                (before.mechanical() + before.relaxation) +
+                                (after.removed - before.removed);
 }
 
 void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Vec3> x) {
   check_sizes(ids.size(), x.size(), "positions");
   edit_particles(
       [&] {
-        owned_grains(ids); // (throws for an id that is not one)
+        grain_indices(ids); // (throws for an id that is not one)
         for (std::size_t k = 0; k < ids.size(); ++k)
           if (!is_finite(x[k]) || !config_.box.contains(config_.box.wrap(x[k])))
             throw std::invalid_argument(
@@ -112,22 +113,18 @@ void Simulation::set_positions(std::span<const GlobalId> ids, std::span<const Ve
 
 void Simulation::check_pairs_for(std::uint8_t material, const std::string& who) const {
   // The materials this grain can meet: this rank's particles' (every rank checks its own), the
-  // flat walls' and the shaped walls'.
-  std::vector<bool> present(n_materials_, false);
+  // planes' and the shaped walls'.
+  const std::size_t n_materials = contacts_.n_materials();
+  std::vector<bool> present(n_materials, false);
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
-    if (store_.material[i] < n_materials_) present[store_.material[i]] = true;
-  for (const PlaneWall& p : planes_)
-    if (p.material < n_materials_) present[p.material] = true;
-  for (const ShapedWall& w : walls_)
-    if (wall_material(w) < n_materials_) present[wall_material(w)] = true;
+    if (store_.material[i] < n_materials) present[store_.material[i]] = true;
+  walls_.mark_materials(present);
   present[material] = true; // (with the grains like it)
-  for (std::size_t m = 0; m < n_materials_; ++m) {
-    const bool has = std::visit([&](const auto& law) { return law.coeffs.has(material, m); }, law_);
-    if (present[m] && !has)
+  for (std::size_t m = 0; m < n_materials; ++m)
+    if (present[m] && !contacts_.has_pair(material, static_cast<std::uint8_t>(m)))
       throw std::invalid_argument(
           fmt::format("{}: the scene has no contact pair for materials {} and {}, which can touch",
                       who, material, m));
-  }
 }
 
 void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) const {
@@ -172,7 +169,7 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) 
         refuse(fmt::format("new grain {} of the same call", added_ids[b]),
                grains[k].radius + added.radius(b) - norm(added.position(b) - at));
     }
-    for (const PlaneWall& w : planes_)
+    for (const PlaneWall& w : walls_.planes())
       if (const double d = w.distance(x, time_); d < r)
         refuse(fmt::format("the flat wall '{}'", w.name), grains[k].radius - d);
     added.add(x, grains[k].radius);
@@ -191,15 +188,15 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
         !is_finite(p.angular_velocity))
       throw std::invalid_argument(where() +
                                   ": radius and mass must be positive, velocities finite");
-    if (2 * p.radius + config_.skin > cell_edge_)
+    if (2 * p.radius + config_.skin > exchange_.cell_edge())
       throw std::invalid_argument(
           fmt::format("{}: radius {} is larger than the linked cells allow ({}); give the scene's "
                       "[neighbor] min_contact_reach",
-                      where(), p.radius, 0.5 * (cell_edge_ - config_.skin)));
-    if (p.material >= n_materials_)
+                      where(), p.radius, 0.5 * (exchange_.cell_edge() - config_.skin)));
+    if (p.material >= contacts_.n_materials())
       throw std::invalid_argument(fmt::format("{}: material {} is not one of the scene's {}",
-                                              where(), p.material, n_materials_));
-    ids.push_back(next_gid_ + static_cast<GlobalId>(k));
+                                              where(), p.material, contacts_.n_materials()));
+    ids.push_back(sources_.next_id() + static_cast<GlobalId>(k));
   }
   // (edit_particles books their energy with the change of the contacts')
   edit_particles(
@@ -210,8 +207,8 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
       },
       [&] {
         for (const ParticleSpec& spec : grains) {
-          const GlobalId id = next_gid_++;
-          if (!decomp_.owns(config_.box.wrap(spec.position))) continue;
+          const GlobalId id = sources_.take_id();
+          if (!exchange_.decomposition().owns(config_.box.wrap(spec.position))) continue;
           ParticleSpec p = spec;
           p.kind = Kind::grain;
           store_.add(p, id);
@@ -232,28 +229,37 @@ std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
                        gone.push_back(i);
                    std::sort(gone.begin(), gone.end());
                    gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
-                   for (const std::size_t i : gone) books_.removed += mechanical_energy(i);
+                   const Vec3 g = potential_gravity(config_);
+                   for (const std::size_t i : gone)
+                     ledger_.books().removed += mechanical_energy(store_, i, g);
                    removed = static_cast<std::int64_t>(gone.size());
                    if (!gone.empty()) store_.remove_owned(gone);
                  });
-  return comm_.sum(removed);
+  return comm().sum(removed);
 }
 
-void Simulation::set_wall_controller(std::size_t wall, std::shared_ptr<WallController> controller) {
-  auto* mesh = wall < walls_.size() ? std::get_if<MeshWall>(&walls_[wall]) : nullptr;
-  if (!mesh || !mesh->controller)
+void Simulation::add_insert(InsertSpec insert) {
+  sources_.check_new_name(insert.name);
+  const double cell_edge = exchange_.cell_edge();
+  const double r = insert.grains.size.largest();
+  if (2 * r + config_.skin > cell_edge)
     throw std::invalid_argument(fmt::format(
-        "wall {} is not a controlled mesh: give its [[mesh]] servo_force or controlled = true",
-        wall < walls_.size() ? fmt::format("'{}'", wall_name(walls_[wall]))
-                             : std::to_string(wall)));
-  if (!controller) throw std::invalid_argument("a wall's controller cannot be empty");
-  mesh->controller = std::move(controller);
-}
-
-std::pair<double, double> Simulation::wall_servo_state(std::size_t wall) const {
-  const auto* mesh = wall < walls_.size() ? std::get_if<MeshWall>(&walls_[wall]) : nullptr;
-  if (!mesh) return {0.0, 0.0};
-  return {mesh->servo_speed, mesh->servo_offset};
+        "insert '{}': grains of radius {} are larger than the linked cells allow ({}); the scene "
+        "must pour grains that large from the start",
+        insert.name, r, 0.5 * (cell_edge - config_.skin)));
+  const auto k = insert.grains.material;
+  if (k >= contacts_.n_materials())
+    throw std::invalid_argument(fmt::format("insert '{}': material {} is not one of the scene's {}",
+                                            insert.name, k, contacts_.n_materials()));
+  std::string error;
+  try {
+    check_pairs_for(k, fmt::format("insert '{}'", insert.name));
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  error = comm().first_error(error);
+  if (!error.empty()) throw std::invalid_argument(error);
+  sources_.add_insert(std::move(insert), step_, config_.dt);
 }
 
 } // namespace yuxi

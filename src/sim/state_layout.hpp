@@ -1,4 +1,4 @@
-// The layout of a simulation's saved state (Simulation::checkpoint), which a checkpoint file's
+// The layout of a simulation's saved state (Simulation::save_state), which a checkpoint file's
 // format version names (io/checkpoint_file.hpp): layout 6 added the sources' part; a state of
 // layout 5 loads with no insert or outlet under way. Layout 7 added each servo's offset at the
 // last list build; a state of layout 6 takes the offset it was saved with. Layout 8 names each

@@ -106,7 +106,7 @@ TEST(Mpi, CheckpointIsReadBackInSharesAndVerifiedWhole) {
   const auto path = dir / "c.yxc";
   write_checkpoint(path, "scene text", sim);
   ArchiveWriter mine;
-  sim.checkpoint(mine);
+  sim.save_state(mine);
 
   const CheckpointData d = read_checkpoint(path, comm);
   EXPECT_EQ(d.scene_text, "scene text");
@@ -147,20 +147,20 @@ TEST(Mpi, CheckpointIsReadBackInSharesAndVerifiedWhole) {
 }
 
 // A run resumed on as many ranks keeps the saved cut planes, even where the saved run was due
-// to move them at its next list build (here the first, rebuilds() == 1): the loaded run
+// to move them at its next list build (here the first, list_builds() == 1): the loaded run
 // balances at that build too, not while loading, with no list to weigh the particles by.
 TEST(Mpi, ALoadedRunKeepsItsCutPlanesUntilItsNextBalancing) {
   const Comm comm = Comm::world();
   Simulation sim = dense(comm);
-  ASSERT_EQ(sim.rebuilds(), 1);
+  ASSERT_EQ(sim.list_builds(), 1);
   const auto dir = shared_temp_dir("checkpoint_cuts");
   write_checkpoint(dir / "c.yxc", "", sim);
   Simulation loaded = dense(comm);
   apply_checkpoint(read_checkpoint(dir / "c.yxc", comm), loaded);
   for (int a = 0; a < 3; ++a)
     EXPECT_EQ(loaded.decomposition().cuts(a), sim.decomposition().cuts(a)) << "axis " << a;
-  sim.request_rebuild();
-  loaded.request_rebuild();
+  sim.request_list_build();
+  loaded.request_list_build();
   sim.step();
   loaded.step();
   for (int a = 0; a < 3; ++a)

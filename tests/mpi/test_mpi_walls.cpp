@@ -69,7 +69,7 @@ Simulation rotating_drum(bool meshed, Comm comm, double omega = 0.5) {
 // (the bed lies in the drum's lower half), and every triangle that comes within a grain's
 // radius plus the skin of one of its grains.
 void expect_held_in_parts(const Simulation& sim, const Comm& world, std::size_t wall = 0) {
-  const auto& mesh = std::get<MeshWall>(sim.walls()[wall]);
+  const auto& mesh = std::get<MeshWall>(sim.shaped_walls()[wall]);
   const TriangleMesh& whole = mesh.whole_mesh();
   EXPECT_LT(mesh.mesh.n_triangles(), whole.n_triangles()) << "rank " << world.rank();
   std::vector<char> held(whole.n_triangles(), 0);
@@ -109,7 +109,7 @@ TEST(Mpi, RotatingDrumMatchesTheSerialRun) {
     Simulation parallel = rotating_drum(meshed, world);
     parallel.run(6000);
     const Snapshot a = snapshot(parallel);
-    const double work = parallel.wall_loads()[0].work; // collective
+    const double work = parallel.shaped_wall_loads()[0].work; // collective
     std::vector<Vec3> forces;
     if (meshed) {
       expect_held_in_parts(parallel, world);
@@ -120,8 +120,9 @@ TEST(Mpi, RotatingDrumMatchesTheSerialRun) {
       serial.run(6000);
       const Snapshot b = snapshot(serial);
       EXPECT_GT(b.energies.contacts, 30u); // the bed has reached the wall
-      EXPECT_NE(serial.wall_loads()[0].work, 0.0);
-      EXPECT_NEAR(work, serial.wall_loads()[0].work, 1e-8 * std::abs(serial.wall_loads()[0].work))
+      EXPECT_NE(serial.shaped_wall_loads()[0].work, 0.0);
+      EXPECT_NEAR(work, serial.shaped_wall_loads()[0].work,
+                  1e-8 * std::abs(serial.shaped_wall_loads()[0].work))
           << (meshed ? "mesh" : "cylinder");
       EXPECT_NEAR(a.energies.balance(), b.energies.balance(),
                   1e-10 * std::abs(b.energies.balance()));
@@ -222,34 +223,34 @@ TEST(Mpi, DeformingAndServoMeshesAreHeldInPartsAndResumeBitForBit) {
   Simulation parallel = bin_under_servo_lid(world);
   parallel.run(651);
   ArchiveWriter saved;
-  parallel.checkpoint(saved);
+  parallel.save_state(saved);
   parallel.run(2349);
   const Snapshot a = snapshot(parallel);
   if (world.size() > 1)
     for (std::size_t w : {0u, 1u}) expect_held_in_parts(parallel, world, w);
-  const auto& lid = std::get<MeshWall>(parallel.walls()[1]);
-  EXPECT_GT(lid.servo_offset, 0.2) << "the lid came down"; // (along its axis, -z)
-  const double work = parallel.wall_loads()[0].work;       // collective
+  const auto& lid = std::get<MeshWall>(parallel.shaped_walls()[1]);
+  EXPECT_GT(lid.servo_offset, 0.2) << "the lid came down";  // (along its axis, -z)
+  const double work = parallel.shaped_wall_loads()[0].work; // collective
   const std::vector<Vec3> side_forces = parallel.triangle_forces(0),
                           lid_forces = parallel.triangle_forces(1);
   parallel.run(3000); // (on, for the resume: the lid presses on)
   ArchiveWriter straight;
-  parallel.checkpoint(straight);
+  parallel.save_state(straight);
 
   Simulation resumed = bin_under_servo_lid(world);
-  ArchiveReader reader(saved.data());
-  resumed.checkpoint(reader);
+  resumed.load({{saved.data()}, static_cast<std::uint64_t>(world.size())});
   resumed.run(5349);
   ArchiveWriter after;
-  resumed.checkpoint(after);
+  resumed.save_state(after);
   EXPECT_TRUE(straight.data() == after.data()) << "rank " << world.rank();
 
   if (world.rank() == 0) {
     Simulation serial = bin_under_servo_lid(Comm::self());
     serial.run(3000);
-    EXPECT_GE(serial.wall_loads()[1].contacts, 4u); // the lid presses on the bed
-    EXPECT_NE(serial.wall_loads()[0].work, 0.0);
-    EXPECT_NEAR(work, serial.wall_loads()[0].work, 1e-8 * std::abs(serial.wall_loads()[0].work));
+    EXPECT_GE(serial.shaped_wall_loads()[1].contacts, 4u); // the lid presses on the bed
+    EXPECT_NE(serial.shaped_wall_loads()[0].work, 0.0);
+    EXPECT_NEAR(work, serial.shaped_wall_loads()[0].work,
+                1e-8 * std::abs(serial.shaped_wall_loads()[0].work));
     expect_same(a, snapshot(serial), 1e-9, 1e-7);
     expect_same_triangle_forces(side_forces, serial.triangle_forces(0), 1); // (grains it hit
     expect_same_triangle_forces(lid_forces, serial.triangle_forces(1));     // fly off again)

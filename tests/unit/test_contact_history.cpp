@@ -37,11 +37,11 @@ std::vector<Vec3> positions_by_gid(const Simulation& sim) {
 TEST(ContactHistory, RebuildingAtAnyStepChangesNothingButRoundOff) {
   Simulation plain = pile(), rebuilt = pile();
   for (int k = 0; k < 3000; ++k) {
-    if (k % 7 == 3) rebuilt.request_rebuild();
+    if (k % 7 == 3) rebuilt.request_list_build();
     plain.step();
     rebuilt.step();
   }
-  ASSERT_GT(rebuilt.rebuilds(), plain.rebuilds() + 300);
+  ASSERT_GT(rebuilt.list_builds(), plain.list_builds() + 300);
   ASSERT_GT(plain.last_tally().touching, 20u); // many loaded contacts carried through
   const auto a = positions_by_gid(plain), b = positions_by_gid(rebuilt);
   for (std::size_t g = 0; g < a.size(); ++g) EXPECT_LT(norm(a[g] - b[g]), 1e-9) << "grain " << g;

@@ -200,7 +200,7 @@ TEST(VtkWalls, AMeshCarriesTheWeightOfTheGrainOnIt) {
   EXPECT_NEAR(total.x, 0.0, 1e-9 * m * g);
   EXPECT_NEAR(total.y, 0.0, 1e-9 * m * g);
   EXPECT_NEAR(total.z, -m * g, 1e-9 * m * g);
-  EXPECT_LT(norm(total - sim.wall_loads()[0].force), 1e-12 * m * g);
+  EXPECT_LT(norm(total - sim.shaped_wall_loads()[0].force), 1e-12 * m * g);
 
   // Both parts of each frame in the collection.
   const std::string pvd = slurp(dir / "particles.pvd");

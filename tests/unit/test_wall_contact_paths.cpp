@@ -76,8 +76,8 @@ void expect_same_bits(const Simulation& a, const Simulation& b) {
   }
   EXPECT_EQ(a.energies().dissipated, b.energies().dissipated);
   EXPECT_EQ(a.energies().elastic, b.energies().elastic);
-  EXPECT_EQ(a.wall_loads()[0].force, b.wall_loads()[0].force);
-  EXPECT_EQ(a.wall_loads()[0].torque, b.wall_loads()[0].torque);
+  EXPECT_EQ(a.shaped_wall_loads()[0].force, b.shaped_wall_loads()[0].force);
+  EXPECT_EQ(a.shaped_wall_loads()[0].torque, b.shaped_wall_loads()[0].torque);
 }
 
 TEST(WallContactPaths, NearElementsChangeNothing) {
@@ -94,7 +94,7 @@ TEST(WallContactPaths, NearElementsChangeNothing) {
       ++reused;
       fewest = std::min(fewest, near.near_wall_elements().elements.size());
     }
-    most_contacts = std::max(most_contacts, near.wall_loads()[0].contacts);
+    most_contacts = std::max(most_contacts, near.shaped_wall_loads()[0].contacts);
   }
   EXPECT_GT(reused, 1000);
   EXPECT_LT(fewest, near.neighbor_list().wall_elements.size());
@@ -114,12 +114,12 @@ TEST(WallContactPaths, BatchesAndTheOneByOneLoopAgree) {
     ASSERT_EQ(a.dissipated, b.dissipated) << "step " << k;
     ASSERT_EQ(a.elastic, b.elastic) << "step " << k;
     ASSERT_EQ(a.touching, b.touching) << "step " << k;
-    const std::size_t now = batched.wall_loads()[0].contacts;
+    const std::size_t now = batched.shaped_wall_loads()[0].contacts;
     opened += now < before ? 1 : 0;
     before = now;
   }
   EXPECT_GT(opened, 10); // contacts opened, releasing their springs' energy
-  EXPECT_GT(batched.wall_loads()[0].contacts, 20u);
+  EXPECT_GT(batched.shaped_wall_loads()[0].contacts, 20u);
   expect_same_bits(batched, one_by_one);
 }
 

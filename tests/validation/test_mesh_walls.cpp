@@ -177,7 +177,7 @@ TEST(MeshWalls, AGroovesFacesShareTheWeight) {
                    groove());
     sim.run(30000);
     ASSERT_LT(norm(sim.particles().v[0]), 1e-10);
-    const auto loads = sim.wall_loads();
+    const auto loads = sim.shaped_wall_loads();
     ASSERT_EQ(loads.size(), 2u);
     for (const WallLoad& l : loads) {
       // on the wall: without friction m g / sqrt(2) along the face's normal; with friction
@@ -267,7 +267,7 @@ TEST(MeshWalls, AServoPistonHoldsItsTargetForce) {
   const int samples = 5000;
   for (int k = 0; k < samples; ++k) {
     sim.step();
-    pushed += sim.wall_loads()[0].force.z / samples; // the grains push the lid up
+    pushed += sim.shaped_wall_loads()[0].force.z / samples; // the grains push the lid up
   }
   EXPECT_NEAR(pushed, target, 0.01 * target);
   const auto books = sim.energies();
@@ -310,7 +310,7 @@ TEST(MeshWalls, ACarriedFloorLowersTheGrainsOnItAndHolds) {
   const double work_before = sim.energies().wall_work;
   const double dissipated_before = sim.energies().dissipated;
   sim.run(31000); // t = 4: the floor stopped at t = 3
-  const auto& held = std::get<CylinderWall>(sim.walls()[0]);
+  const auto& held = std::get<CylinderWall>(sim.shaped_walls()[0]);
   EXPECT_EQ(held.shift.z, -delta);
   EXPECT_EQ(held.shift_velocity.z, 0.0);
   for (std::size_t i = 0; i < 4; ++i) {

@@ -1,11 +1,15 @@
-// Grains poured in ([[insert]]) and taken out ([[outlet]]) while a run goes on
-// (scene/particle_source.hpp). Both happen at list builds, where particles may be added and
-// removed: a batch due forces a list build at its step.
-#include "scene/ball_hash.hpp"
-#include "sim/simulation.hpp"
+// The sources part: batches of an insert placed at the list builds, outlets' tallies, the
+// inserts steered from outside, and the sources' section of a checkpoint.
+#include "sim/sources.hpp"
 
+#include "core/random.hpp"
+#include "scene/ball_hash.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
+#include <stdexcept>
 
 namespace yuxi {
 namespace {
@@ -16,9 +20,19 @@ Random batch_stream(std::uint64_t seed, std::int64_t batch) {
   return Random(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(batch) + 1);
 }
 
+template <class Archive> void strings(Archive& ar, std::vector<std::string>& v) {
+  std::uint64_t n = v.size();
+  ar.value(n);
+  if constexpr (Archive::loading) {
+    if (n > (std::uint64_t{1} << 24)) throw ArchiveError("an impossible count of names");
+    v.assign(n, std::string{});
+  }
+  for (std::string& s : v) ar.string(s);
+}
+
 } // namespace
 
-void Simulation::set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets) {
+void Sources::set(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets) {
   inserts_ = std::move(inserts);
   outlets_ = std::move(outlets);
   insert_progress_.assign(inserts_.size(), InsertProgress{});
@@ -27,9 +41,8 @@ void Simulation::set_sources(std::vector<InsertSpec> inserts, std::vector<Outlet
   outlet_part_.assign(outlets_.size(), OutletPart{});
 }
 
-Simulation::BatchSteps Simulation::batch_steps(std::size_t k) const {
+Sources::BatchSteps Sources::batch_steps(std::size_t k, double dt) const {
   const InsertSpec& s = inserts_[k];
-  const double dt = config_.dt;
   const std::int64_t first = insert_progress_[k].first_step >= 0
                                  ? insert_progress_[k].first_step
                                  : std::max<std::int64_t>(1, std::llround(s.start / dt));
@@ -39,29 +52,33 @@ Simulation::BatchSteps Simulation::batch_steps(std::size_t k) const {
   return {first, every, last};
 }
 
-bool Simulation::batch_due(std::size_t k, std::int64_t step) const {
+bool Sources::batch_due(std::size_t k, std::int64_t step, double dt) const {
   const InsertProgress& p = insert_progress_[k];
   const bool full = inserts_[k].total >= 0 && p.grains >= inserts_[k].total;
-  const BatchSteps b = batch_steps(k);
+  const BatchSteps b = batch_steps(k, dt);
   return p.halted == 0 && !full && step >= b.first && step <= b.last &&
          (step - b.first) % b.every == 0;
 }
 
-bool Simulation::insertion_due(std::int64_t step) const {
+bool Sources::insertion_due(std::int64_t step, double dt) const {
   for (std::size_t k = 0; k < inserts_.size(); ++k)
-    if (batch_due(k, step)) return true;
+    if (batch_due(k, step, dt)) return true;
   return false;
 }
 
-void Simulation::insert_due_batches() {
+void Sources::insert_due_batches(ParticleStore& s, const SimulationConfig& config,
+                                 const Decomposition& decomp, const Comm& comm,
+                                 const std::vector<PlaneWall>& planes, double t, std::int64_t step,
+                                 Books books) {
   for (std::size_t k = 0; k < inserts_.size(); ++k)
-    if (batch_due(k, step_)) insert_batch(k);
+    if (batch_due(k, step, config.dt))
+      insert_batch(k, s, config, decomp, comm, planes, t, step, books);
 }
 
-void Simulation::adopt_sources(const std::vector<std::string>& insert_names,
-                               const std::vector<InsertProgress>& inserts,
-                               const std::vector<std::string>& outlet_names,
-                               const std::vector<OutletPart>& outlets) {
+void Sources::adopt(const std::vector<std::string>& insert_names,
+                    const std::vector<InsertProgress>& inserts,
+                    const std::vector<std::string>& outlet_names,
+                    const std::vector<OutletPart>& outlets) {
   // (a handful of sources: a search by name each)
   std::vector<InsertProgress> progress(inserts_.size());
   for (std::size_t k = 0; k < inserts_.size(); ++k) {
@@ -77,7 +94,7 @@ void Simulation::adopt_sources(const std::vector<std::string>& insert_names,
   outlet_part_ = std::move(parts);
 }
 
-void Simulation::start_insert(std::size_t k) {
+void Sources::start_insert(std::size_t k, std::int64_t step, double dt) {
   const InsertSpec& s = inserts_.at(k);
   InsertProgress& p = insert_progress_.at(k);
   if (p.halted == 2)
@@ -85,63 +102,51 @@ void Simulation::start_insert(std::size_t k) {
   if (s.total >= 0 && p.grains >= s.total)
     throw std::invalid_argument(
         fmt::format("insert '{}' has poured its total of {} grains", s.name, s.total));
-  if (std::isfinite(s.end) && step_ + 1 > std::llround(s.end / config_.dt))
+  if (std::isfinite(s.end) && step + 1 > std::llround(s.end / dt))
     throw std::invalid_argument(
         fmt::format("insert '{}' ends at t = {}, which has passed", s.name, s.end));
-  p.first_step = step_ + 1;
+  p.first_step = step + 1;
   p.grains_before = p.grains;
   p.mass_before = p.mass;
   p.halted = 0;
 }
 
-void Simulation::pause_insert(std::size_t k) {
+void Sources::pause_insert(std::size_t k) {
   if (insert_progress_.at(k).halted == 2)
     throw std::invalid_argument(fmt::format("insert '{}' was stopped for good", inserts_[k].name));
   insert_progress_[k].halted = 1;
 }
 
-void Simulation::stop_insert(std::size_t k) {
+void Sources::stop_insert(std::size_t k) {
   insert_progress_.at(k).halted = 2;
 }
 
-void Simulation::add_insert(InsertSpec insert) {
+void Sources::check_new_name(const std::string& name) const {
   for (const InsertSpec& s : inserts_)
-    if (s.name == insert.name)
+    if (s.name == name)
       throw std::invalid_argument(fmt::format("an insert named '{}' exists already", s.name));
-  const double r = insert.grains.size.largest();
-  if (2 * r + config_.skin > cell_edge_)
-    throw std::invalid_argument(fmt::format(
-        "insert '{}': grains of radius {} are larger than the linked cells allow ({}); the scene "
-        "must pour grains that large from the start",
-        insert.name, r, 0.5 * (cell_edge_ - config_.skin)));
-  const auto k = insert.grains.material;
-  if (k >= n_materials_)
-    throw std::invalid_argument(fmt::format("insert '{}': material {} is not one of the scene's {}",
-                                            insert.name, k, n_materials_));
-  std::string error;
-  try {
-    check_pairs_for(k, fmt::format("insert '{}'", insert.name));
-  } catch (const std::invalid_argument& e) {
-    error = e.what();
-  }
-  error = comm_.first_error(error);
-  if (!error.empty()) throw std::invalid_argument(error);
+}
+
+void Sources::add_insert(InsertSpec insert, std::int64_t step, double dt) {
+  check_new_name(insert.name);
   InsertProgress p;
   if (insert.held) p.halted = 1;
-  p.first_step =
-      std::max(step_ + 1, std::max<std::int64_t>(1, std::llround(insert.start / config_.dt)));
+  p.first_step = std::max(step + 1, std::max<std::int64_t>(1, std::llround(insert.start / dt)));
   inserts_.push_back(std::move(insert));
   insert_progress_.push_back(p);
 }
 
-void Simulation::insert_batch(std::size_t source) {
+void Sources::insert_batch(std::size_t source, ParticleStore& store, const SimulationConfig& config,
+                           const Decomposition& decomp, const Comm& comm,
+                           const std::vector<PlaneWall>& planes, double t, std::int64_t step,
+                           Books books) {
   const InsertSpec& s = inserts_[source];
   InsertProgress& progress = insert_progress_[source];
-  const double dt = config_.dt;
-  const BatchSteps b = batch_steps(source);
+  const double dt = config.dt;
+  const BatchSteps b = batch_steps(source, dt);
   // What is due by the end of this batch's interval, from the pouring under way: a count, or
   // grains until the mass is.
-  const double elapsed = static_cast<double>(step_ - b.first + b.every) * dt;
+  const double elapsed = static_cast<double>(step - b.first + b.every) * dt;
   Random rng = batch_stream(s.grains.seed, progress.batches);
   ++progress.batches;
   struct Due {
@@ -169,26 +174,26 @@ void Simulation::insert_batch(std::size_t source) {
   // Candidate places: `attempts` for each due grain, from the batch's stream.
   const std::size_t attempts = static_cast<std::size_t>(std::max(1, s.attempts));
   std::vector<Vec3> places(due.size() * attempts);
-  for (auto& p : places) p = s.region.sample(rng, config_.box).value_or(Vec3{NAN, NAN, NAN});
-  // Refused where the ball leaves the region or the domain, meets a flat wall, or overlaps a
+  for (auto& p : places) p = s.region.sample(rng, config.box).value_or(Vec3{NAN, NAN, NAN});
+  // Refused where the ball leaves the region or the domain, meets a plane, or overlaps a
   // particle this rank owns; every rank judges its own particles, and the refusals are
   // combined (max) so that every rank takes the same candidates. Positions are wrapped, and a
   // ball near a periodic face is looked for at its images across it too.
-  const Box& box = config_.box;
+  const Box& box = config.box;
   double r_max = s.grains.size.largest();
   std::vector<double> refused(places.size(), 0.0);
   Vec3 lo, hi;
   s.region.bounds_in(box, lo, hi);
   double reach = 2.0 * r_max;
-  for (std::size_t i = 0; i < store_.n_owned(); ++i)
-    reach = std::max(reach, store_.radius[i] + r_max);
+  for (std::size_t i = 0; i < store.n_owned(); ++i)
+    reach = std::max(reach, store.radius[i] + r_max);
   BallHash near(reach);
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    const Vec3 x = box.wrap(store_.x[i]);
+  for (std::size_t i = 0; i < store.n_owned(); ++i) {
+    const Vec3 x = box.wrap(store.x[i]);
     bool is_near = true; // (any distance along a periodic axis: an image may come near)
     for (int a = 0; a < 3; ++a)
       is_near = is_near && (box.periodic(a) || (x[a] >= lo[a] - reach && x[a] <= hi[a] + reach));
-    if (is_near) near.add(x, store_.radius[i]);
+    if (is_near) near.add(x, store.radius[i]);
   }
   const auto overlaps = [&](const BallHash& balls, const Vec3& x, double r) {
     for (const Vec3& image : box.images_within(x, reach))
@@ -200,15 +205,15 @@ void Simulation::insert_batch(std::size_t source) {
     const double r = due[c / attempts].radius;
     bool bad = !is_finite(x) || !box.contains(x) || !s.region.contains_sphere_in(x, r, box) ||
                overlaps(near, x, r);
-    for (const PlaneWall& w : planes_) bad = bad || w.distance(x, time_) < r;
+    for (const PlaneWall& w : planes) bad = bad || w.distance(x, t) < r;
     refused[c] = bad ? 1.0 : 0.0;
   }
-  if (comm_.size() > 1) comm_.max(refused.data(), static_cast<int>(refused.size()));
+  if (comm.size() > 1) comm.max(refused.data(), static_cast<int>(refused.size()));
   // The same choice on every rank: for each due grain its first free place, clear of the
   // grains taken before it in this batch.
   BallHash taken(2.0 * r_max);
-  const Vec3 g = potential_gravity();
-  store_.clear_ghosts();
+  const Vec3 g = potential_gravity(config);
+  store.clear_ghosts();
   std::int64_t placed = 0;
   for (std::size_t j = 0; j < due.size(); ++j) {
     for (std::size_t a = 0; a < attempts; ++a) {
@@ -220,7 +225,7 @@ void Simulation::insert_batch(std::size_t source) {
       const double m = s.grains.mass_of(due[j].radius);
       ++placed;
       progress.mass += m;
-      if (decomp_.owns(config_.box.wrap(x))) {
+      if (decomp.owns(config.box.wrap(x))) {
         ParticleSpec p;
         p.position = x;
         p.radius = due[j].radius;
@@ -228,11 +233,11 @@ void Simulation::insert_batch(std::size_t source) {
         p.material = s.grains.material;
         // The step's second half kick (gravity alone, until its contacts are computed) brings
         // the velocity to the one drawn: it starts half a kick behind.
-        p.velocity = due[j].velocity - (0.5 * dt) * config_.gravity;
-        const std::size_t i = store_.add(p, id);
-        store_.f[i] = m * config_.gravity;
+        p.velocity = due[j].velocity - (0.5 * dt) * config.gravity;
+        const std::size_t i = store.add(p, id);
+        store.f[i] = m * config.gravity;
         // Its kinetic and potential energy come from outside the equations of motion.
-        books_.inserted += 0.5 * m * norm2(due[j].velocity) - m * dot(g, x);
+        books.inserted += 0.5 * m * norm2(due[j].velocity) - m * dot(g, x);
       }
       break;
     }
@@ -241,39 +246,99 @@ void Simulation::insert_batch(std::size_t source) {
   progress.owed = static_cast<std::int64_t>(due.size()) - placed;
 }
 
-void Simulation::handle_outlets() {
-  std::vector<std::size_t> gone;
-  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
-    for (std::size_t k = 0; k < outlets_.size(); ++k)
-      if (outlets_[k].region.contains(config_.box.wrap(store_.x[i]))) {
-        gone.push_back(i);
-        books_.removed += mechanical_energy(i);
-        ++outlet_part_[k].grains;
-        outlet_part_[k].mass += store_.mass[i];
-        break;
-      }
-  }
-  if (!gone.empty()) store_.remove_owned(gone);
-}
-
-std::vector<Simulation::SourceTally> Simulation::inflow() const {
-  std::vector<SourceTally> out;
+std::vector<Sources::Tally> Sources::inflow() const {
+  std::vector<Tally> out;
   for (std::size_t k = 0; k < inserts_.size(); ++k)
     out.push_back({inserts_[k].name, insert_progress_[k].grains, insert_progress_[k].mass,
                    insert_progress_[k].owed});
   return out;
 }
 
-std::vector<Simulation::SourceTally> Simulation::outflow() const {
+std::vector<Sources::Tally> Sources::outflow(const Comm& comm) const {
   std::vector<double> sums;
   for (const OutletPart& p : outlet_part_)
     sums.insert(sums.end(), {static_cast<double>(p.grains), p.mass});
-  if (!sums.empty()) comm_.sum(sums.data(), static_cast<int>(sums.size()));
-  std::vector<SourceTally> out;
+  if (!sums.empty()) comm.sum(sums.data(), static_cast<int>(sums.size()));
+  std::vector<Tally> out;
   for (std::size_t k = 0; k < outlets_.size(); ++k)
     out.push_back({outlets_[k].name, std::llround(sums[2 * k]), sums[2 * k + 1], 0});
   return out;
+}
+
+void Sources::save(ArchiveWriter& ar) const {
+  ar.value(next_gid_);
+  std::vector<std::string> insert_names, outlet_names;
+  for (const InsertSpec& s : inserts_) insert_names.push_back(s.name);
+  for (const OutletSpec& s : outlets_) outlet_names.push_back(s.name);
+  std::vector<InsertProgress> inserts = insert_progress_;
+  std::vector<OutletPart> outlets = outlet_part_;
+  strings(ar, insert_names);
+  ar.vector(inserts);
+  strings(ar, outlet_names);
+  ar.vector(outlets);
+}
+
+void Sources::load(ArchiveReader& ar, std::uint32_t layout) {
+  if (layout < 6) return; // (none under way)
+  ar.value(next_gid_);
+  std::vector<std::string> insert_names, outlet_names;
+  for (const InsertSpec& s : inserts_) insert_names.push_back(s.name);
+  for (const OutletSpec& s : outlets_) outlet_names.push_back(s.name);
+  std::vector<InsertProgress> inserts;
+  std::vector<OutletPart> outlets;
+  if (layout < 8) { // by position, unnamed: this scene's names where the counts agree
+    std::vector<InsertProgressV6> old;
+    ar.vector(old);
+    ar.vector(outlets);
+    inserts.assign(old.size(), InsertProgress{});
+    for (std::size_t k = 0; k < old.size(); ++k)
+      inserts[k].batches = old[k].batches, inserts[k].grains = old[k].grains,
+      inserts[k].owed = old[k].owed, inserts[k].mass = old[k].mass;
+    if (inserts.size() != inserts_.size()) inserts.clear(), insert_names.clear();
+    if (outlets.size() != outlets_.size()) outlets.clear(), outlet_names.clear();
+  } else {
+    strings(ar, insert_names);
+    ar.vector(inserts);
+    strings(ar, outlet_names);
+    ar.vector(outlets);
+  }
+  if (insert_names.size() != inserts.size() || outlet_names.size() != outlets.size())
+    throw ArchiveError("the sources' names and states differ in number (corrupt)");
+  adopt(insert_names, inserts, outlet_names, outlets);
+}
+
+void Sources::add_outlet_parts(OutletParts& sum) const {
+  sum.grains.resize(outlet_part_.size(), 0);
+  sum.mass.resize(outlet_part_.size(), 0.0);
+  for (std::size_t o = 0; o < outlet_part_.size(); ++o) {
+    sum.grains[o] += outlet_part_[o].grains;
+    sum.mass[o] += outlet_part_[o].mass;
+  }
+}
+
+void Sources::set_outlet_parts(const OutletParts& sum) {
+  outlet_part_.assign(outlets_.size(), OutletPart{});
+  for (std::size_t o = 0; o < outlet_part_.size() && o < sum.grains.size(); ++o)
+    outlet_part_[o] = {sum.grains[o], sum.mass[o]};
+}
+
+void Sources::agree_over(const Comm& comm, bool loaded) {
+  std::vector<double> numbers{loaded ? static_cast<double>(next_gid_) : -HUGE_VAL};
+  constexpr int fields = InsertProgress::n_numbers;
+  for (const InsertProgress& p : insert_progress_)
+    for (double v :
+         {static_cast<double>(p.batches), static_cast<double>(p.grains),
+          static_cast<double>(p.owed), p.mass, static_cast<double>(p.first_step),
+          static_cast<double>(p.grains_before), p.mass_before, static_cast<double>(p.halted)})
+      numbers.push_back(loaded ? v : -HUGE_VAL);
+  comm.max(numbers.data(), static_cast<int>(numbers.size()));
+  next_gid_ = static_cast<GlobalId>(numbers[0]);
+  const auto count = [](double v) { return static_cast<std::int64_t>(v); };
+  for (std::size_t k = 0; k < insert_progress_.size(); ++k) {
+    const double* v = &numbers[1 + fields * k];
+    insert_progress_[k] = {count(v[0]), count(v[1]), count(v[2]), v[3],
+                           count(v[4]), count(v[5]), v[6],        count(v[7])};
+  }
 }
 
 } // namespace yuxi

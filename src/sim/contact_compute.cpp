@@ -1,0 +1,46 @@
+#include "sim/contact_compute.hpp"
+
+namespace yuxi {
+
+ContactCompute::ContactCompute(AnyContactLaw law)
+    : law_(std::move(law)),
+      forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
+      history_(std::visit([](auto& f) -> ContactStates* { return &f.history; }, forces_)),
+      n_materials_(std::visit([](const auto& l) { return l.coeffs.n_materials(); }, law_)) {}
+
+bool ContactCompute::has_pair(std::uint8_t a, std::uint8_t b) const {
+  return std::visit([&](const auto& l) { return l.coeffs.has(a, b); }, law_);
+}
+
+const std::vector<WallLoad>& ContactCompute::plane_loads() const {
+  return std::visit([](const auto& f) -> const std::vector<WallLoad>& { return f.plane_loads; },
+                    forces_);
+}
+
+const DeepStarts& ContactCompute::deep_starts() const {
+  return std::visit([](const auto& f) -> const DeepStarts& { return f.deep_starts; }, forces_);
+}
+
+void ContactCompute::compute_pairs(ParticleStore& s, const NeighborList& list,
+                                   const NearPairs* near, const std::vector<PlaneWall>& planes,
+                                   double t, double dt, bool particles_still, PairSet set) {
+  std::visit(
+      [&](auto& f) {
+        f.compute(s, list, near, planes, t, dt, particles_still, tally_, record_, set);
+      },
+      forces_);
+}
+
+void ContactCompute::compute_shaped(ParticleStore& s, const NeighborList& list,
+                                    const NearWallElements* near,
+                                    const std::vector<ShapedWall>& shaped, double t, double dt,
+                                    std::vector<WallLoad>& loads,
+                                    std::vector<ElementForce>& elements) {
+  std::visit(
+      [&](auto& f) {
+        f.compute_walls(s, list, near, shaped, t, dt, tally_, loads, elements, record_);
+      },
+      forces_);
+}
+
+} // namespace yuxi

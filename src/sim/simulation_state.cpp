@@ -1,0 +1,294 @@
+// A simulation's saved state: saving this rank's section (save_state), and continuing from a
+// checkpoint's sections on as many ranks as wrote it or on another number (load), or under
+// another scene (branch); gathering the particles onto one rank.
+//
+// A section, in order: time, step, the cumulative books, the count of list builds, the initial
+// balance, the last tally; the walls' section (Walls::save); the sources' (Sources::save); the
+// three axes' cut planes; the owned particles (ParticleStore::checkpoint); the contacts'
+// states (ContactStates::save). Reading a section fills the parts and builds nothing; the
+// continuation then makes the list build explicitly.
+#include "core/archive.hpp"
+#include "sim/contact_reach.hpp"
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <utility>
+
+namespace yuxi {
+
+void Simulation::save_state(ArchiveWriter& ar) const {
+  ar.value(time_);
+  ar.value(step_);
+  ar.value(ledger_.books());
+  ar.value(list_builds_);
+  ar.value(ledger_.initial_balance());
+  ar.value(contacts_.tally());
+  walls_.save(ar);
+  sources_.save(ar);
+  for (const std::vector<double>& cuts : exchange_.cuts()) ar.vector(cuts);
+  store_.save(ar);
+  contacts_.history().save(ar, store_, search_.list());
+}
+
+void Simulation::read_section(ArchiveReader& ar, const SectionPlan& plan) {
+  ar.value(time_);
+  ar.value(step_);
+  ar.value(ledger_.books());
+  ar.value(list_builds_);
+  double initial_balance = 0.0;
+  ar.value(initial_balance);
+  ledger_.set_initial_balance(initial_balance);
+  ar.value(contacts_.tally());
+  walls_.load(ar, plan.layout);
+  sources_.load(ar, plan.layout);
+  std::array<std::vector<double>, 3> cuts;
+  for (std::vector<double>& axis : cuts) ar.vector(axis);
+  // The cells of the saved sub-domain: the list build then sorts and bins as the saved run.
+  if (plan.own) exchange_.set_cuts(cuts);
+  store_.clear_ghosts();
+  store_.checkpoint(ar);
+  if (plan.keep_history) {
+    contacts_.history().load(ar);
+  } else {
+    contacts_.history().forget();
+    ar.skip_to_end();
+  }
+}
+
+void Simulation::validate_loaded_particles() const {
+  // The checksum guards against damage; this guards the engine against a checkpoint that is
+  // intact but does not belong to this scene (or was crafted): nothing loaded may index out of
+  // range or start the run with impossible values.
+  const std::size_t n_materials = contacts_.n_materials();
+  const std::size_t n_motions = walls_.motions().size();
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    const bool ok = (store_.kind[i] == Kind::grain || store_.kind[i] == Kind::wall) &&
+                    store_.material[i] < n_materials && store_.motion[i] < n_motions &&
+                    store_.radius[i] > 0 && store_.mass[i] > 0 && std::isfinite(store_.radius[i]) &&
+                    std::isfinite(store_.mass[i]) && is_finite(store_.x[i]) &&
+                    is_finite(store_.v[i]) && is_finite(store_.w[i]) &&
+                    std::isfinite(store_.inv_mass[i]) && std::isfinite(store_.inv_inertia[i]);
+    if (!ok)
+      throw std::invalid_argument(fmt::format(
+          "particle {} of the checkpoint is invalid for this scene (kind, material, motion, "
+          "radius, mass or a non-finite value)",
+          i));
+  }
+  // The scalar state: finite energies and times, counts a run can have.
+  const ContactTally& tally = contacts_.tally();
+  const EnergyBooks& books = ledger_.books();
+  const double scalars[] = {time_, ledger_.initial_balance(), tally.elastic, tally.relaxation};
+  for (double x : scalars)
+    if (!std::isfinite(x)) throw std::invalid_argument("the checkpoint holds a non-finite energy");
+  if (!books.finite()) throw std::invalid_argument("the checkpoint holds a non-finite energy");
+  constexpr std::size_t limit = std::size_t{1} << 48;
+  if (step_ < 0 || list_builds_ < 0 || books.escaped > limit || tally.touching > limit)
+    throw std::invalid_argument("the checkpoint holds an impossible step or count");
+  if (store_.radius.empty() ? false : contact_reach(store_) > exchange_.grid().edge().x + 1e-12)
+    throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
+}
+
+void Simulation::load(const SavedState& saved) {
+  continue_from(saved, nullptr);
+}
+
+void Simulation::branch(const SavedState& saved, const BranchCheck& check) {
+  continue_from(saved, &check);
+  // The saved state's books (the saved contact law's stored energy), then the same state's
+  // under this scene: the difference comes from outside the equations of motion.
+  const EnergyBooks before = energies();
+  start_forces_from_gravity();
+  compute_forces(false);
+  stop_if_unhealthy();
+  const EnergyBooks after = energies();
+  if (comm().root())
+    ledger_.books().inserted +=
+        (after.mechanical() + after.relaxation) - (before.mechanical() + before.relaxation);
+}
+
+void Simulation::continue_from(const SavedState& saved, const BranchCheck* branch) {
+  const Comm& c = comm();
+  // (a branch takes its shares as on another number of ranks: merged, cut afresh)
+  const bool own = !branch && saved.written_on == static_cast<std::uint64_t>(c.size());
+  // Every rank learns whether every other loaded its share before any takes a collective step.
+  std::string error;
+  try {
+    if (saved.written_on == 0) throw ArchiveError("no rank's state in the file");
+    if (own && saved.share.size() != 1) throw ArchiveError("no state for this rank in the file");
+    if (own)
+      read_own_section(saved.share.front(), saved.layout);
+    else
+      merge_sections(saved.share, {saved.layout, false, !branch || branch->keep_history});
+    validate_loaded_particles();
+  } catch (const ArchiveError& e) {
+    error = e.what();
+  } catch (const std::length_error&) {
+    error = "a size field is impossible (corrupt)";
+  } catch (const std::invalid_argument& e) { // the loaded particles do not fit the scene
+    error = e.what();
+  }
+  error = c.first_error(error);
+  if (!error.empty()) throw std::invalid_argument(error);
+  // (a state of an older layout holds no next id)
+  GlobalId top = -1;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) top = std::max(top, store_.gid[i]);
+  sources_.ids_from(static_cast<GlobalId>(c.max(static_cast<double>(top))) + 1);
+  if (own) {
+    build_lists_after_load(true);
+    return;
+  }
+  // The run's scalars, the same in every section, from the ranks that loaded one (a rank's
+  // share may be empty), and the books summed over the sections, onto rank 0.
+  const bool loaded = !saved.share.empty();
+  double scalars[] = {loaded ? time_ : -HUGE_VAL, loaded ? static_cast<double>(step_) : -HUGE_VAL,
+                      loaded ? static_cast<double>(list_builds_) : -HUGE_VAL,
+                      loaded ? ledger_.initial_balance() : -HUGE_VAL};
+  c.max(scalars, 4);
+  time_ = scalars[0];
+  step_ = static_cast<std::int64_t>(scalars[1]);
+  list_builds_ = static_cast<std::int64_t>(scalars[2]);
+  ledger_.set_initial_balance(scalars[3]);
+  // The inserts' progress and the next id, the same in every section, from those that loaded.
+  sources_.agree_over(c, loaded);
+  EnergyBooks& books = ledger_.books();
+  books.sum_over(c);
+  ContactTally& tally = contacts_.tally();
+  double sums[] = {tally.elastic, tally.relaxation, static_cast<double>(tally.touching)};
+  c.sum(sums, 3);
+  const bool root = c.root();
+  walls_.sum_work_onto_root(c);
+  if (!root) books = EnergyBooks{};
+  tally = ContactTally{};
+  if (root) {
+    tally.elastic = sums[0];
+    tally.relaxation = sums[1];
+    tally.touching = static_cast<std::size_t>(sums[2]);
+  }
+  // This run's own decomposition, cut by particle count; the list build's migration then takes
+  // every particle to its owner.
+  exchange_.cut_by_count(store_);
+  if (branch) {
+    check_branched_particles(*branch);
+    // The step count of this scene's time step; the walls where its motions put them.
+    step_ = std::llround(time_ / config_.dt);
+    walls_.place(store_, time_, true);
+  }
+  build_lists_after_load(false);
+}
+
+void Simulation::check_branched_particles(const BranchCheck& check) const {
+  std::size_t wall_particles = 0;
+  std::string outside;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i) {
+    wall_particles += store_.is_grain(i) ? 0 : 1;
+    const Vec3 x = config_.box.wrap(store_.x[i]);
+    if (outside.empty() && store_.is_grain(i) && !config_.box.contains(x))
+      outside = fmt::format("grain {} of the checkpoint stands at ({:.6g}, {:.6g}, {:.6g}), "
+                            "outside this scene's domain",
+                            store_.gid[i], x.x, x.y, x.z);
+  }
+  const Comm& c = comm();
+  const auto walls = static_cast<std::size_t>(c.sum(static_cast<double>(wall_particles)));
+  // The grains are the checkpoint's, whatever the scene builds (its fills and particles give
+  // way to them, and the ids of grains poured later follow the saved run's); the walls must be
+  // the scene's, whose motions move them.
+  std::string error = c.first_error(outside);
+  if (error.empty() && walls != check.walls)
+    error = fmt::format("the checkpoint holds {} wall particles, this scene builds {}: the "
+                        "branch must keep the walls of the run it starts from",
+                        walls, check.walls);
+  if (!error.empty()) throw std::invalid_argument(error);
+}
+
+void Simulation::read_own_section(const std::string& section, std::uint32_t layout) {
+  ArchiveReader ar(section);
+  read_section(ar, {layout, true, true});
+  if (!ar.at_end()) throw ArchiveError("unread data after the state");
+}
+
+void Simulation::merge_sections(const std::vector<std::string>& share, const SectionPlan& plan) {
+  ParticleStore pool;
+  std::string states;
+  EnergyBooks books;
+  Walls::Work work{{}, std::vector<double>(walls_.planes().size(), 0.0)};
+  Sources::OutletParts outlets;
+  ContactTally tally;
+  double time = 0, initial_balance = 0;
+  std::int64_t step = 0, list_builds = 0;
+  for (std::size_t k = 0; k < share.size(); ++k) {
+    ArchiveReader ar(share[k]);
+    read_section(ar, plan);
+    if (!ar.at_end()) throw ArchiveError("unread data after a section");
+    if (k == 0)
+      time = time_, step = step_, list_builds = list_builds_,
+      initial_balance = ledger_.initial_balance();
+    for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
+    states += contacts_.history().stashed_bytes();
+    books.add(ledger_.books());
+    const Walls::Work& w = walls_.work();
+    work.shaped.resize(w.shaped.size(), 0.0);
+    for (std::size_t s = 0; s < w.shaped.size(); ++s) work.shaped[s] += w.shaped[s];
+    for (std::size_t p = 0; p < work.planes.size() && p < w.planes.size(); ++p)
+      work.planes[p] += w.planes[p];
+    sources_.add_outlet_parts(outlets);
+    const ContactTally& t = contacts_.tally();
+    tally.elastic += t.elastic;
+    tally.relaxation += t.relaxation;
+    tally.touching += t.touching;
+  }
+  store_ = std::move(pool);
+  contacts_.history().give(states);
+  time_ = time, step_ = step, list_builds_ = list_builds;
+  ledger_.set_initial_balance(initial_balance);
+  ledger_.books() = books;
+  walls_.set_work(std::move(work));
+  sources_.set_outlet_parts(outlets);
+  contacts_.tally() = tally;
+}
+
+void Simulation::build_lists_after_load(bool as_saved) {
+  // The history comes from the checkpoint's stash; the count of list builds is the saved run's.
+  const auto counted = list_builds_;
+  if (!as_saved) {
+    build_lists({ListBuildPlan::After::load}); // (other ranks' sections: a new list)
+  } else {
+    // A state saved at any step: its particles stand in the order of the run's last list
+    // build, and x_build holds where each stood then. Built from those positions, the list,
+    // the ghosts and the owners are that build's again; then every particle goes back to where
+    // it stands now, and the ghosts follow. The run goes on bit for bit as if never stopped,
+    // whatever step it was saved at (a checkpoint leaves the trajectory untouched).
+    // The shaped walls likewise stand where they stood at that build while it is made again.
+    const Walls::AsBuilt as_built = walls_.stand_as_built();
+    std::swap(store_.x, store_.x_build);
+    build_lists({ListBuildPlan::After::load_at_last_build});
+    std::swap(store_.x, store_.x_build);
+    walls_.stand_again(as_built, time_);
+    exchange_.forward(store_);
+  }
+  list_builds_ = counted;
+}
+
+ParticleStore Simulation::gather_particles() const {
+  ArchiveWriter out;
+  ParticleStore mine = store_; // owned only, for the archive
+  mine.clear_ghosts();
+  mine.save(out);
+  const auto parts = comm().gather(out.data());
+  ParticleStore all;
+  if (!comm().root()) return all;
+  std::vector<ParticleStore> stores(parts.size());
+  std::vector<std::pair<GlobalId, std::pair<std::size_t, std::size_t>>> order;
+  for (std::size_t r = 0; r < parts.size(); ++r) {
+    ArchiveReader in(parts[r]);
+    stores[r].checkpoint(in);
+    for (std::size_t i = 0; i < stores[r].n_owned(); ++i)
+      order.push_back({stores[r].gid[i], {r, i}});
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [gid, where] : order) all.append_copy(stores[where.first], where.second);
+  return all;
+}
+
+} // namespace yuxi
