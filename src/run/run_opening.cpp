@@ -86,8 +86,7 @@ OpenedRun open_resume(const fs::path& run_folder, const std::function<bool(Scene
   size_for_saved_grains(r.scene, data.largest_grain_radius); // (a run branched without grains)
   // Later checkpoints carry the new settings.
   if (adjust && adjust(r.scene)) r.scene_text = resolved_scene_toml(r.scene);
-  r.sim = build_simulation(r.scene, true, &r.report);
-  apply_checkpoint(data, *r.sim);
+  r.sim = continue_checkpoint(r.scene, data, std::nullopt, true, &r.report);
   r.origin =
       fmt::format("resuming from {} at step {}, t = {}", data.file.string(), data.step, data.time);
   return r;
@@ -126,29 +125,22 @@ OpenedRun open_branch(Scene scene, const fs::path& from, bool force_dt) {
           r.scene.source, data->file.string(), data->format_version));
     size_for_saved_grains(r.scene, data->largest_grain_radius);
   }
-  r.sim = build_simulation(r.scene, force_dt, &r.report);
   r.scene_text = resolved_scene_toml(r.scene);
   // A scene whose dynamics are the checkpoint's (it may pour, drain, measure and write
   // otherwise) continues as a resume does, bit for bit, with its own sources.
   const bool as_resume = dynamics_of(r.scene) == dynamics_of(saved) &&
                          r.scene.sim.min_contact_reach == saved.sim.min_contact_reach;
-  if (as_resume) {
-    apply_checkpoint(*data, *r.sim);
-  } else {
-    const bool keep = saved.contact_model == r.scene.contact_model;
-    if (!keep)
+  std::optional<Simulation::BranchCheck> branch;
+  if (!as_resume) {
+    branch = Simulation::BranchCheck{scene_wall_particles(r.scene),
+                                     saved.contact_model == r.scene.contact_model};
+    if (!branch->keep_history)
       r.warnings.push_back(fmt::format(
           "the contact model changes from {} to {}: every contact's history (tangential "
           "springs and model state) is dropped, and contacts open afresh under the new law",
           saved.contact_model, r.scene.contact_model));
-    try {
-      r.sim->branch({data->sections, data->n_sections, data->format_version},
-                    {r.report.walls, keep});
-    } catch (const std::invalid_argument& e) {
-      throw CheckpointError(fmt::format("{}: {}", data->file.string(), e.what()));
-    }
   }
-  if (!own_grains) check_time_step(r.scene, *r.sim, force_dt, r.report);
+  r.sim = continue_checkpoint(r.scene, *data, branch, force_dt, &r.report);
   r.origin = fmt::format("branching from {} at step {}, t = {}{}", data->file.string(), data->step,
                          data->time,
                          as_resume ? " (the scene's dynamics are the checkpoint's: the run "

@@ -33,20 +33,15 @@ std::string speed_note(const BuildReport& r) {
   return fmt::format(", meeting at {:.4g}: {}", r.impact.speed, r.impact.source);
 }
 
-std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, BuildReport* report,
-                                             Comm comm) {
-  if (!(scene.largest_grain_radius > 0.0))
-    throw SceneError(fmt::format("{}: the scene has no grains: add a [basin], [[fill]], "
-                                 "[[insert]] or [[particle]] entries, or start it from another "
-                                 "run's state (yuxi run --from, Python's Simulation.branch)",
-                                 scene.source));
+namespace {
+
+// The scene's particles at t = 0, as every rank builds them: the basin's, the [[particle]]s, the
+// fills in file order, each clear of every particle placed before it.
+ParticleStore scene_particles(const Scene& scene, BuildReport& r) {
   ParticleStore particles;
-  std::vector<WallMotion> motions{StaticMotion{}};
-  BuildReport r;
   if (scene.basin) {
     BuiltParticles basin = build_fish_basin(*scene.basin, scene.sim.box.lo);
     particles = std::move(basin.particles);
-    motions = std::move(basin.motions);
     r.walls = basin.n_walls;
     r.grains = basin.n_grains;
   }
@@ -55,7 +50,6 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
     particles.add(p, next++);
     (p.kind == Kind::grain ? r.grains : r.walls) += 1;
   }
-  // The fills, in file order, each clear of every particle placed before it.
   if (!scene.fills.empty()) {
     std::vector<ParticleSpec> placed;
     placed.reserve(particles.n_owned());
@@ -78,12 +72,74 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
       placed.insert(placed.end(), grains.begin(), grains.end());
     }
   }
+  return particles;
+}
+
+} // namespace
+
+SimulationFrame scene_frame(const Scene& scene) {
+  SimulationFrame f{scene.sim,   scene.planes,  {StaticMotion{}}, scene.law,
+                    scene.walls, scene.inserts, scene.outlets};
+  if (scene.basin) f.motions = fish_basin_motions(*scene.basin, scene.sim.box.lo);
+  return f;
+}
+
+std::size_t scene_wall_particles(const Scene& scene) {
+  // A fill of wall particles by packing fraction or mass places them to count them (and with
+  // them everything placed before it).
+  for (const FillSpec& f : scene.fills)
+    if (f.walls && f.amount != FillSpec::Amount::count) {
+      BuildReport r;
+      scene_particles(scene, r);
+      return r.walls;
+    }
+  std::size_t walls = scene.basin ? fish_basin_walls(*scene.basin) : 0;
+  for (const auto& p : scene.particles) walls += p.kind == Kind::grain ? 0 : 1;
+  for (const FillSpec& f : scene.fills)
+    if (f.walls) walls += static_cast<std::size_t>(f.value);
+  return walls;
+}
+
+std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, BuildReport* report,
+                                             Comm comm) {
+  if (!(scene.largest_grain_radius > 0.0))
+    throw SceneError(fmt::format("{}: the scene has no grains: add a [basin], [[fill]], "
+                                 "[[insert]] or [[particle]] entries, or start it from another "
+                                 "run's state (yuxi run --from, Python's Simulation.branch)",
+                                 scene.source));
+  BuildReport r;
+  ParticleStore particles = scene_particles(scene, r);
   check_outlets(scene, particles, r);
-  r.impact = impact_speed(scene, particles, motions);
-  auto sim = std::make_unique<Simulation>(scene.sim, std::move(particles), scene.planes,
-                                          std::move(motions), scene.law, comm, scene.walls);
+  SimulationFrame frame = scene_frame(scene);
+  r.impact = impact_speed(scene, particles, frame.motions);
+  auto sim =
+      std::make_unique<Simulation>(frame.config, std::move(particles), frame.planes,
+                                   std::move(frame.motions), frame.law, comm, frame.shaped_walls);
   if (!scene.inserts.empty() || !scene.outlets.empty())
     sim->set_sources(scene.inserts, scene.outlets);
+  check_time_step(scene, *sim, force_dt, r);
+  if (report) *report = r;
+  return sim;
+}
+
+std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedState& saved,
+                                                std::optional<Simulation::BranchCheck> branch,
+                                                bool force_dt, BuildReport* report, Comm comm) {
+  SimulationFrame frame = scene_frame(scene);
+  const std::vector<WallMotion> motions = frame.motions;
+  auto sim = std::make_unique<Simulation>(std::move(frame), saved, comm, branch);
+  // What the state holds, and the impact speed of its grains (every rank's: the fastest, named
+  // by the first rank that has it).
+  BuildReport r;
+  const ParticleStore& s = sim->particles();
+  double counts[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < s.n_owned(); ++i) counts[s.is_grain(i) ? 0 : 1] += 1.0;
+  comm.sum(counts, 2);
+  r.grains = static_cast<std::size_t>(counts[0]);
+  r.walls = static_cast<std::size_t>(counts[1]);
+  const ImpactSpeed mine = impact_speed(scene, s, motions);
+  r.impact.speed = comm.max(mine.speed);
+  r.impact.source = comm.first_error(mine.speed == r.impact.speed ? mine.source : "");
   check_time_step(scene, *sim, force_dt, r);
   if (report) *report = r;
   return sim;

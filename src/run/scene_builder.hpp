@@ -1,5 +1,5 @@
-// Turns a validated Scene into a ready Simulation, and checks the time step against the
-// contact time of the stiffest contact.
+// Turns a validated Scene into a ready Simulation, from its start or continuing a saved state,
+// and checks the time step against the contact time of the stiffest contact.
 #pragma once
 
 #include "io/scene.hpp"
@@ -8,6 +8,7 @@
 #include "sim/simulation.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,23 @@ std::string speed_note(const BuildReport& r);
 std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt,
                                              BuildReport* report = nullptr,
                                              Comm comm = Comm::world());
+
+// The scene without its particles: what a checkpoint's state continues under.
+SimulationFrame scene_frame(const Scene& scene);
+// How many wall particles the scene builds (the basin's, those of [[particle]] and the wall
+// fills'), for a branch's check of the walls it continues.
+std::size_t scene_wall_particles(const Scene& scene);
+
+// Collective: `saved` continued under `scene`, built straight from the state (the scene's
+// initial particles are never made): as a resume, or with `branch` as a branch
+// (Simulation's constructor from a SavedState). `report` counts the state's particles; the
+// time step is checked against them as build_simulation() does. Throws std::invalid_argument on
+// every rank where the state does not load or fit, TimeStepError or SceneError as
+// build_simulation().
+std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedState& saved,
+                                                std::optional<Simulation::BranchCheck> branch,
+                                                bool force_dt, BuildReport* report = nullptr,
+                                                Comm comm = Comm::world());
 
 // The time-step check against the grains `sim` holds now (a branch's, once loaded), at the
 // impact speed in `report`; fills in its stiffest contact. Collective.

@@ -38,4 +38,15 @@ void apply_checkpoint(const CheckpointData& data, Simulation& sim) {
   }
 }
 
+std::unique_ptr<Simulation> continue_checkpoint(const Scene& scene, const CheckpointData& data,
+                                                std::optional<Simulation::BranchCheck> branch,
+                                                bool force_dt, BuildReport* report) {
+  try {
+    return continue_simulation(scene, {data.sections, data.n_sections, data.format_version}, branch,
+                               force_dt, report);
+  } catch (const std::invalid_argument& e) { // the same on every rank (Simulation's constructor)
+    throw CheckpointError(fmt::format("{}: {}", data.file.string(), e.what()));
+  }
+}
+
 } // namespace yuxi

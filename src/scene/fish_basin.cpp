@@ -26,7 +26,42 @@ Vec3 point_in_ball(Random& rng, double radius) {
   }
 }
 
+// What lattice cell (i, j, k) of the basin holds: the bottom's or the side's wall particles, a
+// grain at t = 0, or nothing. `gap`: basin_wall_gap().
+enum class BasinCell { empty, bottom, side, grain };
+BasinCell basin_cell(const FishBasinSpec& b, int gap, int i, int j, int k) {
+  const double rho = std::hypot(i + 0.5 - 0.5 * b.cells[0], j + 0.5 - 0.5 * b.cells[1]);
+  const double outer = b.radius + b.wall_thickness;
+  if (k < b.bottom_layers && rho <= outer) return BasinCell::bottom;
+  if (b.side_particles && k >= b.bottom_layers && k < b.bottom_layers + b.wall_height &&
+      rho > b.radius && rho <= outer)
+    return BasinCell::side;
+  if (k >= b.bottom_layers + gap && k < b.bottom_layers + gap + b.fill_layers &&
+      rho <= b.radius - gap)
+    return BasinCell::grain;
+  return BasinCell::empty;
+}
+
 } // namespace
+
+std::vector<WallMotion> fish_basin_motions(const FishBasinSpec& b, const Vec3& origin) {
+  RadialCosineMotion excitation = b.excitation;
+  excitation.center = {origin.x + 0.5 * b.cells[0] * b.spacing,
+                       origin.y + 0.5 * b.cells[1] * b.spacing, 0.0};
+  return {StaticMotion{}, excitation};
+}
+
+std::size_t fish_basin_walls(const FishBasinSpec& b) {
+  std::size_t walls = 0;
+  const int gap = basin_wall_gap(b);
+  for (int k = 0; k < b.cells[2]; ++k)
+    for (int j = 0; j < b.cells[1]; ++j)
+      for (int i = 0; i < b.cells[0]; ++i) {
+        const BasinCell c = basin_cell(b, gap, i, j, k);
+        walls += c == BasinCell::bottom || c == BasinCell::side;
+      }
+  return walls;
+}
 
 BuiltParticles build_fish_basin(const FishBasinSpec& b, const Vec3& origin) {
   if (b.radius + b.wall_thickness > 0.5 * std::min(b.cells[0], b.cells[1]))
@@ -41,10 +76,7 @@ BuiltParticles build_fish_basin(const FishBasinSpec& b, const Vec3& origin) {
   const int gap = basin_wall_gap(b);
   Random rng(b.seed);
   BuiltParticles out;
-  const double cx = 0.5 * b.cells[0], cy = 0.5 * b.cells[1];
-  RadialCosineMotion excitation = b.excitation;
-  excitation.center = {origin.x + cx * b.spacing, origin.y + cy * b.spacing, 0.0};
-  out.motions = {StaticMotion{}, excitation};
+  out.motions = fish_basin_motions(b, origin);
 
   struct Grain {
     Vec3 position;
@@ -52,29 +84,22 @@ BuiltParticles build_fish_basin(const FishBasinSpec& b, const Vec3& origin) {
   };
   std::vector<Grain> grains;
   GlobalId next_id = 0;
-  const double outer = b.radius + b.wall_thickness;
   for (int k = 0; k < b.cells[2]; ++k)
     for (int j = 0; j < b.cells[1]; ++j)
       for (int i = 0; i < b.cells[0]; ++i) {
-        const double rho = std::hypot(i + 0.5 - cx, j + 0.5 - cy);
         const Vec3 centre = origin + b.spacing * Vec3{i + 0.5, j + 0.5, k + 0.5};
-        const bool bottom = k < b.bottom_layers && rho <= outer;
-        const bool above_bottom = k >= b.bottom_layers;
-        const bool side = b.side_particles && above_bottom && k < b.bottom_layers + b.wall_height &&
-                          rho > b.radius && rho <= outer;
-        const bool grain = k >= b.bottom_layers + gap &&
-                           k < b.bottom_layers + gap + b.fill_layers && rho <= b.radius - gap;
-        if (bottom || side) {
+        const BasinCell cell = basin_cell(b, gap, i, j, k);
+        if (cell == BasinCell::bottom || cell == BasinCell::side) {
           ParticleSpec w;
           w.position = centre;
           w.radius = b.wall_radius;
           w.mass = 1.0;
           w.kind = Kind::wall;
           w.material = b.wall_material;
-          w.motion = side ? 1 : 0;
+          w.motion = cell == BasinCell::side ? 1 : 0;
           out.particles.add(w, next_id++);
           ++out.n_walls;
-        } else if (grain) {
+        } else if (cell == BasinCell::grain) {
           const double r = draw_grain_radius(rng, b.radius_mean, b.radius_sd);
           grains.push_back({centre + point_in_ball(rng, b.jitter), r});
         }

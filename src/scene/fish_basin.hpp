@@ -52,6 +52,11 @@ struct BuiltParticles {
 // mean grain mass is 1 (docs/models/fish-basin.md section 6).
 BuiltParticles build_fish_basin(const FishBasinSpec& spec, const Vec3& origin = {});
 
+// The basin's wall motions (as BuiltParticles::motions) and how many wall particles it builds,
+// without building it (a state continued from a checkpoint brings its particles).
+std::vector<WallMotion> fish_basin_motions(const FishBasinSpec& spec, const Vec3& origin = {});
+std::size_t fish_basin_walls(const FishBasinSpec& spec);
+
 // Empty cells left between the walls and the grains at t = 0 (0 or 1).
 int basin_wall_gap(const FishBasinSpec& spec);
 

@@ -18,6 +18,13 @@ Exchange::Exchange(const Box& box, Comm comm, std::array<int, 3> layout, Vec3 oc
   decomp_.set_min_slab(cell_edge_);
 }
 
+void Exchange::lay_out(std::array<int, 3> layout, Vec3 occupied, double cell_edge) {
+  decomp_ = Decomposition(decomp_.box(), comm_, layout, occupied);
+  cell_edge_ = cell_edge;
+  decomp_.set_min_slab(cell_edge_);
+  grid_ = CellGrid(decomp_.local_box(), cell_edge_);
+}
+
 void Exchange::take_share(ParticleStore& s, bool balance) {
   if (balance) decomp_.balance(s.x, std::vector<double>(s.n_owned(), 1.0), comm_);
   std::vector<std::size_t> elsewhere;

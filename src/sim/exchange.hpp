@@ -36,6 +36,10 @@ public:
   CellGrid& grid() { return grid_; }
   double cell_edge() const { return cell_edge_; }
 
+  // Lays the ranks out afresh (as the constructor does) for cells of `cell_edge`: a state
+  // continued from a checkpoint, whose particles and cells are known only once it is read.
+  void lay_out(std::array<int, 3> layout, Vec3 occupied, double cell_edge);
+
   // Collective, where every rank holds every particle (a scene's start): cuts by particle count
   // where `balance`, keeps this sub-domain's particles and sets its cells.
   void take_share(ParticleStore& s, bool balance);

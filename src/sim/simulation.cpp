@@ -2,6 +2,7 @@
 // that stop a run with a diagnosis.
 #include "sim/simulation.hpp"
 
+#include "sim/cell_sizing.hpp"
 #include "sim/contact_reach.hpp"
 #include "sim/particle_diagnosis.hpp"
 
@@ -11,49 +12,13 @@
 #include <limits>
 
 namespace yuxi {
-namespace {
-
-// Lengths of the region the particles occupy (the whole box along periodic axes), for the
-// choice of the rank layout: a tall box over a shallow bed is cut across the bed, not through
-// it (every rank holds every particle when the simulation is built).
-Vec3 occupied_lengths(const Box& box, const ParticleStore& s) {
-  if (s.n_owned() == 0) return {box.length(0), box.length(1), box.length(2)};
-  Vec3 lo = s.x[0], hi = s.x[0];
-  for (std::size_t i = 0; i < s.n_owned(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], s.x[i][a] - s.radius[i]);
-      hi[a] = std::max(hi[a], s.x[i][a] + s.radius[i]);
-    }
-  Vec3 lengths;
-  for (int a = 0; a < 3; ++a)
-    lengths[a] = box.periodic(a) ? box.length(a) : std::min(box.length(a), hi[a] - lo[a]);
-  return lengths;
-}
-
-// The linked cells' edge: the largest contact distance (of `s`, or the scene's least) plus the
-// skin, or the scene's cell size (which may shorten the skin to fit).
-double cell_edge_for(SimulationConfig& c, const ParticleStore& s) {
-  const double reach = std::max(contact_reach(s), c.min_contact_reach);
-  if (c.cell_size > 0.0) {
-    if (c.cell_size < reach)
-      throw std::invalid_argument(fmt::format(
-          "cell size {} is smaller than the largest contact distance {} (largest pair of radii)",
-          c.cell_size, reach));
-    c.skin = std::min(c.skin, c.cell_size - reach);
-  }
-  if (c.skin < 0.0) throw std::invalid_argument("skin must not be negative");
-  const double edge = std::max(c.cell_size, reach + c.skin);
-  return edge > 0.0 ? edge : 1.0;
-}
-
-} // namespace
 
 Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                        std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
                        AnyContactLaw law, Comm comm, std::vector<ShapedWall> shaped_walls)
     : config_(std::move(config)), store_(std::move(particles)),
       exchange_(config_.box, comm, config_.ranks, occupied_lengths(config_.box, store_),
-                cell_edge_for(config_, store_)),
+                cell_edge_for(config_, contact_reach(store_))),
       search_(config_.skin, config_.box), contacts_(std::move(law)),
       walls_(config_, std::move(planes), std::move(motions), std::move(shaped_walls)) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");

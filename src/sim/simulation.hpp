@@ -41,9 +41,11 @@
 #include "sim/state_layout.hpp"
 #include "sim/walls.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -67,14 +69,47 @@ struct SavedState {
   std::uint32_t layout = state_layout;
 };
 
+// What a scene sets besides its particles: the settings, the planes, the wall particles'
+// motions, the contact law, the shaped walls (triangle meshes and cylinders) and the sources.
+// A state continued from a checkpoint brings the particles.
+struct SimulationFrame {
+  SimulationConfig config;
+  std::vector<PlaneWall> planes;
+  std::vector<WallMotion> motions;
+  AnyContactLaw law;
+  std::vector<ShapedWall> shaped_walls;
+  std::vector<InsertSpec> inserts;
+  std::vector<OutletSpec> outlets;
+};
+
 class Simulation {
 public:
+  // A state continued under another scene (a branch: `yuxi run SCENE --from CHECKPOINT`).
+  struct BranchCheck {
+    std::size_t walls = 0; // the wall particles this scene builds
+    bool keep_history = true;
+  };
+
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
   // `shaped_walls`: the triangle meshes and cylinders (every rank is given all of them).
   Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
              std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world(),
              std::vector<ShapedWall> shaped_walls = {});
+  // Collective: a checkpoint's state continued under `frame`, built straight from it (no
+  // initial state of the scene is made first). Without `branch`, a resume (see load()): the
+  // state's cells, skin and, on as many ranks, cut planes are the saved run's. With `branch`, the
+  // state continues under this scene's law, motions, gravity, time step and outputs: the shares
+  // load as on another number of ranks (cells sized for the saved particles and this scene's
+  // skin, cut planes by particle count, a new list from the current positions), the walls are
+  // placed at the saved time by this scene's motions, and the forces are evaluated afresh
+  // without advancing any spring; the change of mechanical energy that the new scene gives the
+  // same state is booked as `inserted`, so the books carry on closed. `keep_history` false drops
+  // every contact's state (another contact model). Throws std::invalid_argument on every rank
+  // where a section does not load or fit the frame, where the saved wall particles are not the
+  // `walls` a branch's scene builds, or where a branched grain stands outside the domain.
+  Simulation(SimulationFrame frame, const SavedState& saved, Comm comm = Comm::world(),
+             std::optional<BranchCheck> branch = std::nullopt);
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
@@ -147,34 +182,18 @@ public:
   // on bit for bit, and saving changes nothing in the run that saves.
   void save_state(ArchiveWriter& ar) const;
 
-  // Collective: continues from a checkpoint's state. On as many ranks as wrote it, each rank's
-  // share is its own section: the list of the run's last build is made again, and the run
-  // continues bit for bit. On another number, each rank loads its block, the cut planes are
-  // set afresh by particle count, and the particles go to their new owners with copies of their
-  // contacts' states (the migration of a list build, repeated until none is left astray); the
-  // energy books are summed onto rank 0. A correct continuation, not a bitwise one (the
-  // summation order changes with the decomposition). The stored forces are kept (they were
-  // computed with the half-step velocities) and none is computed. A section that does not load
-  // or does not fit the scene throws std::invalid_argument on every rank.
+  // Collective: continues from a checkpoint's state, in place of this simulation's (the
+  // constructor from a SavedState does the same without building a state first). The cells and
+  // the skin are the saved run's (a state of layout 8 or older: sized for its particles). On as
+  // many ranks as wrote it, each rank's share is its own section: the list of the run's last
+  // build is made again, and the run continues bit for bit. On another number, each rank loads its
+  // block, the cut planes are set afresh by particle count, and the particles go to their new
+  // owners with copies of their contacts' states (the migration of a list build, repeated until
+  // none is left astray); the energy books are summed onto rank 0. A correct continuation, not a
+  // bitwise one (the summation order changes with the decomposition). The stored forces are kept
+  // (they were computed with the half-step velocities) and none is computed. A section that does
+  // not load or does not fit the scene throws std::invalid_argument on every rank.
   void load(const SavedState& saved);
-
-  // Collective: continues another run's saved state under this simulation's scene (a branch:
-  // `yuxi run SCENE --from CHECKPOINT`). The particles, their contacts' history, the walls'
-  // state, the time and the energy books come from the checkpoint; everything else (the contact
-  // law, the motions, gravity, the time step, the outputs) is this scene's. The shares load as
-  // on another number of ranks (cut planes by particle count, a new list from the current
-  // positions), the walls are placed at the saved time by this scene's motions, and the forces
-  // are evaluated afresh without advancing any spring; the change of mechanical energy that the
-  // new scene gives the same state is booked as `inserted`, so the books carry on closed.
-  // `keep_history` false drops every contact's state (another contact model). The grains are
-  // the checkpoint's (the scene's own fills and particles give way to them). Throws
-  // std::invalid_argument on every rank where the saved wall particles are not the `walls`
-  // this scene builds, or a saved grain stands outside the domain.
-  struct BranchCheck {
-    std::size_t walls = 0; // the wall particles this scene builds
-    bool keep_history = true;
-  };
-  void branch(const SavedState& saved, const BranchCheck& check);
 
   // Sources and sinks of grains while the run goes on ([[insert]], [[outlet]]; the scene
   // builder sets them before the first step, and before a checkpoint is loaded). Insertions
@@ -258,12 +277,10 @@ private:
     enum class After { step, edit, load, load_at_last_build } after = After::step;
     const std::function<void()>* edit = nullptr;
   };
-  // How a state section is read: in layout `layout`; `own`: this rank's section of a run of as
-  // many ranks (its cut planes and cells are taken), else one of several merged here;
-  // `keep_history` false drops the contacts' states (a branch under another model).
+  // How a state section is read: in layout `layout`; `keep_history` false drops the contacts'
+  // states (a branch under another model).
   struct SectionPlan {
     std::uint32_t layout = state_layout;
-    bool own = true;
     bool keep_history = true;
   };
 
@@ -290,14 +307,25 @@ private:
   void handle_escapes_here();
   void stop_together(const std::string& local_error) const;
 
+  // What a section says of the cells: the cut planes, and (layout 9 on) the cells' edge and
+  // the skin; `edge` 0 where it does not say.
+  struct SavedCells {
+    std::array<std::vector<double>, 3> cuts;
+    double edge = 0.0, skin = 0.0;
+  };
   // Reads one state section into the parts (no list build, no collective).
-  void read_section(ArchiveReader& ar, const SectionPlan& plan);
-  void read_own_section(const std::string& section, std::uint32_t layout);
-  void merge_sections(const std::vector<std::string>& share, const SectionPlan& plan);
+  SavedCells read_section(ArchiveReader& ar, const SectionPlan& plan);
+  SavedCells read_own_section(const std::string& section, std::uint32_t layout);
+  SavedCells merge_sections(const std::vector<std::string>& share, const SectionPlan& plan);
   void validate_loaded_particles() const;
+  // Collective: the ranks laid out and the cells sized for the state just read, as the saved
+  // run had them (`own`) or afresh for this run (`cells.edge` 0: for the particles loaded).
+  void lay_out_for_loaded(const SavedCells& cells, bool own);
   void check_branched_particles(const BranchCheck& check) const;
-  // load() and branch(): the sections read, the scalars agreed, the lists built.
+  // The constructor from a SavedState and load(): the sections read, the ranks laid out, the
+  // scalars agreed, the lists built; a branch's forces evaluated and the change booked.
   void continue_from(const SavedState& saved, const BranchCheck* branch);
+  void evaluate_branched_forces();
   // `as_saved`: the state of as many ranks as saved it, continued bit for bit; otherwise
   // particles merged from other ranks' sections, given a new list.
   void build_lists_after_load(bool as_saved);

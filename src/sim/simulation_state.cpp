@@ -1,13 +1,16 @@
 // A simulation's saved state: saving this rank's section (save_state), and continuing from a
-// checkpoint's sections on as many ranks as wrote it or on another number (load), or under
-// another scene (branch); gathering the particles onto one rank.
+// checkpoint's sections on as many ranks as wrote it or on another number, or under another
+// scene (a branch), in a simulation built straight from them or in place (load); gathering the
+// particles onto one rank.
 //
 // A section, in order: time, step, the cumulative books, the count of list builds, the initial
 // balance, the last tally; the walls' section (Walls::save); the sources' (Sources::save); the
-// three axes' cut planes; the owned particles (ParticleStore::checkpoint); the contacts'
-// states (ContactStates::save). Reading a section fills the parts and builds nothing; the
-// continuation then makes the list build explicitly.
+// three axes' cut planes; the cells' edge and the skin (layout 9); the owned particles
+// (ParticleStore::checkpoint); the contacts' states (ContactStates::save). Reading a section
+// fills the parts and builds nothing; the continuation then lays out the ranks and cells and
+// makes the list build explicitly.
 #include "core/archive.hpp"
+#include "sim/cell_sizing.hpp"
 #include "sim/contact_reach.hpp"
 #include "sim/simulation.hpp"
 
@@ -28,11 +31,13 @@ void Simulation::save_state(ArchiveWriter& ar) const {
   walls_.save(ar);
   sources_.save(ar);
   for (const std::vector<double>& cuts : exchange_.cuts()) ar.vector(cuts);
+  ar.value(exchange_.cell_edge());
+  ar.value(config_.skin);
   store_.save(ar);
   contacts_.history().save(ar, store_, search_.list());
 }
 
-void Simulation::read_section(ArchiveReader& ar, const SectionPlan& plan) {
+Simulation::SavedCells Simulation::read_section(ArchiveReader& ar, const SectionPlan& plan) {
   ar.value(time_);
   ar.value(step_);
   ar.value(ledger_.books());
@@ -43,10 +48,15 @@ void Simulation::read_section(ArchiveReader& ar, const SectionPlan& plan) {
   ar.value(contacts_.tally());
   walls_.load(ar, plan.layout);
   sources_.load(ar, plan.layout);
-  std::array<std::vector<double>, 3> cuts;
-  for (std::vector<double>& axis : cuts) ar.vector(axis);
-  // The cells of the saved sub-domain: the list build then sorts and bins as the saved run.
-  if (plan.own) exchange_.set_cuts(cuts);
+  SavedCells cells;
+  for (std::vector<double>& axis : cells.cuts) ar.vector(axis);
+  if (plan.layout >= 9) {
+    ar.value(cells.edge);
+    ar.value(cells.skin);
+    if (!(cells.edge > 0.0 && std::isfinite(cells.edge) && cells.skin >= 0.0 &&
+          cells.skin < cells.edge))
+      throw ArchiveError("the cells' edge or the skin is impossible (corrupt)");
+  }
   store_.clear_ghosts();
   store_.checkpoint(ar);
   if (plan.keep_history) {
@@ -55,6 +65,7 @@ void Simulation::read_section(ArchiveReader& ar, const SectionPlan& plan) {
     contacts_.history().forget();
     ar.skip_to_end();
   }
+  return cells;
 }
 
 void Simulation::validate_loaded_particles() const {
@@ -86,16 +97,67 @@ void Simulation::validate_loaded_particles() const {
   constexpr std::size_t limit = std::size_t{1} << 48;
   if (step_ < 0 || list_builds_ < 0 || books.escaped > limit || tally.touching > limit)
     throw std::invalid_argument("the checkpoint holds an impossible step or count");
-  if (store_.radius.empty() ? false : contact_reach(store_) > exchange_.grid().edge().x + 1e-12)
-    throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
+}
+
+Simulation::Simulation(SimulationFrame frame, const SavedState& saved, Comm comm,
+                       std::optional<BranchCheck> branch)
+    : config_(std::move(frame.config)),
+      // (laid out for the particles once they are read: lay_out_for_loaded)
+      exchange_(config_.box, comm, config_.ranks, Vec3{},
+                std::max({config_.box.length(0), config_.box.length(1), config_.box.length(2)})),
+      search_(config_.skin, config_.box), contacts_(std::move(frame.law)),
+      walls_(config_, std::move(frame.planes), std::move(frame.motions),
+             std::move(frame.shaped_walls)) {
+  if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
+  if (!frame.inserts.empty() || !frame.outlets.empty())
+    sources_.set(std::move(frame.inserts), std::move(frame.outlets));
+  continue_from(saved, branch ? &*branch : nullptr);
 }
 
 void Simulation::load(const SavedState& saved) {
   continue_from(saved, nullptr);
 }
 
-void Simulation::branch(const SavedState& saved, const BranchCheck& check) {
-  continue_from(saved, &check);
+void Simulation::lay_out_for_loaded(const SavedCells& cells, bool own) {
+  const Comm& c = comm();
+  // The same on every rank: the saved run's cells (every section holds them; a rank may load
+  // none), the largest contact distance of the particles, and the saved layout.
+  double agreed[5] = {cells.edge, cells.skin, contact_reach(store_), 0.0, 0.0};
+  std::array<int, 3> layout = config_.ranks;
+  if (own) {
+    for (int a = 0; a < 3; ++a) layout[a] = static_cast<int>(cells.cuts[a].size()) - 1;
+    agreed[3] = layout[0] + 1e3 * layout[1] + 1e6 * layout[2];
+    agreed[4] = -agreed[3];
+  }
+  c.max(agreed, 5);
+  const double reach = agreed[2];
+  if (own && (agreed[3] != -agreed[4] || layout[0] * layout[1] * layout[2] != c.size() ||
+              std::min({layout[0], layout[1], layout[2]}) < 1))
+    throw std::invalid_argument(
+        fmt::format("the checkpoint's cut planes are not those of a layout of {} ranks", c.size()));
+  double edge = agreed[0];
+  if (edge > 0.0) { // the saved run's cells and skin
+    config_.skin = agreed[1];
+  } else { // for the particles loaded, with this scene's skin (a branch, an older layout)
+    edge = cell_edge_for(config_, reach);
+  }
+  if (reach > edge + 1e-12)
+    throw std::invalid_argument("the checkpoint's particles are larger than this scene's cells");
+  search_ = NeighborSearch(config_.skin, config_.box);
+  walls_.size_for(config_.skin, edge);
+  if (own) {
+    // The cells of the saved sub-domain: the list build then sorts and bins as the saved run.
+    exchange_.lay_out(layout, Vec3{}, edge);
+    exchange_.set_cuts(cells.cuts);
+  } else {
+    // This run's own decomposition, cut by particle count; the list build's migration then
+    // takes every particle to its owner.
+    exchange_.lay_out(config_.ranks, occupied_lengths(config_.box, store_, &c), edge);
+    exchange_.cut_by_count(store_);
+  }
+}
+
+void Simulation::evaluate_branched_forces() {
   // The saved state's books (the saved contact law's stored energy), then the same state's
   // under this scene: the difference comes from outside the equations of motion.
   const EnergyBooks before = energies();
@@ -114,13 +176,16 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
   const bool own = !branch && saved.written_on == static_cast<std::uint64_t>(c.size());
   // Every rank learns whether every other loaded its share before any takes a collective step.
   std::string error;
+  SavedCells cells;
   try {
     if (saved.written_on == 0) throw ArchiveError("no rank's state in the file");
     if (own && saved.share.size() != 1) throw ArchiveError("no state for this rank in the file");
     if (own)
-      read_own_section(saved.share.front(), saved.layout);
+      cells = read_own_section(saved.share.front(), saved.layout);
     else
-      merge_sections(saved.share, {saved.layout, false, !branch || branch->keep_history});
+      cells = merge_sections(saved.share, {saved.layout, !branch || branch->keep_history});
+    // (a branch sizes the cells for its own skin)
+    if (branch) cells.edge = 0.0;
     validate_loaded_particles();
   } catch (const ArchiveError& e) {
     error = e.what();
@@ -131,6 +196,7 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
   }
   error = c.first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
+  lay_out_for_loaded(cells, own);
   // (a state of an older layout holds no next id)
   GlobalId top = -1;
   for (std::size_t i = 0; i < store_.n_owned(); ++i) top = std::max(top, store_.gid[i]);
@@ -166,9 +232,6 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
     tally.relaxation = sums[1];
     tally.touching = static_cast<std::size_t>(sums[2]);
   }
-  // This run's own decomposition, cut by particle count; the list build's migration then takes
-  // every particle to its owner.
-  exchange_.cut_by_count(store_);
   if (branch) {
     check_branched_particles(*branch);
     // The step count of this scene's time step; the walls where its motions put them.
@@ -176,6 +239,7 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
     walls_.place(store_, time_, true);
   }
   build_lists_after_load(false);
+  if (branch) evaluate_branched_forces();
 }
 
 void Simulation::check_branched_particles(const BranchCheck& check) const {
@@ -202,13 +266,17 @@ void Simulation::check_branched_particles(const BranchCheck& check) const {
   if (!error.empty()) throw std::invalid_argument(error);
 }
 
-void Simulation::read_own_section(const std::string& section, std::uint32_t layout) {
+Simulation::SavedCells Simulation::read_own_section(const std::string& section,
+                                                    std::uint32_t layout) {
   ArchiveReader ar(section);
-  read_section(ar, {layout, true, true});
+  const SavedCells cells = read_section(ar, {layout, true});
   if (!ar.at_end()) throw ArchiveError("unread data after the state");
+  return cells;
 }
 
-void Simulation::merge_sections(const std::vector<std::string>& share, const SectionPlan& plan) {
+Simulation::SavedCells Simulation::merge_sections(const std::vector<std::string>& share,
+                                                  const SectionPlan& plan) {
+  SavedCells cells;
   ParticleStore pool;
   std::string states;
   EnergyBooks books;
@@ -219,7 +287,8 @@ void Simulation::merge_sections(const std::vector<std::string>& share, const Sec
   std::int64_t step = 0, list_builds = 0;
   for (std::size_t k = 0; k < share.size(); ++k) {
     ArchiveReader ar(share[k]);
-    read_section(ar, plan);
+    const SavedCells read = read_section(ar, plan);
+    if (k == 0) cells = read;
     if (!ar.at_end()) throw ArchiveError("unread data after a section");
     if (k == 0)
       time = time_, step = step_, list_builds = list_builds_,
@@ -246,6 +315,7 @@ void Simulation::merge_sections(const std::vector<std::string>& share, const Sec
   walls_.set_work(std::move(work));
   sources_.set_outlet_parts(outlets);
   contacts_.tally() = tally;
+  return cells;
 }
 
 void Simulation::build_lists_after_load(bool as_saved) {

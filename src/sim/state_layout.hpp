@@ -4,13 +4,15 @@
 // last list build; a state of layout 6 takes the offset it was saved with. Layout 8 names each
 // insert and outlet with its progress (a branch matches them by name) and keeps the inserts'
 // pourings started, paused or stopped from outside the scene; a state of layout 6 or 7 matches
-// them by position.
+// them by position. Layout 9 adds the linked cells' edge and the skin after the cut planes, so
+// that a resumed run is built straight from its state with the saved run's cells; a state of
+// layout 8 or older is given cells sized for its particles.
 #pragma once
 
 #include <cstdint>
 
 namespace yuxi {
 
-inline constexpr std::uint32_t state_layout = 8, oldest_state_layout = 5;
+inline constexpr std::uint32_t state_layout = 9, oldest_state_layout = 5;
 
 } // namespace yuxi

@@ -52,8 +52,7 @@ void run_scene(const Scene& scene, const fs::path& folder, bool progress, const 
     const auto saved = CheckpointSet(folder).newest_valid(Comm::world(), nullptr);
     if (saved && same_run(saved->scene_text)) {
       if (saved->step >= std::llround(scene.run.t_end / scene.sim.dt)) return;
-      sim = build_simulation(scene, false);
-      apply_checkpoint(*saved, *sim);
+      sim = continue_checkpoint(scene, *saved, std::nullopt, false);
       options.resumed = true;
     } else {
       fs::remove_all(folder);

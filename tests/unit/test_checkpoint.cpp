@@ -59,11 +59,40 @@ TEST(Checkpoint, ResumedRunMatchesTheUninterruptedOneByteForByte) {
   auto resumed = build_simulation(scene, false);
   resumed->load({{saved.data()}, 1});
   run_to(*resumed, 2 * n, every);
+  // Built straight from the state, as `yuxi run --resume` does.
+  auto built = continue_simulation(scene, {{saved.data()}, 1}, std::nullopt, false);
+  EXPECT_EQ(built->step_count(), n);
+  run_to(*built, 2 * n, every);
 
   ASSERT_GT(straight->energies().dissipated, 0.0); // contacts have happened
   EXPECT_EQ(state_bytes(*straight), state_bytes(*resumed));
+  EXPECT_EQ(state_bytes(*straight), state_bytes(*built));
   EXPECT_EQ(state_bytes(*straight), state_bytes(*unsaved));
   EXPECT_EQ(straight->energies().balance(), resumed->energies().balance());
+}
+
+// A run continued from a state never makes the scene's own initial particles: a branch under a
+// scene whose fill could not be placed at t = 0 (the checkpoint's grains take the fills' place)
+// runs, where building that scene from its start is refused.
+TEST(Checkpoint, AContinuedRunNeverPlacesTheScenesOwnGrains) {
+  const Scene scene = reliability_scene();
+  auto first = build_simulation(scene, false);
+  first->run(2000);
+  ArchiveWriter saved;
+  first->save_state(saved);
+  std::ifstream in(YUXI_RELIABILITY_DIR "/basin.toml");
+  const std::string text{std::istreambuf_iterator<char>(in), {}};
+  const Scene crowded = read_scene_text(
+      text + "\n[[fill]]\nmaterial = \"grain\"\ndensity = 1.0\ncount = 100000\nseed = 1\n"
+             "size = { distribution = \"uniform\", min = 0.9, max = 1.1 }\n"
+             "region = { shape = \"box\", lo = [1.0, 1.0, 300.0], hi = [9.0, 9.0, 309.0] }\n",
+      YUXI_RELIABILITY_DIR "/crowded.toml");
+  EXPECT_THROW(build_simulation(crowded, false), SceneError);
+  const auto branched = continue_simulation(
+      crowded, {{saved.data()}, 1}, Simulation::BranchCheck{fish_basin_walls(*scene.basin)}, false);
+  EXPECT_EQ(branched->step_count(), 2000);
+  EXPECT_EQ(branched->gather_particles().n_owned(), first->gather_particles().n_owned());
+  branched->run(100);
 }
 
 using test::temp_dir;
@@ -116,10 +145,10 @@ INSTANTIATE_TEST_SUITE_P(
                "checksum mismatch: the file is corrupt"},
         Damage{"wrong version",
                [](std::string b) {
-                 b[8] = 9;
+                 b[8] = 99;
                  return b;
                },
-               "checkpoint format version 9; this yuxi reads versions 5 to 8"},
+               "checkpoint format version 99; this yuxi reads versions 5 to"},
         Damage{"not a checkpoint", [](std::string) { return std::string("hello, world: no"); },
                "not a yuxi checkpoint"},
         Damage{"empty", [](std::string) { return std::string(); }, "not a yuxi checkpoint"},
