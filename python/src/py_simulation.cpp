@@ -140,7 +140,10 @@ auto setter(void (Simulation::*write)(std::span<const GlobalId>, std::span<const
             const char* call, const char* what, bool moves_arrays = false) {
   return [write, call, what, moves_arrays](PySimulation& s, const py::array& ids,
                                            const DoubleArray& values) {
-    (s.sim().*write)(ids_of(ids, call), vec3s(values, what));
+    const auto id = ids_of(ids, call);
+    const auto v = vec3s(values, what);
+    if (moves_arrays) s.collective(call); // (a list build: collective)
+    (s.sim().*write)(id, v);
     if (moves_arrays) s.edited();
   };
 }
@@ -247,6 +250,7 @@ void PySimulation::open_driver(bool resumed) {
   };
   o.progress_sink = write_progress;
   driver_ = std::make_unique<RunDriver>(run_.scene, *run_.sim, o);
+  guard_ = std::make_unique<CollectiveGuard>(run_.sim->comm());
 }
 
 py::tuple PySimulation::generation() const {
@@ -256,6 +260,7 @@ py::tuple PySimulation::generation() const {
 void PySimulation::advance(py::object self, std::int64_t until, py::object callback,
                            std::int64_t every) {
   if (finished_) throw std::runtime_error("the simulation was closed");
+  collective("advance()");
   RunDriver& d = driver();
   if (until > d.end_step()) d.set_end_time(static_cast<double>(until) * run_.scene.sim.dt);
   StepHook hook;
@@ -303,6 +308,7 @@ void PySimulation::advance(py::object self, std::int64_t until, py::object callb
 
 std::string PySimulation::add_insert(const std::string& table_toml) {
   Simulation& engine = sim();
+  collective("add_insert()");
   const InsertSpec spec = add_insert_table(run_.scene, table_toml, "<add_insert>");
   try {
     engine.add_insert(spec);
@@ -317,6 +323,7 @@ std::string PySimulation::add_insert(const std::string& table_toml) {
 
 std::string PySimulation::checkpoint(const std::string& path) {
   RunDriver& d = driver();
+  collective("checkpoint()");
   if (path.empty()) return d.write_checkpoint().string();
   write_checkpoint(path, run_.scene_text, sim());
   return path;
@@ -325,6 +332,7 @@ std::string PySimulation::checkpoint(const std::string& path) {
 py::dict PySimulation::finish() {
   py::dict d;
   if (finished_ || !driver_) return d;
+  collective("finish()");
   const RunSummary s = driver_->finish();
   finished_ = true;
   d["steps"] = s.steps;
@@ -336,12 +344,16 @@ py::dict PySimulation::finish() {
 
 void PySimulation::close() {
   if (!run_.sim) return;
+  collective("close()");
   finish();
   driver_.reset();
+  guard_.reset();
   run_.sim.reset();
 }
 
 void bind_simulation(py::module_& m) {
+  // A collective call that not every rank made (domain/collective_guard.hpp).
+  py::register_exception<CollectiveMismatch>(m, "CollectiveError", PyExc_RuntimeError);
   py::class_<PySimulation>(m, "_Simulation")
       .def(py::init<const PyScene&, const std::string&, bool, bool, bool>(), py::arg("scene"),
            py::arg("output") = "", py::arg("overwrite") = false, py::arg("progress") = true,
@@ -361,6 +373,9 @@ void bind_simulation(py::module_& m) {
       .def("finish", &PySimulation::finish)
       .def("close", &PySimulation::close)
       .def("set_progress", &PySimulation::set_progress)
+      .def_property(
+          "collective_timeout", [](PySimulation& s) { return s.guard().timeout(); },
+          [](PySimulation& s, double seconds) { s.guard().set_timeout(seconds); })
       .def_property_readonly("generation", &PySimulation::generation)
       .def_property_readonly("finished", &PySimulation::finished)
       .def_property_readonly("folder", [](PySimulation& s) { return s.folder().string(); })
@@ -383,16 +398,22 @@ void bind_simulation(py::module_& m) {
       .def("gather",
            [](PySimulation& s, const std::string& name) -> py::object {
              with_field(s.sim().particles(), name, [](const auto&) { return py::object(); });
+             s.collective("gather()");
              const ParticleStore all = s.sim().gather_particles(); // collective
              if (!s.sim().comm().root()) return py::none();
              return with_field(all, name, [&](const auto& field) -> py::object {
                return view(elements(field), all.n_owned(), py::none()).attr("copy")();
              });
            })
-      .def("energies", [](PySimulation& s) { return books_dict(s.sim().energies()); })
+      .def("energies",
+           [](PySimulation& s) {
+             s.collective("energies()");
+             return books_dict(s.sim().energies());
+           })
       .def("wall_loads",
            [](PySimulation& s) {
              py::dict d;
+             s.collective("wall_loads()");
              const auto shaped = s.sim().shaped_wall_loads(); // collective
              for (std::size_t w = 0; w < shaped.size(); ++w)
                d[py::str(wall_name(s.sim().shaped_walls()[w]))] = load_dict(shaped[w]);
@@ -402,7 +423,11 @@ void bind_simulation(py::module_& m) {
              return d;
            })
       .def("inflow", [](PySimulation& s) { return tallies(s.sim().inflow()); })
-      .def("outflow", [](PySimulation& s) { return tallies(s.sim().outflow()); })
+      .def("outflow",
+           [](PySimulation& s) {
+             s.collective("outflow()");
+             return tallies(s.sim().outflow());
+           })
       .def("set_velocities", setter(&Simulation::set_velocities, "set_velocities", "velocities"))
       .def("set_angular_velocities", setter(&Simulation::set_angular_velocities,
                                             "set_angular_velocities", "angular velocities"))
@@ -432,6 +457,7 @@ void bind_simulation(py::module_& m) {
                grains[k].mass = grain.mass_of(r);
                grains[k].material = *kind;
              }
+             s.collective("add_grains()");
              const std::vector<GlobalId> ids = s.sim().add_grains(grains);
              s.edited();
              return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
@@ -439,6 +465,7 @@ void bind_simulation(py::module_& m) {
       .def("remove_grains",
            [](PySimulation& s, const py::array& ids) {
              const auto id = ids_of(ids, "remove_grains");
+             s.collective("remove_grains()");
              const std::int64_t n = s.sim().remove_grains(id);
              s.edited();
              return n;

@@ -3,6 +3,7 @@
 // particles and the changes between steps of Simulation's edits (simulation_edits.cpp).
 #pragma once
 
+#include "domain/collective_guard.hpp"
 #include "py_scene.hpp"
 #include "run/run_driver.hpp"
 #include "run/run_opening.hpp"
@@ -63,6 +64,15 @@ public:
 
   void set_progress(bool on) { progress_ = on; }
 
+  // Called first by every collective call (one that every rank must make, in the same order):
+  // raises CollectiveMismatch instead of waiting forever where the ranks do not all make it
+  // (domain/collective_guard.hpp).
+  void collective(const char* call) { guard().enter(call); }
+  CollectiveGuard& guard() {
+    if (!guard_) throw std::runtime_error("the simulation was closed");
+    return *guard_;
+  }
+
 private:
   PySimulation() = default;
   void open_driver(bool resumed);
@@ -70,6 +80,7 @@ private:
   OpenedRun run_;
   std::filesystem::path folder_;
   std::unique_ptr<RunDriver> driver_;
+  std::unique_ptr<CollectiveGuard> guard_;
   std::int64_t edits_ = 0;
   bool progress_ = true;
   bool finished_ = false;

@@ -12,17 +12,17 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def run(ranks, out, script="mpi_energies.py"):
+def run(ranks, out, script="mpi_energies.py", args=(), expect_rc=0):
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [HERE] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
-    cmd = [sys.executable, os.path.join(HERE, script), str(out)]
+    cmd = [sys.executable, os.path.join(HERE, script), *args, str(out)]
     if ranks > 1:
         launcher = ["mpirun", "-np", str(ranks), "--oversubscribe"]
         if os.geteuid() == 0:
             launcher.append("--allow-run-as-root")
         cmd = launcher + cmd
     done = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
+    assert (done.returncode == 0) == (expect_rc == 0), done.stderr
     line = [s for s in done.stdout.splitlines() if s.startswith(("{", "["))][-1]
     return json.loads(line)
 
@@ -51,3 +51,26 @@ def test_a_callback_s_stop_is_agreed_over_the_ranks(tmp_path):
     assert ranks[1]["raised"] == "ArithmeticError: rank 1's callback failed"
     assert ranks[0]["raised"].startswith("RuntimeError: the run stopped: the callback raised")
     assert ranks[0]["grains"] == ranks[1]["grains"] == 343
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_ranks_in_different_collective_calls_raise_on_every_rank(tmp_path):
+    """Rank 0 in energies(), rank 1 in gather(): both raise CollectiveError naming each rank's
+    call (the test would time out on a deadlock), and both go on in step."""
+    ranks = run(2, tmp_path / "mismatch", "mpi_collective_guard.py", ["mismatch"])
+    for r in ranks:
+        assert "the ranks met in different ones (rank 0: energies(), rank 1: gather())" in \
+            r["raised"], r["raised"]
+    assert [r["grains"] for r in ranks] == [343, 343]
+    assert [r["step"] for r in ranks] == [100, 100]
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_a_collective_call_on_one_rank_raises_after_the_timeout(tmp_path):
+    """energies() on rank 0 alone (under `if rank == 0:`): CollectiveError after the timeout
+    (1 s here), and every later collective call raises at once."""
+    report = run(2, tmp_path / "alone", "mpi_collective_guard.py", ["timeout"], expect_rc=3)
+    assert "energies() is collective: every rank must call it" in report["raised"]
+    assert "rank 0 waited 1 s" in report["raised"]
+    assert "the ranks are out of step since energies() timed out" in report["after"]
+    assert 1.0 <= report["waited"] < 30.0

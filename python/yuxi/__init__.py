@@ -27,9 +27,10 @@ except ImportError:  # pragma: no cover - mpi4py is a dependency, but optional h
     _MPI = None
 
 from . import _yuxi
-from ._yuxi import SceneError, built_in_models
+from ._yuxi import CollectiveError, SceneError, built_in_models
 
 __all__ = [
+    "CollectiveError",
     "Scene",
     "SceneError",
     "Simulation",
@@ -348,6 +349,24 @@ class Simulation:
     def particles(self):
         """Views of this rank's owned particles, valid until the next step (ArrayView)."""
         return Particles(self)
+
+    @property
+    def collective_timeout(self):
+        """Seconds a rank waits at a collective call for the other ranks to make it.
+
+        Every collective call (``run``, ``gather``, ``energies``, ``wall_loads``, ``outflow``,
+        ``checkpoint``, ``finish``, ``close``, ``set_positions``, ``add_grains``,
+        ``remove_grains``, ``add_insert``) first checks that every rank makes the same call:
+        ranks that meet in different calls raise :class:`CollectiveError` on every rank, naming
+        each rank's call; a rank whose others do not come (a call under ``if rank == 0:``)
+        raises it after this many seconds, and the job must then end. The default is 600 s, or
+        ``$YUXI_COLLECTIVE_TIMEOUT``.
+        """
+        return self._core.collective_timeout
+
+    @collective_timeout.setter
+    def collective_timeout(self, seconds):
+        self._core.collective_timeout = _number(seconds, "collective_timeout")
 
     def gather(self, field):
         """The field of every rank's particles, sorted by id, on rank 0 (None elsewhere).

@@ -82,6 +82,7 @@ public:
 
 private:
   friend class SharedFile;                       // opens its files on this group
+  friend class CollectiveGuard;                  // duplicates this group's communicator
   static Comm from_handle(std::intptr_t handle); // reads rank and size from MPI
   Comm(std::intptr_t handle, int rank, int size) : handle_(handle), rank_(rank), size_(size) {}
   std::intptr_t handle_; // MPI_Comm stored as an integer (0: no MPI)
