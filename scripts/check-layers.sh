@@ -48,7 +48,7 @@ done
 # another and a few standard headers; fmt, io/, std::string, std::variant, the host containers
 # and the rest of the host-only world stay out.
 seam=(src/core/host_device.hpp src/core/always_inline.hpp src/core/units.hpp src/core/vec3.hpp
-  src/contact/contact_geometry.hpp src/contact/frictional_spring.hpp
+  src/core/particle_fields.hpp src/core/particle_view.hpp src/contact/contact_geometry.hpp src/contact/frictional_spring.hpp
   src/contact/rolling_resistance.hpp src/contact/hooke.hpp src/contact/linear_spring_dashpot.hpp
   src/contact/hertz_mindlin.hpp src/contact/luding.hpp src/contact/thermodynamic.hpp
   src/contact/thermodynamic_law.hpp)

@@ -7,6 +7,8 @@
 
 #include "core/vec3.hpp"
 
+#include <cmath>
+
 namespace yuxi {
 
 struct ContactGeometry {
@@ -24,6 +26,52 @@ struct ContactGeometry {
   // v_c = v_i - v_j - (a_i w_i + a_j w_j) x n.
   YUXI_HD Vec3 contact_velocity() const { return v_rel - cross(a_i * w_i + a_j * w_j, n); }
 };
+
+// The geometry of touching particles i and j, from d = x_i - x_j and r2 = |d|^2 (> 0), their
+// radii, velocities, angular velocities and inverse masses (0 for a wall particle). The one
+// function of the pair loop and of a device kernel; the linear law's SIMD lanes compute the
+// same, operation for operation (tests/unit/test_linear_batch.cpp holds them to the bit).
+YUXI_HD inline ContactGeometry pair_geometry(const Vec3& d, double r2, double a_i, double a_j,
+                                             const Vec3& v_i, const Vec3& v_j, const Vec3& w_i,
+                                             const Vec3& w_j, double inv_mass_i, double inv_mass_j,
+                                             double dt) {
+  ContactGeometry g;
+  const double dist = std::sqrt(r2);
+  const double touch = a_i + a_j;
+  g.n = d * (1.0 / dist);
+  g.overlap = touch - dist;
+  g.distance = dist;
+  g.v_rel = v_i - v_j;
+  g.w_i = w_i;
+  g.w_j = w_j;
+  g.a_i = a_i;
+  g.a_j = a_j;
+  g.m_eff = 1.0 / (inv_mass_i + inv_mass_j);
+  g.r_eff = a_i * a_j / touch;
+  g.dt = dt;
+  return g;
+}
+
+// The geometry of grain i (radius a_i) against a wall element (a plane, a triangle, a
+// cylinder's patch) of zero radius, no spin and infinite mass: unit normal n from the wall's
+// point to the centre, the centre at `distance` from it, the point moving with `v_wall`.
+YUXI_HD inline ContactGeometry wall_geometry(const Vec3& n, double distance, double a_i,
+                                             const Vec3& v_i, const Vec3& v_wall, const Vec3& w_i,
+                                             double inv_mass_i, double dt) {
+  ContactGeometry g;
+  g.n = n;
+  g.overlap = a_i - distance;
+  g.distance = distance;
+  g.v_rel = v_i - v_wall;
+  g.w_i = w_i;
+  g.w_j = Vec3{};
+  g.a_i = a_i;
+  g.a_j = 0.0;
+  g.m_eff = 1.0 / inv_mass_i;
+  g.r_eff = a_i;
+  g.dt = dt;
+  return g;
+}
 
 // The contact-point velocity split into its normal component and tangential vector.
 struct SplitVelocity {

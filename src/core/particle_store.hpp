@@ -1,25 +1,20 @@
 // Particle data as a structure of arrays: owned particles first (indices [0, n_owned)), then
 // ghosts (periodic images here, copies from neighbour ranks under MPI) in [n_owned, size()).
 //
-// Every per-particle field is listed once, in for_each_field(), so that resizing, reordering,
-// ghost copies, migration and checkpoints handle all fields without per-field code.
+// Every per-particle field is listed once (core/particle_fields.hpp), and for_each_field() and
+// view() are made from that list, so that resizing, reordering, ghost copies, migration,
+// checkpoints and the loops' plain views handle all fields without per-field code.
 #pragma once
 
+#include "core/particle_fields.hpp"
+#include "core/particle_view.hpp"
 #include "core/vec3.hpp"
 
 #include <cstdint>
 #include <span>
-#include <tuple>
 #include <vector>
 
 namespace yuxi {
-
-enum class Kind : std::uint8_t {
-  grain = 0, // free grain, integrated by the equations of motion
-  wall = 1,  // wall particle: prescribed motion, infinite mass in contacts
-};
-
-using GlobalId = std::int64_t;
 
 // What a caller provides to create one particle.
 struct ParticleSpec {
@@ -36,54 +31,49 @@ struct ParticleSpec {
 
 class ParticleStore {
 public:
-  // Fields (one entry per particle).
-  std::vector<Vec3> x;       // position
-  std::vector<Vec3> v;       // velocity
-  std::vector<Vec3> w;       // angular velocity
-  std::vector<Vec3> f;       // force
-  std::vector<Vec3> torque;  // torque about the centre
-  std::vector<Vec3> x_rest;  // rest position of a wall particle (its motion is relative to it)
-  std::vector<Vec3> x_build; // position at the last neighbour-list build (skin criterion)
-  std::vector<double> radius;
-  std::vector<double> mass;        // finite for walls too (used in output only)
-  std::vector<double> inv_mass;    // 0 for wall particles: infinite mass in contacts
-  std::vector<double> inv_inertia; // 1 / J, J = (2/5) m r^2 for a solid sphere; 0 for walls
-  std::vector<GlobalId> gid;
-  std::vector<Kind> kind;
-  std::vector<std::uint8_t> material;
-  std::vector<std::uint16_t> motion;
+  // One vector per field of the field list (core/particle_fields.hpp): x, v, w, f, torque,
+  // x_rest, x_build, radius, mass, inv_mass, inv_inertia, gid, kind, material, motion.
+#define YUXI_STORE_VECTOR(type, name) std::vector<type> name;
+  YUXI_PARTICLE_FIELDS(YUXI_STORE_VECTOR)
+#undef YUXI_STORE_VECTOR
 
-  // The list of fields: the one place that names them all.
-  static constexpr auto fields =
-      std::make_tuple(&ParticleStore::x, &ParticleStore::v, &ParticleStore::w, &ParticleStore::f,
-                      &ParticleStore::torque, &ParticleStore::x_rest, &ParticleStore::x_build,
-                      &ParticleStore::radius, &ParticleStore::mass, &ParticleStore::inv_mass,
-                      &ParticleStore::inv_inertia, &ParticleStore::gid, &ParticleStore::kind,
-                      &ParticleStore::material, &ParticleStore::motion);
+  // Plain views of the fields (core/particle_view.hpp), valid until the next resize or reorder.
+  ParticleView view() { return view_of<ParticleView>(*this); }
+  ConstParticleView view() const { return view_of<ConstParticleView>(*this); }
 
+  // Calls fn(field) for every field, in the list's order.
+#define YUXI_APPLY_TO_FIELD(type, name) fn(name);
   template <class F> void for_each_field(F&& fn) {
-    std::apply([&](auto... member) { (fn(this->*member), ...); }, fields);
+    YUXI_PARTICLE_FIELDS(YUXI_APPLY_TO_FIELD)
   }
   template <class F> void for_each_field(F&& fn) const {
-    std::apply([&](auto... member) { (fn(this->*member), ...); }, fields);
+    YUXI_PARTICLE_FIELDS(YUXI_APPLY_TO_FIELD)
   }
+#undef YUXI_APPLY_TO_FIELD
   // Appends a copy of particle i of `other` as an owned particle (only while there are no
   // ghosts).
   void append_copy(const ParticleStore& other, std::size_t i) {
-    std::apply([&](auto... member) { ((this->*member).push_back((other.*member)[i]), ...); },
-               fields);
+#define YUXI_APPEND_FIELD(type, name) name.push_back(other.name[i]);
+    YUXI_PARTICLE_FIELDS(YUXI_APPEND_FIELD)
+#undef YUXI_APPEND_FIELD
     n_owned_ = size();
   }
 
-  std::size_t size() const { return x.size(); }
+  std::size_t size() const {
+    return x.size();
+  }
   // Bytes held by the fields (capacity, owned and ghosts).
   std::size_t memory_bytes() const {
     std::size_t b = 0;
     for_each_field([&](const auto& field) { b += field.capacity() * sizeof(field[0]); });
     return b;
   }
-  std::size_t n_owned() const { return n_owned_; }
-  std::size_t n_ghost() const { return size() - n_owned_; }
+  std::size_t n_owned() const {
+    return n_owned_;
+  }
+  std::size_t n_ghost() const {
+    return size() - n_owned_;
+  }
 
   // Appends an owned particle (only while there are no ghosts) and returns its index.
   std::size_t add(const ParticleSpec& spec, GlobalId id);
@@ -94,7 +84,9 @@ public:
     resize_all(first + count);
     return first;
   }
-  void clear_ghosts() { resize_all(n_owned_); }
+  void clear_ghosts() {
+    resize_all(n_owned_);
+  }
   // Gives back spare capacity beyond an eighth of the size: ghosts are appended swap by swap,
   // and a vector's doubling would otherwise leave up to half of every field unused.
   void trim_capacity() {
@@ -115,7 +107,9 @@ public:
   // particles are sorted by cell anyway).
   void remove_owned_unordered(std::span<const std::size_t> removed);
 
-  bool is_grain(std::size_t i) const { return kind[i] == Kind::grain; }
+  bool is_grain(std::size_t i) const {
+    return kind[i] == Kind::grain;
+  }
 
   // Saves or loads the owned particles, in their order (ghosts are not part of the state).
   template <class Archive> void checkpoint(Archive& ar) {
@@ -141,6 +135,15 @@ public:
   std::vector<std::uint32_t> owned_in_id_order() const;
 
 private:
+  template <class View, class Store> static View view_of(Store& s) {
+    View p;
+#define YUXI_VIEW_OF(type, name) p.name = s.name.data();
+    YUXI_PARTICLE_FIELDS(YUXI_VIEW_OF)
+#undef YUXI_VIEW_OF
+    p.owned = s.n_owned_;
+    p.total = s.size();
+    return p;
+  }
   void resize_all(std::size_t n);
   std::size_t n_owned_ = 0;
 };

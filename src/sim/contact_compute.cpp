@@ -2,9 +2,12 @@
 
 namespace yuxi {
 
-ContactCompute::ContactCompute(AnyContactLaw law)
-    : law_(std::move(law)),
-      forces_(std::visit([](const auto& l) -> Forces { return ContactForces(l); }, law_)),
+ContactCompute::ContactCompute(AnyContactLaw law, Backend backend)
+    : law_(std::move(law)), forces_(std::visit(
+                                [backend](const auto& l) -> Forces {
+                                  return ContactForces(l, backend != Backend::cpu_reference);
+                                },
+                                law_)),
       history_(std::visit([](auto& f) -> ContactStates* { return &f.history; }, forces_)),
       n_materials_(std::visit([](const auto& l) { return l.coeffs.n_materials(); }, law_)) {}
 
@@ -21,9 +24,9 @@ const DeepStarts& ContactCompute::deep_starts() const {
   return std::visit([](const auto& f) -> const DeepStarts& { return f.deep_starts; }, forces_);
 }
 
-void ContactCompute::compute_pairs(ParticleStore& s, const NeighborList& list,
-                                   const NearPairs* near, const std::vector<PlaneWall>& planes,
-                                   double t, double dt, bool particles_still, PairSet set) {
+void ContactCompute::compute_pairs(ParticleView s, const NeighborList& list, const NearPairs* near,
+                                   const std::vector<PlaneWall>& planes, double t, double dt,
+                                   bool particles_still, PairSet set) {
   std::visit(
       [&](auto& f) {
         f.compute(s, list, near, planes, t, dt, particles_still, tally_, record_, set);
@@ -31,7 +34,7 @@ void ContactCompute::compute_pairs(ParticleStore& s, const NeighborList& list,
       forces_);
 }
 
-void ContactCompute::compute_shaped(ParticleStore& s, const NeighborList& list,
+void ContactCompute::compute_shaped(ParticleView s, const NeighborList& list,
                                     const NearWallElements* near,
                                     const std::vector<ShapedWall>& shaped, double t, double dt,
                                     std::vector<WallLoad>& loads,

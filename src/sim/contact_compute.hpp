@@ -14,6 +14,7 @@
 #include "sim/contact_forces.hpp"
 #include "sim/contact_tally.hpp"
 #include "sim/near_wall_elements.hpp"
+#include "sim/simulation_config.hpp"
 
 #include <cstdint>
 #include <variant>
@@ -23,7 +24,7 @@ namespace yuxi {
 
 class ContactCompute {
 public:
-  explicit ContactCompute(AnyContactLaw law);
+  explicit ContactCompute(AnyContactLaw law, Backend backend = Backend::cpu);
   ContactCompute(const ContactCompute&) = delete;
   ContactCompute& operator=(const ContactCompute&) = delete;
 
@@ -50,11 +51,11 @@ public:
   // The contacts of listed pairs (PairSet) and, but for PairSet::ghost, of grains with planes
   // (ContactForces::compute). `near`: the near pairs, where they hold. `particles_still`: no
   // wall particle moves. dt 0 advances no spring (a setup pass).
-  void compute_pairs(ParticleStore& s, const NeighborList& list, const NearPairs* near,
+  void compute_pairs(ParticleView s, const NeighborList& list, const NearPairs* near,
                      const std::vector<PlaneWall>& planes, double t, double dt,
                      bool particles_still, PairSet set);
   // The contacts of grains with shaped walls (ContactForces::compute_walls).
-  void compute_shaped(ParticleStore& s, const NeighborList& list, const NearWallElements* near,
+  void compute_shaped(ParticleView s, const NeighborList& list, const NearWallElements* near,
                       const std::vector<ShapedWall>& shaped, double t, double dt,
                       std::vector<WallLoad>& loads, std::vector<ElementForce>& elements);
 

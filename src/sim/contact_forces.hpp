@@ -14,7 +14,7 @@
 #include "core/near_pairs.hpp"
 #include "core/neighbor_list.hpp"
 #include "core/overlap_scan.hpp"
-#include "core/particle_store.hpp"
+#include "core/particle_view.hpp"
 #include "scene/plane_wall.hpp"
 #include "scene/shaped_wall.hpp"
 #include "sim/contact_tally.hpp"
@@ -51,7 +51,10 @@ template <class Model> class ContactForces {
 public:
   using State = typename Model::State;
 
-  explicit ContactForces(ContactLaw<Model> law) : law_(std::move(law)), batch_(make_batch(law_)) {}
+  // `batches` false: every contact one by one, even where the model has SIMD lanes
+  // (Backend::cpu_reference).
+  explicit ContactForces(ContactLaw<Model> law, bool batches = true)
+      : law_(std::move(law)), batch_(batches ? make_batch(law_) : nullptr) {}
 
   const ContactLaw<Model>& law() const { return law_; }
   ContactHistory<State> history;
@@ -64,7 +67,7 @@ public:
   // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
   // PairSet::ghost and then PairSet::owned do what one call with PairSet::all does, with
   // the pairs in another order.
-  void compute(ParticleStore& s, const NeighborList& list, const NearPairs* near,
+  void compute(ParticleView s, const NeighborList& list, const NearPairs* near,
                const std::vector<PlaneWall>& planes, double t, double dt, bool walls_still,
                ContactTally& tally, ContactRecord& record, PairSet set = PairSet::all) {
     walls_still_ = walls_still;
@@ -96,7 +99,7 @@ public:
   // of each contact on its triangle or patch; `record`, where enabled, each contact. `near`,
   // where given, stands for the list's candidate triangles (the same touches). Where the model
   // has SIMD lanes, the contacts are evaluated in batches, with the same bits.
-  void compute_walls(ParticleStore& s, const NeighborList& list, const NearWallElements* near,
+  void compute_walls(ParticleView s, const NeighborList& list, const NearWallElements* near,
                      const std::vector<ShapedWall>& walls, double t, double dt, ContactTally& tally,
                      std::vector<WallLoad>& loads, std::vector<ElementForce>& elements,
                      ContactRecord& record) {
@@ -239,7 +242,7 @@ private:
 
   // What follows the force on the grain and the energies: the wall's work, load and element
   // force, the record and the deepest overlap.
-  static void book_wall_contact(const ParticleStore& s, const WallSite& site, const Vec3& force,
+  static void book_wall_contact(ConstParticleView s, const WallSite& site, const Vec3& force,
                                 double elastic, double overlap, double dt, WallBooks& books) {
     const WallTouch& touch = *site.touch;
     const double work = dot(force, touch.velocity) * dt;
@@ -256,7 +259,7 @@ private:
   }
 
   // Puts a wall contact in the batch's lanes (flushed when full).
-  void queue_wall_contact(ParticleStore& s, const WallSite& site,
+  void queue_wall_contact(ParticleView s, const WallSite& site,
                           const typename Model::Coeffs& coeffs, State& state, double dt,
                           WallBooks& books) {
     Lanes& lanes = batch_->lanes;
@@ -272,7 +275,7 @@ private:
 
   // Evaluates the batch of wall contacts and books each as the one-by-one loop does, in the
   // same order, with the states released before each (the same bits whichever path runs).
-  void flush_walls(ParticleStore& s, double dt, WallBooks& books) {
+  void flush_walls(ParticleView s, double dt, WallBooks& books) {
     Lanes& lanes = batch_->lanes;
     if (lanes.size > 0) lanes.evaluate_walls(dt);
     std::size_t released = 0;
@@ -306,24 +309,10 @@ private:
     lanes.size = 0;
   }
 
-  // The geometry of grain i against a wall (a plane, a triangle, a cylinder's patch) of zero
-  // radius and infinite mass: unit normal n from the wall to the centre, the centre at
-  // `distance` from the wall's point, which moves with `v_wall`.
-  static ContactGeometry against_wall(const ParticleStore& s, std::uint32_t i, const Vec3& n,
+  // The geometry of grain i against a wall element (contact/contact_geometry.hpp).
+  static ContactGeometry against_wall(ConstParticleView s, std::uint32_t i, const Vec3& n,
                                       double distance, const Vec3& v_wall, double dt) {
-    ContactGeometry g;
-    g.n = n;
-    g.overlap = s.radius[i] - distance;
-    g.distance = distance;
-    g.v_rel = s.v[i] - v_wall;
-    g.w_i = s.w[i];
-    g.w_j = Vec3{};
-    g.a_i = s.radius[i];
-    g.a_j = 0.0;
-    g.m_eff = 1.0 / s.inv_mass[i];
-    g.r_eff = s.radius[i];
-    g.dt = dt;
-    return g;
+    return wall_geometry(n, distance, s.radius[i], s.v[i], v_wall, s.w[i], s.inv_mass[i], dt);
   }
 
   static void track_overlap(double overlap, double smaller_radius, std::size_t i,
@@ -336,7 +325,7 @@ private:
 
   // Work of a wall particle's prescribed motion on its partner (force on i, -force on j); none
   // while the walls are still (the sum would only add zeros).
-  void book_wall_work(const ParticleStore& s, std::uint32_t i, std::uint32_t j, const Vec3& force,
+  void book_wall_work(ConstParticleView s, std::uint32_t i, std::uint32_t j, const Vec3& force,
                       double dt, ContactTally& tally) const {
     if (walls_still_) return;
     if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
@@ -356,11 +345,11 @@ private:
   // pair (overlap_scan.hpp), then the contact law on the pairs that passed. The near pairs,
   // where they hold, stand for the list (the same pairs touch, in the same order).
   template <class Touching>
-  YUXI_ALWAYS_INLINE void sweep(const ParticleStore& s, const NeighborList& list,
-                                ContactTally& tally, Touching&& touching) {
+  YUXI_ALWAYS_INLINE void sweep(ConstParticleView s, const NeighborList& list, ContactTally& tally,
+                                Touching&& touching) {
     static_assert(ContactHistory<State>::none == no_slot);
-    const Vec3* x = s.x.data();
-    const double* radius = s.radius.data();
+    const Vec3* x = s.x;
+    const double* radius = s.radius;
     const std::uint32_t* partners = list.partners.data();
     const std::uint32_t* rows = list.rows.data();
     constexpr std::uint32_t chunk = 256;
@@ -405,26 +394,14 @@ private:
     }
   }
 
-  void compute_pairs(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
+  void compute_pairs(ParticleView s, const NeighborList& list, double dt, ContactTally& tally,
                      ContactRecord& record) {
     sweep(s, list, tally,
           [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double r2,
               double ai, double aj) {
             State& state = history.open(p);
-            const double dist = std::sqrt(r2);
-            const double touch = ai + aj;
-            ContactGeometry g;
-            g.n = d * (1.0 / dist);
-            g.overlap = touch - dist;
-            g.distance = dist;
-            g.v_rel = s.v[i] - s.v[j];
-            g.w_i = s.w[i];
-            g.w_j = s.w[j];
-            g.a_i = ai;
-            g.a_j = aj;
-            g.m_eff = 1.0 / (s.inv_mass[i] + s.inv_mass[j]);
-            g.r_eff = ai * aj / touch;
-            g.dt = dt;
+            const ContactGeometry g = pair_geometry(d, r2, ai, aj, s.v[i], s.v[j], s.w[i], s.w[j],
+                                                    s.inv_mass[i], s.inv_mass[j], dt);
             const ContactResult r =
                 Model::evaluate(g, law_.coeffs(s.material[i], s.material[j]), state);
             s.f[i] += r.force;
@@ -458,7 +435,7 @@ private:
     }
   }
 
-  void compute_pairs_in_batches(ParticleStore& s, const NeighborList& list, double dt,
+  void compute_pairs_in_batches(ParticleView s, const NeighborList& list, double dt,
                                 ContactTally& tally, ContactRecord& record) {
     if (batch_->lanes.uniform)
       fill_batches<true>(s, list, dt, tally, record);
@@ -467,7 +444,7 @@ private:
   }
 
   template <bool uniform>
-  void fill_batches(ParticleStore& s, const NeighborList& list, double dt, ContactTally& tally,
+  void fill_batches(ParticleView s, const NeighborList& list, double dt, ContactTally& tally,
                     ContactRecord& record) {
     Batch& b = *batch_;
     Lanes& lanes = b.lanes;
@@ -487,7 +464,7 @@ private:
 
   // Evaluates the batch and adds its forces, torques and energies, contact by contact in list
   // order (so the sums are those of the one-by-one loop).
-  void flush(ParticleStore& s, double dt, ContactTally& tally, ContactRecord& record) {
+  void flush(ParticleView s, double dt, ContactTally& tally, ContactRecord& record) {
     Batch& b = *batch_;
     Lanes& lanes = b.lanes;
     lanes.evaluate(dt);
@@ -510,7 +487,7 @@ private:
     lanes.size = 0;
   }
 
-  void compute_planes(ParticleStore& s, const NeighborList& list,
+  void compute_planes(ParticleView s, const NeighborList& list,
                       const std::vector<PlaneWall>& planes, double t, double dt,
                       ContactTally& tally, ContactRecord& record) {
     plane_loads.assign(planes.size(), WallLoad{});

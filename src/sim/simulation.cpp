@@ -19,7 +19,7 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
     : config_(std::move(config)), store_(std::move(particles)),
       exchange_(config_.box, comm, config_.ranks, occupied_lengths(config_.box, store_),
                 cell_edge_for(config_, contact_reach(store_))),
-      search_(config_.skin, config_.box), contacts_(std::move(law)),
+      search_(config_.skin, config_.box), contacts_(std::move(law), config_.backend),
       walls_(config_, std::move(planes), std::move(motions), std::move(shaped_walls)) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
@@ -66,16 +66,18 @@ Simulation::Drift Simulation::kick_drift() {
   // gravity (one sweep over the particles instead of two).
   const Vec3 gravity = config_.gravity;
   {
-    // Raw pointers: the compiler need not reload each array's address after every store.
-    const double* inv_mass = store_.inv_mass.data();
-    const double* inv_inertia = store_.inv_inertia.data();
-    const double* mass = store_.mass.data();
-    const Vec3* x_build = store_.x_build.data();
-    Vec3* x = store_.x.data();
-    Vec3* v = store_.v.data();
-    Vec3* w = store_.w.data();
-    Vec3* f = store_.f.data();
-    Vec3* torque = store_.torque.data();
+    // The plain view (core/particle_view.hpp): a local copy of the pointers, so the compiler
+    // need not reload an array's address after every store.
+    const ParticleView p = store_.view();
+    const double* inv_mass = p.inv_mass;
+    const double* inv_inertia = p.inv_inertia;
+    const double* mass = p.mass;
+    const Vec3* x_build = p.x_build;
+    Vec3* x = p.x;
+    Vec3* v = p.v;
+    Vec3* w = p.w;
+    Vec3* f = p.f;
+    Vec3* torque = p.torque;
     bool moved_far = false;
     // Grains, then wall particles (the order of a list build); walls keep no force.
     for (std::size_t i = n_grains_; i < n; ++i) {
@@ -141,18 +143,14 @@ void Simulation::exchange_or_build_lists(bool build_now) {
 void Simulation::final_kick() {
   // Second half kick of the particles owned now (a list build may have moved some away).
   PhaseTimer timer(timers_.integrate);
-  // The pointers are taken again: a list build may have moved the arrays.
-  const double* inv_mass = store_.inv_mass.data();
-  const double* inv_inertia = store_.inv_inertia.data();
-  const Vec3* f = store_.f.data();
-  const Vec3* torque = store_.torque.data();
-  Vec3* v = store_.v.data();
-  Vec3* w = store_.w.data();
+  // The view is taken again: a list build may have moved the arrays.
+  const ParticleView p = store_.view();
   const double half_dt = 0.5 * config_.dt;
   for (std::size_t i = 0; i < n_grains_; ++i) { // (component by component, as above)
-    const double kick = half_dt * inv_mass[i], spin = half_dt * inv_inertia[i];
-    v[i].x += f[i].x * kick, v[i].y += f[i].y * kick, v[i].z += f[i].z * kick;
-    w[i].x += torque[i].x * spin, w[i].y += torque[i].y * spin, w[i].z += torque[i].z * spin;
+    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
+    const Vec3 f = p.f[i], torque = p.torque[i];
+    p.v[i].x += f.x * kick, p.v[i].y += f.y * kick, p.v[i].z += f.z * kick;
+    p.w[i].x += torque.x * spin, p.w[i].y += torque.y * spin, p.w[i].z += torque.z * spin;
   }
 }
 
@@ -199,8 +197,8 @@ void Simulation::compute_forces(bool advance_history) {
                        config_.near_fraction);
   const NeighborList& list = search_.list();
   const auto compute = [&](PairSet set) {
-    contacts_.compute_pairs(store_, list, search_.held_near_pairs(), walls_.planes(), time_, dt,
-                            walls_.particles_still(), set);
+    contacts_.compute_pairs(store_.view(), list, search_.held_near_pairs(), walls_.planes(), time_,
+                            dt, walls_.particles_still(), set);
   };
   if (list.ghost_pairs.empty()) {
     compute(PairSet::all);
@@ -220,8 +218,9 @@ void Simulation::compute_forces(bool advance_history) {
   }
   if (!walls_.shaped().empty()) {
     timer.switch_to(timers_.pair);
-    contacts_.compute_shaped(store_, list, search_.held_near_wall_elements(), walls_.shaped(),
-                             time_, dt, walls_.shaped_loads_here(), walls_.element_forces_here());
+    contacts_.compute_shaped(store_.view(), list, search_.held_near_wall_elements(),
+                             walls_.shaped(), time_, dt, walls_.shaped_loads_here(),
+                             walls_.element_forces_here());
   }
   check_health();
 }

@@ -17,6 +17,11 @@ enum class EscapePolicy { stop, remove };
 // The load the cut planes of a multi-rank run balance (SimulationConfig::balance_by).
 enum class BalanceBy { pairs, time };
 
+// Where and how the forces are computed: `cpu`, the pair loop with the linear law's SIMD lanes
+// where they apply; `cpu_reference`, every contact one by one through its law's evaluate(), the
+// oracle the other backends are held to (tests/backend/test_every_backend.cpp).
+enum class Backend { cpu, cpu_reference };
+
 struct SimulationConfig {
   Box box;
   Vec3 gravity;
@@ -39,6 +44,7 @@ struct SimulationConfig {
   // The linked cells are at least this wide beyond the skin: grains that come later
   // ([[insert]]) may be larger than any at the start [length].
   double min_contact_reach = 0.0;
+  Backend backend = Backend::cpu;
 };
 
 // Gravity's components along periodic axes (no potential: a grain that wraps around would jump

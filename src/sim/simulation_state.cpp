@@ -105,7 +105,7 @@ Simulation::Simulation(SimulationFrame frame, const SavedState& saved, Comm comm
       // (laid out for the particles once they are read: lay_out_for_loaded)
       exchange_(config_.box, comm, config_.ranks, Vec3{},
                 std::max({config_.box.length(0), config_.box.length(1), config_.box.length(2)})),
-      search_(config_.skin, config_.box), contacts_(std::move(frame.law)),
+      search_(config_.skin, config_.box), contacts_(std::move(frame.law), config_.backend),
       walls_(config_, std::move(frame.planes), std::move(frame.motions),
              std::move(frame.shaped_walls)) {
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");

@@ -1,6 +1,7 @@
 // Every contact law's header compiles for the device (compile only: no GPU is needed): the
 // laws are written once, as YUXI_HD functions of plain data, and a kernel instantiates each
-// model's evaluate() and release(). CTest compiles this with nvcc where one is installed
+// model's evaluate() and release(). A pair kernel takes the particles' plain view and the pair
+// loop's own geometry, as a device backend will. CTest compiles this with nvcc where one is installed
 // (tests/CMakeLists.txt); scripts/check-layers.sh keeps host-only includes out of the headers.
 #include "contact/hertz_mindlin.hpp"
 #include "contact/hooke.hpp"
@@ -8,6 +9,9 @@
 #include "contact/luding.hpp"
 #include "contact/rolling_resistance.hpp"
 #include "contact/thermodynamic.hpp"
+#include "core/particle_view.hpp"
+
+#include <cstdint>
 
 namespace yuxi {
 
@@ -38,5 +42,29 @@ template __global__ void evaluate_contacts<Thermodynamic>(const ContactGeometry*
                                                           double*, int);
 template __global__ void evaluate_contacts<Hooke>(const ContactGeometry*, const Hooke::Coeffs*,
                                                   Hooke::State*, ContactResult*, double*, int);
+
+template <class Model>
+__global__ void pair_contacts(ConstParticleView p, const std::uint32_t* rows,
+                              const std::uint32_t* partners, const typename Model::Coeffs* c,
+                              typename Model::State* s, ContactResult* out, double dt, int n) {
+  const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (k >= n) return;
+  const std::uint32_t i = rows[k], j = partners[k];
+  const Vec3 d = p.x[i] - p.x[j];
+  const ContactGeometry g = pair_geometry(d, norm2(d), p.radius[i], p.radius[j], p.v[i], p.v[j],
+                                          p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
+  const ContactGeometry wall =
+      wall_geometry(g.n, g.distance, p.radius[i], p.v[i], Vec3{}, p.w[i], p.inv_mass[i], dt);
+  out[k] = Model::evaluate(p.is_grain(j) ? g : wall, c[0], s[k]);
+}
+
+template __global__ void pair_contacts<LinearSpringDashpot>(
+    ConstParticleView, const std::uint32_t*, const std::uint32_t*,
+    const LinearSpringDashpot::Coeffs*, LinearSpringDashpot::State*, ContactResult*, double, int);
+template __global__ void pair_contacts<HertzMindlin>(ConstParticleView, const std::uint32_t*,
+                                                     const std::uint32_t*,
+                                                     const HertzMindlin::Coeffs*,
+                                                     HertzMindlin::State*, ContactResult*,
+                                                     double, int);
 
 } // namespace yuxi

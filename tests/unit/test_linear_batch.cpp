@@ -1,5 +1,7 @@
-// The batched linear law (SIMD lanes) against the contact-by-contact law: the same bits for
-// every friction convention, sticking and sliding, over many steps of each contact's history.
+// The batched linear law (SIMD lanes) against the contact-by-contact law on the pair loop's own
+// geometry (pair_geometry, wall_geometry): the same bits for every friction convention, sticking
+// and sliding, with and without a tangential spring or damper, against grains and wall
+// particles, over many steps of each contact's history.
 // The engine relies on this: a contact's answer must not depend on which path evaluated it, or
 // on the batch it fell in (which changes with the number of MPI ranks).
 #include "contact/linear_batch.hpp"
@@ -49,22 +51,11 @@ Contact random_contact(Random& r, CapOn cap, Carry carry) {
   return k;
 }
 
-// The geometry as the one-by-one pair loop builds it from positions.
+// The geometry as the one-by-one pair loop builds it from positions: its own function
+// (contact/contact_geometry.hpp), with v_j = 0 so that v_i - v_j is the contact's v_rel.
 ContactGeometry geometry_of(const Contact& k, double dt) {
-  ContactGeometry g;
-  const double dist = std::sqrt(norm2(k.d));
-  g.n = k.d * (1.0 / dist);
-  g.overlap = k.a_i + k.a_j - dist;
-  g.distance = dist;
-  g.v_rel = k.v_rel;
-  g.w_i = k.w_i;
-  g.w_j = k.w_j;
-  g.a_i = k.a_i;
-  g.a_j = k.a_j;
-  g.m_eff = 1.0 / (k.inv_m_i + k.inv_m_j);
-  g.r_eff = k.a_i * k.a_j / (k.a_i + k.a_j);
-  g.dt = dt;
-  return g;
+  return pair_geometry(k.d, norm2(k.d), k.a_i, k.a_j, k.v_rel, Vec3{}, k.w_i, k.w_j, k.inv_m_i,
+                       k.inv_m_j, dt);
 }
 
 // Lane k of an evaluated batch against the one-by-one law's result `ref` for the same contact
@@ -172,18 +163,9 @@ TEST_P(LinearBatchMatches, WallContactsBitForBit) {
     batch.evaluate_walls(cap, carry, dt);
     for (std::size_t k = 0; k < n; ++k) {
       const Contact& c = contacts[k];
-      ContactGeometry g;
-      g.n = normal[k];
-      g.overlap = c.a_i - distance[k];
-      g.distance = distance[k];
-      g.v_rel = c.v_rel;
-      g.w_i = c.w_i;
-      g.w_j = Vec3{};
-      g.a_i = c.a_i;
-      g.a_j = 0.0;
-      g.m_eff = 1.0 / c.inv_m_i;
-      g.r_eff = c.a_i;
-      g.dt = dt;
+      // (the wall loop's own geometry, the wall at rest so that v_i - v_wall is v_rel)
+      const ContactGeometry g =
+          wall_geometry(normal[k], distance[k], c.a_i, c.v_rel, Vec3{}, c.w_i, c.inv_m_i, dt);
       const ContactResult ref = Law::evaluate(g, c.c, states[k]);
       SCOPED_TRACE(testing::Message() << "wall contact " << k << ", step " << step);
       expect_lane_is(batch, k, ref, c.a_i, 0.0, states[k].tangential);
