@@ -6,7 +6,9 @@
 # and on NP ranks, yuxi and LIGGGHTS one after the other (REPEATS times, alternating). The
 # contact law is the drum benchmark's (bench/peers/in.drum.liggghts). Prints each run's loop time
 # (yuxi: the log's "steps in"; LIGGGHTS: "Loop time of"), without the set-up, and the ratio.
-# usage: bench/drum_speed_vs_liggghts.sh [YUXI] [WORK] [NP] [STEPS] [REPEATS]
+# YUXI_BASELINE=/path/to/an/earlier/yuxi runs that build too, right after yuxi, and prints the
+# ratio of the two: the cost of a change, side by side in one invocation.
+# usage: [YUXI_BASELINE=BINARY] bench/drum_speed_vs_liggghts.sh [YUXI] [WORK] [NP] [STEPS] [REPEATS]
 set -euo pipefail
 default_work=/tmp/yuxi-drum-speed default_np=2
 source "$(dirname "$0")/liggghts_side.sh"
@@ -37,6 +39,12 @@ for repeat in $(seq "$repeats"); do
     mpi "$n" "$yuxi" run turn.toml -o "yuxi-np$n" --overwrite --no-progress --no-plots \
       > "yuxi-np$n.log" 2>&1
     y=$(sed -n 's/.* \([0-9]*\) steps in \([0-9.]*\) s.*/\2/p' "yuxi-np$n.log" | tail -1)
+    if [ -n "${YUXI_BASELINE:-}" ]; then
+      mpi "$n" "$YUXI_BASELINE" run turn.toml -o "base-np$n" --overwrite --no-progress --no-plots \
+        > "base-np$n.log" 2>&1
+      b=$(sed -n 's/.* \([0-9]*\) steps in \([0-9.]*\) s.*/\2/p' "base-np$n.log" | tail -1)
+      echo "np $n: yuxi $y s, baseline $b s, yuxi / baseline $(echo "scale=3; $y / $b" | bc)"
+    fi
     mpi "$n" liggghts -in "$repo/bench/peers/in.drum.liggghts" -var data settled.data \
       -var stl drum_ascii.stl -var omega_period "$period" -var steps "$steps" -var every "$steps" \
       -var dump /dev/null -log "liggghts-np$n.log" -echo none > "liggghts-np$n.out" 2>&1

@@ -6,7 +6,9 @@
 # which prints medians and yuxi/LAMMPS ratios per rank count, and
 #   run_skin RUN_DIR
 # the Verlet skin of the yuxi run that both codes continue, for LAMMPS's `neighbor`.
-# Expects $yuxi (the binary) to be set.
+# Expects $yuxi (the binary) to be set. Where $YUXI_BASELINE names another yuxi binary (an
+# earlier build), run_yuxi runs it too, right after, as code "base", and report adds its row and
+# the yuxi/base ratio run by run: a change's cost measured in the same invocation.
 if ! command -v lmp > /dev/null; then
   if [[ $(id -u) -eq 0 ]]; then apt-get install -y -q lammps > /dev/null; else sudo apt-get install -y -q lammps > /dev/null; fi
 fi
@@ -51,16 +53,27 @@ run_lammps() {
       100 * t["Output"] / loop, 100 * t["Modify"] / loop, 100 * t["Other"] / loop}' \
     "$work/lammps.log")
 }
-# The same with yuxi: run_yuxi CASE NP YUXI-RUN-ARGS...
+# The same with yuxi: run_yuxi CASE NP YUXI-RUN-ARGS..., and run_baseline CASE NP ARGS... with
+# $YUXI_BASELINE where set (a run it resumes must be one it wrote: an older build may not read a
+# newer build's checkpoints).
+run_yuxi_as() {
+  local code=$1 binary=$2 case=$3 np=$4
+  shift 4
+  rm -f "$work"/mem.*
+  "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" "$binary" run "$@" --no-progress --no-plots \
+    > "$work/yuxi.log" 2>&1
+  rates[$code,$case,$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$work/yuxi.log") "
+  memory[$code,$case,$np]=$(peak_kb)
+  breakdown[$code,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
+}
 run_yuxi() {
   local case=$1 np=$2
   shift 2
-  rm -f "$work"/mem.*
-  "${mpi[@]}" -np "$np" -x MEMDIR "$work/timed" "$yuxi" run "$@" --no-progress --no-plots \
-    > "$work/yuxi.log" 2>&1
-  rates[yuxi,$case,$np]+="$(grep -oP '[0-9.e+]+(?= particle-steps/s)' "$work/yuxi.log") "
-  memory[yuxi,$case,$np]=$(peak_kb)
-  breakdown[yuxi,$case,$np]=$(grep -oP 'time: \K.*' "$work/yuxi.log")
+  run_yuxi_as yuxi "$yuxi" "$case" "$np" "$@"
+}
+run_baseline() {
+  [[ -n ${YUXI_BASELINE:-} ]] || return 0
+  run_yuxi_as base "$YUXI_BASELINE" "$@"
 }
 
 # The skin a yuxi run used: its resolved scene holds every setting, defaults included, so a
@@ -72,12 +85,13 @@ report() {
   printf "\n%s (medians of %d)\n" "$title" "$repeats"
   printf "%-7s %5s %16s %8s %12s  %s\n" code ranks particle-steps/s ratio "B/particle" breakdown
   for np in 1 2; do
-    local l y
+    local l
     l=$(echo "${rates[lammps,$case,$np]}" | median)
-    y=$(echo "${rates[yuxi,$case,$np]}" | median)
-    for code in lammps yuxi; do
+    local codes=(lammps yuxi)
+    [[ -n ${YUXI_BASELINE:-} ]] && codes+=(base)
+    for code in "${codes[@]}"; do
       local rate ratio bytes
-      rate=$([[ $code == lammps ]] && echo "$l" || echo "$y")
+      rate=$(echo "${rates[$code,$case,$np]}" | median)
       ratio=$(awk -v a="$rate" -v b="$l" 'BEGIN {printf "%.2f", a / b}')
       bytes=$(awk -v kb="${memory[$code,$case,$np]}" -v n="$n" -v np="$np" \
         'BEGIN {printf "%.0f", kb * 1024 / (n / np)}')
@@ -92,5 +106,10 @@ report() {
     ratios=$(run_by_run "${rates[lammps,$case,$np]}" "${rates[yuxi,$case,$np]}" 1 %.2f)
     printf "yuxi/LAMMPS run by run on %d rank(s): %s(median %s)\n" "$np" "$ratios" \
       "$(echo "$ratios" | median)"
+    if [[ -n ${YUXI_BASELINE:-} ]]; then
+      ratios=$(run_by_run "${rates[base,$case,$np]}" "${rates[yuxi,$case,$np]}" 1 %.3f)
+      printf "yuxi/base run by run on %d rank(s): %s(median %s)\n" "$np" "$ratios" \
+        "$(echo "$ratios" | median)"
+    fi
   done
 }

@@ -12,7 +12,9 @@
 # Last the whole scene as it is shipped: both codes start from yuxi's initial state (t = 0), let
 # the grains fall and settle to t0 = 10 tau with the walls still and shake them to t_end = 11 tau.
 # Installs LAMMPS from Debian if it is missing. Build yuxi first (cmake --build --preset release).
-# usage: bench/versus_lammps.sh [STEPS] [REPEATS] [BASIN_STEPS]
+# YUXI_BASELINE=/path/to/an/earlier/yuxi adds that build beside them, run after each yuxi run
+# (bench/side_by_side.sh): the cost of a change, side by side in one invocation.
+# usage: [YUXI_BASELINE=BINARY] bench/versus_lammps.sh [STEPS] [REPEATS] [BASIN_STEPS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 steps=${1:-10000}
@@ -28,6 +30,10 @@ python3 bench/peers/lammps_basin_scene.py scenes/basin-small.toml "$work"
 for motion in vibrating still; do
   "$yuxi" run "$work/basin-$motion.toml" --t-end 10 -o "$work/settled-$motion" --no-progress \
     --no-plots > /dev/null
+  if [[ -n ${YUXI_BASELINE:-} ]]; then
+    "$YUXI_BASELINE" run "$work/basin-$motion.toml" --t-end 10 -o "$work/settled-$motion.base" \
+      --no-progress --no-plots > /dev/null
+  fi
   python3 bench/peers/lammps_data_from_dump.py "$work/settled-$motion/particles.lammpstrj" \
     "$work/basin-$motion.data" --heavy 2
 done
@@ -48,6 +54,7 @@ for r in $(seq 1 "$repeats"); do
       -in "$PWD/bench/peers/in.chute"
     t_end=$(awk -v s="$steps" 'BEGIN {printf "%.6f", s * 1e-4}')
     run_yuxi chute "$np" scenes/chute-lammps.toml --t-end "$t_end" -o "$work/yuxi" --overwrite
+    run_baseline chute "$np" scenes/chute-lammps.toml --t-end "$t_end" -o "$work/yuxi" --overwrite
     for motion in still vibrating; do
       run_lammps "basin-$motion" "$np" "$basin_particles" "$basin_steps" \
         -var datafile "$work/basin-$motion.data" -var steps "$basin_steps" \
@@ -55,11 +62,16 @@ for r in $(seq 1 "$repeats"); do
         -var skin "$basin_skin" -in "$PWD/bench/peers/in.basin"
       rm -rf "$work/resumed" && cp -r "$work/settled-$motion" "$work/resumed"
       run_yuxi "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
+      if [[ -n ${YUXI_BASELINE:-} ]]; then
+        rm -rf "$work/resumed" && cp -r "$work/settled-$motion.base" "$work/resumed"
+        run_baseline "basin-$motion" "$np" --resume "$work/resumed" --t-end "$t_basin"
+      fi
     done
     run_lammps basin-whole "$np" "$basin_particles" $((settle_steps + shake_steps)) \
       -var datafile "$work/basin-start.data" -var settle "$settle_steps" \
       -var steps "$shake_steps" -var excite 1 -var skin "$basin_skin" -in "$PWD/bench/peers/in.basin"
     run_yuxi basin-whole "$np" "$work/basin-vibrating.toml" -o "$work/whole" --overwrite
+    run_baseline basin-whole "$np" "$work/basin-vibrating.toml" -o "$work/whole" --overwrite
   done
 done
 report chute "chute, $particles spheres, $steps steps" "$particles"
