@@ -38,8 +38,12 @@ public:
 #undef YUXI_STORE_VECTOR
 
   // Plain views of the fields (core/particle_view.hpp), valid until the next resize or reorder.
-  ParticleView view() { return view_of<ParticleView>(*this); }
-  ConstParticleView view() const { return view_of<ConstParticleView>(*this); }
+  ParticleView view() {
+    return view_of<ParticleView>(*this);
+  }
+  ConstParticleView view() const {
+    return view_of<ConstParticleView>(*this);
+  }
 
   // Calls fn(field) for every field, in the list's order.
 #define YUXI_APPLY_TO_FIELD(type, name) fn(name);

@@ -63,6 +63,8 @@ public:
   // The contacts with shaped walls that began already deep on this rank (contact_tally.hpp).
   DeepStarts deep_starts;
 
+  // `s`: the particles' plain view (taken by value here, by reference by the per-contact
+  // helpers below, which run for every contact).
   // `walls_still`: no wall particle moves (every one has zero velocity), so they do no work.
   // `near`: the near pairs of the list, scanned instead of the whole list while they hold.
   // PairSet::ghost and then PairSet::owned do what one call with PairSet::all does, with
@@ -242,7 +244,7 @@ private:
 
   // What follows the force on the grain and the energies: the wall's work, load and element
   // force, the record and the deepest overlap.
-  static void book_wall_contact(ConstParticleView s, const WallSite& site, const Vec3& force,
+  static void book_wall_contact(const ParticleView& s, const WallSite& site, const Vec3& force,
                                 double elastic, double overlap, double dt, WallBooks& books) {
     const WallTouch& touch = *site.touch;
     const double work = dot(force, touch.velocity) * dt;
@@ -259,7 +261,7 @@ private:
   }
 
   // Puts a wall contact in the batch's lanes (flushed when full).
-  void queue_wall_contact(ParticleView s, const WallSite& site,
+  void queue_wall_contact(const ParticleView& s, const WallSite& site,
                           const typename Model::Coeffs& coeffs, State& state, double dt,
                           WallBooks& books) {
     Lanes& lanes = batch_->lanes;
@@ -275,7 +277,7 @@ private:
 
   // Evaluates the batch of wall contacts and books each as the one-by-one loop does, in the
   // same order, with the states released before each (the same bits whichever path runs).
-  void flush_walls(ParticleView s, double dt, WallBooks& books) {
+  void flush_walls(const ParticleView& s, double dt, WallBooks& books) {
     Lanes& lanes = batch_->lanes;
     if (lanes.size > 0) lanes.evaluate_walls(dt);
     std::size_t released = 0;
@@ -310,7 +312,7 @@ private:
   }
 
   // The geometry of grain i against a wall element (contact/contact_geometry.hpp).
-  static ContactGeometry against_wall(ConstParticleView s, std::uint32_t i, const Vec3& n,
+  static ContactGeometry against_wall(const ParticleView& s, std::uint32_t i, const Vec3& n,
                                       double distance, const Vec3& v_wall, double dt) {
     return wall_geometry(n, distance, s.radius[i], s.v[i], v_wall, s.w[i], s.inv_mass[i], dt);
   }
@@ -325,7 +327,7 @@ private:
 
   // Work of a wall particle's prescribed motion on its partner (force on i, -force on j); none
   // while the walls are still (the sum would only add zeros).
-  void book_wall_work(ConstParticleView s, std::uint32_t i, std::uint32_t j, const Vec3& force,
+  void book_wall_work(const ParticleView& s, std::uint32_t i, std::uint32_t j, const Vec3& force,
                       double dt, ContactTally& tally) const {
     if (walls_still_) return;
     if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
@@ -345,8 +347,8 @@ private:
   // pair (overlap_scan.hpp), then the contact law on the pairs that passed. The near pairs,
   // where they hold, stand for the list (the same pairs touch, in the same order).
   template <class Touching>
-  YUXI_ALWAYS_INLINE void sweep(ConstParticleView s, const NeighborList& list, ContactTally& tally,
-                                Touching&& touching) {
+  YUXI_ALWAYS_INLINE void sweep(const ParticleView& s, const NeighborList& list,
+                                ContactTally& tally, Touching&& touching) {
     static_assert(ContactHistory<State>::none == no_slot);
     const Vec3* x = s.x;
     const double* radius = s.radius;
@@ -394,8 +396,8 @@ private:
     }
   }
 
-  void compute_pairs(ParticleView s, const NeighborList& list, double dt, ContactTally& tally,
-                     ContactRecord& record) {
+  void compute_pairs(const ParticleView& s, const NeighborList& list, double dt,
+                     ContactTally& tally, ContactRecord& record) {
     sweep(s, list, tally,
           [&](std::uint32_t i, std::uint32_t j, std::uint32_t p, const Vec3& d, double r2,
               double ai, double aj) {
@@ -435,7 +437,7 @@ private:
     }
   }
 
-  void compute_pairs_in_batches(ParticleView s, const NeighborList& list, double dt,
+  void compute_pairs_in_batches(const ParticleView& s, const NeighborList& list, double dt,
                                 ContactTally& tally, ContactRecord& record) {
     if (batch_->lanes.uniform)
       fill_batches<true>(s, list, dt, tally, record);
@@ -444,7 +446,7 @@ private:
   }
 
   template <bool uniform>
-  void fill_batches(ParticleView s, const NeighborList& list, double dt, ContactTally& tally,
+  void fill_batches(const ParticleView& s, const NeighborList& list, double dt, ContactTally& tally,
                     ContactRecord& record) {
     Batch& b = *batch_;
     Lanes& lanes = b.lanes;
@@ -464,7 +466,7 @@ private:
 
   // Evaluates the batch and adds its forces, torques and energies, contact by contact in list
   // order (so the sums are those of the one-by-one loop).
-  void flush(ParticleView s, double dt, ContactTally& tally, ContactRecord& record) {
+  void flush(const ParticleView& s, double dt, ContactTally& tally, ContactRecord& record) {
     Batch& b = *batch_;
     Lanes& lanes = b.lanes;
     lanes.evaluate(dt);
@@ -487,7 +489,7 @@ private:
     lanes.size = 0;
   }
 
-  void compute_planes(ParticleView s, const NeighborList& list,
+  void compute_planes(const ParticleView& s, const NeighborList& list,
                       const std::vector<PlaneWall>& planes, double t, double dt,
                       ContactTally& tally, ContactRecord& record) {
     plane_loads.assign(planes.size(), WallLoad{});
