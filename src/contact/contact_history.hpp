@@ -1,10 +1,10 @@
-// Per-contact state kept across neighbour-list rebuilds.
+// Per-contact state kept across list builds.
 //
-// Between rebuilds each listed pair holds a slot number (4 bytes, aligned with the neighbour
+// Between list builds each listed pair holds a slot number (4 bytes, aligned with the neighbour
 // list) into a pool of states kept only for the contacts that touch: in a granular flow most
 // listed pairs are near misses (the chute lists about six pairs per touching contact), so the
 // pair loop streams 4 bytes, not a whole state, past each of them. Grain-plane candidates are
-// few and keep one state each. At a rebuild the states are stashed by the global ids of
+// few and keep one state each. At a list build the states are stashed by the global ids of
 // the two partners, the particles are reordered and the list rebuilt, and each new list entry
 // picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
 // state. Only states that differ from a fresh one are stashed: a default state carries nothing.
@@ -19,16 +19,16 @@
 // the pair, which is the rank that lists it: the owner of both particles, or, for a pair across
 // ranks, the owner of the particle that sees the other in its half shell of ghosts
 // (domain/halo.hpp). A grain-plane contact lives with its grain. Which rank that is can change
-// at a rebuild (particles migrate, cut planes move), so at a rebuild the stashed states travel
-// as copies with the particles they concern: with a particle that migrates (copies_for), and
-// with a particle sent as a ghost for the pairs whose other particle is not owned by the
-// sender (ghost_copies). Every rank that could list the pair after the rebuild then holds its
-// state, and only the one that lists it picks it up: copies elsewhere are dropped with the
-// stash. A contact is therefore never lost, and never duplicated.
+// at a list build (particles migrate, cut planes move), so at a list build the stashed states
+// travel as copies with the particles they concern: with a particle that migrates
+// (copies_for), and with a particle sent as a ghost for the pairs whose other particle is not
+// owned by the sender (ghost_copies). Every rank that could list the pair after the list build then
+// holds its state, and only the one that lists it picks it up: copies elsewhere are dropped with
+// the stash. A contact is therefore never lost, and never duplicated.
 //
 // The stash is a plain array, and restore() walks it: each stashed contact looks for its pair
-// in the rows of its two particles (found by global id), so a rebuild costs no hashing per
-// listed pair and no allocation per contact; violent runs rebuild every few steps.
+// in the rows of its two particles (found by global id), so a list build costs no hashing per
+// listed pair and no allocation per contact; violent runs build the lists every few steps.
 #pragma once
 
 #include "contact/state_columns.hpp"
@@ -97,7 +97,7 @@ struct ContactKeyHash {
 };
 
 // The operations on contact states that a list build, a migration and a checkpoint make,
-// whatever the model's State: one virtual call per rebuild (never per pair), so the simulation
+// whatever the model's State: one virtual call per list build (never per pair), so the simulation
 // handles the history of any model through this one interface. ContactHistory below is the
 // implementation; the comments there say what each does.
 class ContactStates {
@@ -272,7 +272,7 @@ public:
   void restore(const ParticleStore& s, const NeighborList& list) override {
     pair_slot.assign(list.n_pairs(), none);
     // The pool restarts at the size of the stash with a quarter to spare for the contacts that
-    // open before the next rebuild (its memory would otherwise stay at its largest ever).
+    // open before the next list build (its memory would otherwise stay at its largest ever).
     states = std::vector<State>(); // (not "= {}": that keeps the capacity)
     states.reserve(stash_.size() + stash_.size() / 4 + 16);
     free_.clear();
@@ -341,7 +341,7 @@ public:
   // `gids` take part in (with either partner, or as the grain of a plane or wall contact),
   // packed as bytes, one string per particle (a block: see pack()). The stash keeps them: the pair
   // may still be computed here, with the particle that left as a ghost. One pass over the stash for
-  // all the particles that leave (a few hundred at a rebuild, against thousands of stashed
+  // all the particles that leave (a few hundred at a list build, against thousands of stashed
   // contacts).
   std::vector<std::string> copies_for(const std::vector<GlobalId>& gids) const override {
     std::vector<std::string> out(gids.size());
@@ -493,7 +493,7 @@ private:
   static ContactKey plane_key(const ParticleStore& s, const PlaneContactRef& r) {
     return {s.gid[r.particle], -static_cast<GlobalId>(r.plane) - 1};
   }
-  // The stash and the copies' bookkeeping go (their memory too): rebuilt at the next rebuild.
+  // The stash and the copies' bookkeeping go (their memory too): made again at the next list build.
   void forget_copies() {
     stash_ = std::vector<Entry>();
     attached_ = std::vector<Attached>();
@@ -508,7 +508,7 @@ private:
   std::vector<std::uint32_t> free_; // slots of `states` that no contact holds
   std::vector<Entry> stash_;        // copies of one contact hold the same state
   std::vector<WallEntry> wall_stash_;
-  // During a rebuild, between prepare_ghost_copies() and restore(): the stashed states that
+  // During a list build, between prepare_ghost_copies() and restore(): the stashed states that
   // travel with each particle sent as a ghost (sorted by particle: ghosts arrive in order),
   // a flag per particle that has any, and the owned particles by global id.
   std::vector<Attached> attached_;

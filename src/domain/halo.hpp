@@ -25,8 +25,8 @@
 // reverse_start() and reverse_finish() split it around other work: the swaps back run up to
 // the last one that is a message to another rank, which is left travelling; the finish adds
 // what it brought and runs the swaps back after it (periodic images on this rank).
-// migrate(): at a rebuild, owned particles that have left the sub-domain go to the neighbour
-// that owns them now (one hop per axis: nothing moves more than skin/2 between rebuilds),
+// migrate(): at a list build, owned particles that have left the sub-domain go to the neighbour
+// that owns them now (one hop per axis: nothing moves more than skin/2 between list builds),
 // each with an opaque payload (its contact history, packed by the caller).
 #pragma once
 

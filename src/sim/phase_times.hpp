@@ -9,7 +9,7 @@ namespace yuxi {
 struct PhaseTimes {
   double integrate = 0, neighbor = 0, pair = 0, comm = 0;
   // The part of `neighbor` this rank spends on its own work (sorting, binning, the lists, the
-  // contact states), without the rebuild's exchanges and waits for other ranks.
+  // contact states), without the list build's exchanges and waits for other ranks.
   double neighbor_local = 0;
   double total() const { return integrate + neighbor + pair + comm; }
   // What balancing by time evens out: the time a rank computes, waiting for no other.

@@ -32,7 +32,7 @@ struct SimulationConfig {
   std::uint8_t box_wall_material = 0; // material of the flat walls on Boundary::wall faces
   double max_overlap_ratio = 1.0;     // stop if an overlap exceeds this times the smaller radius
   std::array<int, 3> ranks{0, 0, 0};  // MPI ranks per axis; 0 = chosen automatically
-  int rebalance_every = 50;           // move the cut planes every this many rebuilds (0: never)
+  int rebalance_every = 50;           // move the cut planes every this many list builds (0: never)
   // What the cut planes balance: each particle's count of listed pairs (the same cuts on every
   // run: reproducible to the bit), or the compute time each rank measured since the last
   // balancing (a rank on a slower or busier core gets less; the cuts, and so the round-off of
