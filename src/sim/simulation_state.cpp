@@ -137,6 +137,17 @@ void Simulation::lay_out_for_loaded(const SavedCells& cells, bool own) {
         fmt::format("the checkpoint's cut planes are not those of a layout of {} ranks", c.size()));
   double edge = agreed[0];
   if (edge > 0.0) { // the saved run's cells and skin
+    // They are this scene's: at least what the scene sizes for the particles loaded (grains
+    // only leave, or come no larger than its inserts' and the cells' allow), with no larger a
+    // skin. (A state that claims smaller cells was written by another scene, or crafted: its
+    // grid could run to billions of cells.)
+    SimulationConfig scene = config_;
+    const double least = cell_edge_for(scene, reach);
+    if (!(edge >= least * (1.0 - 1e-12)) || !(agreed[1] <= config_.skin))
+      throw std::invalid_argument(fmt::format(
+          "the checkpoint's cells (edge {}, skin {}) are not this scene's (edge at least {}, "
+          "skin at most {})",
+          edge, agreed[1], least, config_.skin));
     config_.skin = agreed[1];
   } else { // for the particles loaded, with this scene's skin (a branch, an older layout)
     edge = cell_edge_for(config_, reach);

@@ -95,6 +95,29 @@ TEST(Checkpoint, AContinuedRunNeverPlacesTheScenesOwnGrains) {
   branched->run(100);
 }
 
+// A state whose cells are smaller than the scene it is resumed under would make (another
+// scene's, or a crafted file's: a grid of billions of cells) is refused, naming both.
+TEST(Checkpoint, AStateWithCellsSmallerThanTheScenesIsRefused) {
+  const Scene scene = reliability_scene(); // cell_size = 3.6
+  auto first = build_simulation(scene, false);
+  first->run(1000);
+  ArchiveWriter saved;
+  first->save_state(saved);
+  Scene wider = scene;
+  wider.sim.cell_size = 5.0;
+  try {
+    continue_simulation(wider, {{saved.data()}, 1}, std::nullopt, false);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the checkpoint's cells (edge 3.6"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("are not this scene's (edge at least 5"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(continue_simulation(scene, {{saved.data()}, 1}, std::nullopt, false));
+}
+
 using test::temp_dir;
 
 std::string slurp(const fs::path& p) {
