@@ -138,4 +138,11 @@ YUXI_HD inline double release(SliderState& st) {
   return e;
 }
 
+// Both springs of a contact that opens.
+YUXI_HD inline double release(TangentialRollingState& s) {
+  const double e = release(s.tangential) + release(s.rolling);
+  s = TangentialRollingState{};
+  return e;
+}
+
 } // namespace yuxi

@@ -60,11 +60,7 @@ struct HertzMindlin {
 
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
   YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
-  YUXI_HD static double release(const Coeffs&, State& s) {
-    const double e = yuxi::release(s.tangential) + yuxi::release(s.rolling);
-    s = State{};
-    return e;
-  }
+  YUXI_HD static double release(const Coeffs&, State& s) { return yuxi::release(s); }
 };
 
 // Defined here so that the pair loop, templated on the model, inlines it.
@@ -91,23 +87,12 @@ YUXI_ALWAYS_INLINE YUXI_HD ContactResult HertzMindlin::evaluate(const ContactGeo
   r.add_contact_force(g, fn, t.force);
   r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = eta_n * vn * vn * g.dt + t.dissipated;
-  if (c.mu_r > 0 && c.rolling_model == RollingModel::constant_torque) {
-    const RollingTorque rr = constant_rolling_torque(g, fn, c.mu_r);
-    r.torque_i += rr.torque;
-    r.torque_j -= rr.torque;
-    r.dissipated += rr.dissipated;
-  } else if (c.mu_r > 0) {
-    // (LIGGGHTS epsd2: the torque stiffness 2.25 mu_r^2 S_n R*^2, as a force on u_r)
-    const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
-    const SliderLaw rolling{2.25 * c.mu_r * c.mu_r * s_n, 0.0, c.mu_r, c.mu_r, CapOn::total};
-    const SliderResult rr = slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r,
-                                  std::max(fn, 0.0), rolling, g.dt);
-    const Vec3 torque = g.r_eff * cross(g.n, rr.force);
-    r.torque_i += torque;
-    r.torque_j -= torque;
-    r.elastic += s.rolling.stored();
-    r.dissipated += rr.dissipated;
-  }
+  // (epsd: LIGGGHTS epsd2's torque stiffness 2.25 mu_r^2 S_n R*^2, as a force on u_r)
+  if (c.mu_r > 0)
+    add_rolling_resistance(
+        r, g, c.rolling_model, c.mu_r, fn,
+        SliderLaw{2.25 * c.mu_r * c.mu_r * s_n, 0.0, c.mu_r, c.mu_r, CapOn::total},
+        std::max(fn, 0.0), s.rolling);
   return r;
 }
 

@@ -72,11 +72,7 @@ struct LinearSpringDashpot {
   // A touching contact (overlap > 0); the pair loop calls release() when it opens.
   YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s);
   // The contact has opened: resets the state and returns the elastic energy it still held.
-  YUXI_HD static double release(const Coeffs&, State& s) {
-    const double e = yuxi::release(s.tangential) + yuxi::release(s.rolling);
-    s = State{};
-    return e;
-  }
+  YUXI_HD static double release(const Coeffs&, State& s) { return yuxi::release(s); }
 };
 
 // Defined here so that the pair loop, templated on the model, inlines it.
@@ -97,22 +93,10 @@ YUXI_ALWAYS_INLINE YUXI_HD ContactResult LinearSpringDashpot::evaluate(const Con
   r.elastic = 0.5 * c.k_n * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = g.m_eff * c.gamma_n * vn * vn * g.dt + t.dissipated;
 
-  if (c.rolling() && c.rolling_model == RollingModel::constant_torque) {
-    const RollingTorque rr = constant_rolling_torque(g, fn, c.mu_r);
-    r.torque_i += rr.torque;
-    r.torque_j -= rr.torque;
-    r.dissipated += rr.dissipated;
-  } else if (c.rolling()) {
-    const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
-    const SliderLaw rolling{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total};
-    const SliderResult rr =
-        slide(s.rolling, carry_in_plane(s.rolling.spring, g.n), u_r, fn, rolling, g.dt);
-    const Vec3 torque = g.r_eff * cross(g.n, rr.force);
-    r.torque_i += torque;
-    r.torque_j -= torque;
-    r.elastic += s.rolling.stored();
-    r.dissipated += rr.dissipated;
-  }
+  if (c.rolling())
+    add_rolling_resistance(r, g, c.rolling_model, c.mu_r, fn,
+                           SliderLaw{c.k_r, g.m_eff * c.gamma_r, c.mu_r, c.mu_r, CapOn::total}, fn,
+                           s.rolling);
   return r;
 }
 

@@ -14,6 +14,8 @@
 #pragma once
 
 #include "contact/contact_geometry.hpp"
+#include "contact/frictional_spring.hpp"
+#include "core/always_inline.hpp"
 #include "core/vec3.hpp"
 
 #include <cmath>
@@ -41,6 +43,31 @@ YUXI_HD inline RollingTorque constant_rolling_torque(const ContactGeometry& g, d
   r.torque = w_r * (-magnitude / rate);
   r.dissipated = magnitude * rate * g.dt;
   return r;
+}
+
+// Adds a contact's rolling resistance to `r` under `model`: the constant torque of mu_r R* |fn|,
+// or the elastic-plastic slider `law` on u_r = -R* n x (w_i - w_j) (its spring in `spring`),
+// which resists up to its friction coefficients times |pressing|. The torque R* n x F_r acts on
+// i, its opposite on j; the slider's stored energy joins r.elastic.
+YUXI_ALWAYS_INLINE YUXI_HD void add_rolling_resistance(ContactResult& r, const ContactGeometry& g,
+                                                       RollingModel model, double mu_r, double fn,
+                                                       const SliderLaw& law, double pressing,
+                                                       SliderState& spring) {
+  if (model == RollingModel::constant_torque) {
+    const RollingTorque rr = constant_rolling_torque(g, fn, mu_r);
+    r.torque_i += rr.torque;
+    r.torque_j -= rr.torque;
+    r.dissipated += rr.dissipated;
+    return;
+  }
+  const Vec3 u_r = -g.r_eff * cross(g.n, g.w_i - g.w_j);
+  const SliderResult rr =
+      slide(spring, carry_in_plane(spring.spring, g.n), u_r, pressing, law, g.dt);
+  const Vec3 torque = g.r_eff * cross(g.n, rr.force);
+  r.torque_i += torque;
+  r.torque_j -= torque;
+  r.elastic += spring.stored();
+  r.dissipated += rr.dissipated;
 }
 
 } // namespace yuxi

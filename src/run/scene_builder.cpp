@@ -112,11 +112,11 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
   check_outlets(scene, particles, r);
   SimulationFrame frame = scene_frame(scene);
   r.impact = impact_speed(scene, particles, frame.motions);
-  auto sim =
-      std::make_unique<Simulation>(frame.config, std::move(particles), frame.planes,
-                                   std::move(frame.motions), frame.law, comm, frame.shaped_walls);
-  if (!scene.inserts.empty() || !scene.outlets.empty())
-    sim->set_sources(scene.inserts, scene.outlets);
+  auto sim = std::make_unique<Simulation>(
+      std::move(frame.config), std::move(particles), std::move(frame.planes),
+      std::move(frame.motions), std::move(frame.law), comm, std::move(frame.shaped_walls));
+  if (!frame.inserts.empty() || !frame.outlets.empty())
+    sim->set_sources(std::move(frame.inserts), std::move(frame.outlets));
   check_time_step(scene, *sim, force_dt, r);
   if (report) *report = r;
   return sim;
