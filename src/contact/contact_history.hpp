@@ -1,17 +1,24 @@
 // Per-contact state kept across list builds.
 //
-// Between list builds each listed pair holds a slot number (4 bytes, aligned with the neighbour
-// list) into a pool of states kept only for the contacts that touch: in a granular flow most
-// listed pairs are near misses (the chute lists about six pairs per touching contact), so the
-// pair loop streams 4 bytes, not a whole state, past each of them. Grain-plane candidates are
-// few and keep one state each. At a list build the states are stashed by the global ids of
-// the two partners, the particles are reordered and the list rebuilt, and each new list entry
-// picks its state back up. A pair listed as (i, j) before and (j, i) after gets the mirrored
-// state. Only states that differ from a fresh one are stashed: a default state carries nothing.
+// Each listed pair has a byte saying whether it holds a contact (`pair_live`, aligned with the
+// neighbour list) and, while it does, a slot in `states`. The room for the slots is made when the
+// list is built: a slot for every listed pair, and a free list as long (address space: pages are
+// touched only as slots are used), so the pair loop never allocates. A contact that begins takes
+// a free slot (or the next unused one), one that ends gives it back: the states stay as compact
+// as the contacts that touch, and in a granular flow most listed pairs are near misses (the chute
+// lists about six pairs per touching contact), which the pair loop passes with one byte each.
+// (A slot fixed per listed pair, or per near pair, or handed out once per pair and list build,
+// spreads the touching pairs' states over more memory: the chute ran 6, 14 and 2 % slower,
+// docs/performance.md, "Contact history".)//
+// Grain-plane candidates keep one state each. At a list build the states are stashed by the
+// global ids of the two partners, the particles are reordered and the list rebuilt, and each new
+// list entry picks its state back up. A pair listed as (i, j) before and (j, i) after gets the
+// mirrored state. Only states that differ from a fresh one are stashed: a default state carries
+// nothing.
 //
 // A grain touching a shaped wall (a mesh or a cylinder) may have several contacts with it at
 // once (a groove's two faces), and each moves over the wall's triangles: a grain-wall candidate
-// keeps up to max_wall_contacts states, each with the normal it had, and the wall's new
+// keeps a fixed set of max_wall_contacts states, each with the normal it had, and the wall's new
 // contacts pick up the states whose normals are nearest theirs (sim/contact_forces.hpp). They
 // are stashed by (grain id, wall index) with their normals.
 //
@@ -40,7 +47,6 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -119,8 +125,8 @@ public:
   // branches from another's state under another contact law).
   virtual void forget() = 0;
   virtual std::size_t memory_bytes() const = 0;
-  // The slot of each listed pair (aligned with NeighborList::partners; none: no state).
-  virtual const std::uint32_t* pair_slots() const = 0;
+  // 1 for each listed pair that holds a contact (aligned with NeighborList::partners).
+  virtual const std::uint8_t* pair_live_flags() const = 0;
   // The model's state as named columns (contact/state_columns.hpp), for analysis: the fields,
   // and the values of listed pair p (as seen from its row particle), of grain-plane candidate
   // k, or of contact c of grain-wall candidate k, appended to `out` (a fresh state's where the
@@ -133,61 +139,66 @@ public:
 
 inline constexpr std::size_t max_wall_contacts = 6;
 
-// The contacts of one grain with one shaped wall, at(0) to at(n - 1). The first is held in
-// place: most grains touch a wall once, and the wall loop then reads one small record per
-// candidate (about 120 bytes with the linear law's state, not max_wall_contacts times that).
-// The others, for a grain in a groove or on an edge between two faces, are held in a block
-// made for it by make_room().
-template <class State> class WallContactSet {
-public:
-  struct Contact {
-    Vec3 normal; // of the contact when last evaluated
-    State state;
-  };
+// A contact of a grain with a shaped wall: its state and the normal it had when last evaluated.
+template <class State> struct WallContact {
+  Vec3 normal;
+  State state;
+};
+
+// The contacts of one grain with one shaped wall (ContactHistory::wall_contact(k, 0) to
+// (k, n - 1)), a record of fixed size with no pointer. The first is held in place: most grains
+// touch a wall once, and the wall loop then reads one small record per candidate (about 120
+// bytes with the linear law's state). The others, for a grain in a groove or on an edge between
+// two faces, are held in a block of the history's, found by index: the room for a block per
+// candidate is made at the list build, and a candidate takes its block when it first needs one,
+// so the wall loop allocates nothing. (A record with room for all six, 632 bytes with the
+// linear law, ran the mesh drum 5 to 10 % slower: docs/performance.md, "Contact history".)
+template <class State> struct WallContactSet {
+  static constexpr std::uint32_t no_block = 0xFFFFFFFFu;
   std::uint8_t n = 0;
-
-  WallContactSet() = default;
-  WallContactSet(const WallContactSet& o)
-      : n(o.n), first_(o.first_), more_(o.more_ ? std::make_unique<More>(*o.more_) : nullptr) {}
-  WallContactSet& operator=(const WallContactSet& o) {
-    if (this != &o) *this = WallContactSet(o);
-    return *this;
-  }
-  WallContactSet(WallContactSet&&) noexcept = default;
-  WallContactSet& operator=(WallContactSet&&) noexcept = default;
-
-  Contact& at(std::size_t c) { return c == 0 ? first_ : (*more_)[c - 1]; }
-  const Contact& at(std::size_t c) const { return c == 0 ? first_ : (*more_)[c - 1]; }
-  // Makes at(0) to at(count - 1) usable (count <= max_wall_contacts).
-  void make_room(std::size_t count) {
-    if (count > 1 && !more_) more_ = std::make_unique<More>();
-  }
-  // Bytes held beside the set itself.
-  std::size_t block_bytes() const { return more_ ? sizeof(More) : 0; }
-
-private:
-  using More = std::array<Contact, max_wall_contacts - 1>;
-  Contact first_;
-  std::unique_ptr<More> more_;
+  std::uint32_t block = no_block; // index of its block of further contacts
+  WallContact<State> first{};
 };
 
 template <class State> class ContactHistory final : public ContactStates {
 public:
-  static constexpr std::uint32_t none = 0xFFFFFFFFu; // slot of a pair that does not touch
+  static constexpr std::uint32_t none = 0xFFFFFFFFu; // no slot
 
-  // Slot in `states` of each listed pair (aligned with NeighborList::partners), or none.
+  // 1 where listed pair p holds a contact (aligned with NeighborList::partners).
+  std::vector<std::uint8_t> pair_live;
+  // The slot in `states` of each listed pair that holds a contact, or none.
   std::vector<std::uint32_t> pair_slot;
-  std::vector<State> states; // the touching pairs' states (and free slots)
-  std::vector<State> plane;  // aligned with NeighborList::planes
+  // The states of the contacts (and free slots); room for one per listed pair is reserved at
+  // the list build.
+  std::vector<State> states;
+  std::vector<State> plane; // aligned with NeighborList::planes
   // 1 where the plane state may differ from a fresh one (the contact touched since it was last
   // released).
   std::vector<std::uint8_t> plane_live;
   std::vector<WallContactSet<State>> wall; // aligned with NeighborList::walls
 
-  // The state of listed pair p, opened fresh if it has none.
+  // Contact c of grain-wall candidate k (c < wall[k].n, or c < a count made room for).
+  WallContact<State>& wall_contact(std::size_t k, std::size_t c) {
+    return c == 0 ? wall[k].first : wall_blocks_[wall[k].block][c - 1];
+  }
+  const WallContact<State>& wall_contact(std::size_t k, std::size_t c) const {
+    return c == 0 ? wall[k].first : wall_blocks_[wall[k].block][c - 1];
+  }
+  // Makes wall_contact(k, 0) to (k, count - 1) usable (count <= max_wall_contacts): a candidate's
+  // first need of a block takes the next one, within the room made at the list build.
+  void make_wall_room(std::size_t k, std::size_t count) {
+    if (count > 1 && wall[k].block == WallContactSet<State>::no_block) {
+      wall[k].block = static_cast<std::uint32_t>(wall_blocks_.size());
+      wall_blocks_.emplace_back();
+    }
+  }
+
+  // The state of listed pair p, opened fresh if it holds none: a free slot, or the next unused
+  // one, within the room made at the list build.
   State& open(std::uint32_t p) {
     std::uint32_t& slot = pair_slot[p];
     if (slot != none) return states[slot];
+    pair_live[p] = 1;
     if (free_.empty()) {
       slot = static_cast<std::uint32_t>(states.size());
       return states.emplace_back();
@@ -198,9 +209,12 @@ public:
   }
   // Listed pair p has opened: its slot is free for another contact.
   void close(std::uint32_t p) {
+    pair_live[p] = 0;
     free_.push_back(pair_slot[p]);
     pair_slot[p] = none;
   }
+  // The state of live pair p.
+  State& state_of(std::uint32_t p) { return states[pair_slot[p]]; }
 
   struct Entry {
     ContactKey key;
@@ -219,19 +233,18 @@ public:
     for (std::size_t k = 0; k < list.walls.size() && k < wall.size(); ++k)
       for (std::size_t c = 0; c < wall[k].n; ++c)
         out.push_back({{s.gid[list.walls[k].particle], static_cast<GlobalId>(list.walls[k].wall)},
-                       wall[k].at(c).normal,
-                       wall[k].at(c).state});
+                       wall_contact(k, c).normal,
+                       wall_contact(k, c).state});
     return out;
   }
 
   // Every non-default state, keyed by global ids, in neighbour-list order.
   std::vector<Entry> entries(const ParticleStore& s, const NeighborList& list) const {
     std::vector<Entry> out;
-    out.reserve(states.size() - free_.size() + plane.size());
     const State fresh{};
     for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        if (pair_slot[p] == none || states[pair_slot[p]] == fresh) continue;
+        if (!pair_live[p] || states[pair_slot[p]] == fresh) continue;
         const State& state = states[pair_slot[p]];
         const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
         out.push_back({{std::min(a, b), std::max(a, b)}, a < b ? state : state.mirrored()});
@@ -270,12 +283,16 @@ public:
 
   // Gives each entry of the new list its stashed state (or a fresh one).
   void restore(const ParticleStore& s, const NeighborList& list) override {
+    pair_live.assign(list.n_pairs(), 0);
     pair_slot.assign(list.n_pairs(), none);
-    // The pool restarts at the size of the stash with a quarter to spare for the contacts that
-    // open before the next list build (its memory would otherwise stay at its largest ever).
-    states = std::vector<State>(); // (not "= {}": that keeps the capacity)
-    states.reserve(stash_.size() + stash_.size() / 4 + 16);
+    // Room for a slot per listed pair, and for as many free ones (made again where it would be
+    // far too large: its memory would otherwise stay at its largest ever).
+    if (states.capacity() > 2 * list.n_pairs() + 1024) states = std::vector<State>();
+    states.clear();
+    states.reserve(list.n_pairs());
+    if (free_.capacity() > 2 * list.n_pairs() + 1024) free_ = std::vector<std::uint32_t>();
     free_.clear();
+    free_.reserve(list.n_pairs());
     plane.assign(list.planes.size(), State{});
     plane_live.assign(list.planes.size(), 0);
     restore_walls(s, list);
@@ -307,26 +324,22 @@ public:
     forget_copies();
   }
 
-  // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash).
+  // Bytes held by the per-contact arrays (live flags, slots, states, free list and stash): of the
+  // states' room, the slots used (the rest is address space no page of which has been touched).
   std::size_t memory_bytes() const override {
-    return (pair_slot.capacity() + free_.capacity()) * sizeof(std::uint32_t) +
-           (states.capacity() + plane.capacity()) * sizeof(State) + plane_live.capacity() +
-           stash_.capacity() * sizeof(Entry) + wall.capacity() * sizeof(WallContactSet<State>) +
-           wall_blocks_bytes() + wall_stash_.capacity() * sizeof(WallEntry);
+    return pair_live.capacity() + plane_live.capacity() +
+           (pair_slot.capacity() + free_.size()) * sizeof(std::uint32_t) +
+           (states.size() + plane.capacity()) * sizeof(State) + stash_.capacity() * sizeof(Entry) +
+           wall.capacity() * sizeof(WallContactSet<State>) +
+           wall_blocks_.size() * sizeof(WallBlock) + wall_stash_.capacity() * sizeof(WallEntry);
   }
 
   std::size_t stashed() const { return stash_.size(); }
-  // Bytes of the blocks that hold grain-wall contacts beyond each candidate's first.
-  std::size_t wall_blocks_bytes() const {
-    std::size_t bytes = 0;
-    for (const WallContactSet<State>& set : wall) bytes += set.block_bytes();
-    return bytes;
-  }
-  const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
+  const std::uint8_t* pair_live_flags() const override { return pair_live.data(); }
 
   std::vector<StateField> state_fields() const override { return yuxi::state_fields<State>(); }
   void pair_state(std::uint32_t p, std::vector<double>& out) const override {
-    const bool held = p < pair_slot.size() && pair_slot[p] != none;
+    const bool held = p < pair_live.size() && pair_live[p];
     append_state_values(held ? states[pair_slot[p]] : State{}, out);
   }
   void plane_state(std::size_t k, std::vector<double>& out) const override {
@@ -334,7 +347,7 @@ public:
   }
   void wall_state(std::size_t k, std::size_t c, std::vector<double>& out) const override {
     const bool held = k < wall.size() && c < wall[k].n;
-    append_state_values(held ? wall[k].at(c).state : State{}, out);
+    append_state_values(held ? wall_contact(k, c).state : State{}, out);
   }
 
   // Migration between ranks: copies of the stashed states of the contacts that the particles
@@ -472,6 +485,11 @@ private:
   void restore_walls(const ParticleStore& s, const NeighborList& list) {
     wall.clear();
     wall.resize(list.walls.size());
+    // Room for a block per candidate (made again where it would be far too large).
+    if (wall_blocks_.capacity() > 2 * list.walls.size() + 1024)
+      wall_blocks_ = std::vector<WallBlock>();
+    wall_blocks_.clear();
+    wall_blocks_.reserve(list.walls.size());
     if (!wall_stash_.empty() && !list.walls.empty()) {
       std::unordered_map<ContactKey, std::size_t, ContactKeyHash> candidate;
       candidate.reserve(list.walls.size());
@@ -482,10 +500,10 @@ private:
       for (const WallEntry& e : wall_stash_) {
         const auto it = candidate.find(e.key);
         if (it == candidate.end()) continue;
-        WallContactSet<State>& set = wall[it->second];
-        if (set.n == max_wall_contacts) continue;
-        set.make_room(set.n + 1u);
-        set.at(set.n++) = {e.normal, e.state};
+        const std::size_t k = it->second;
+        if (wall[k].n == max_wall_contacts) continue;
+        make_wall_room(k, wall[k].n + 1u);
+        wall_contact(k, wall[k].n++) = {e.normal, e.state};
       }
     }
     wall_stash_ = std::vector<WallEntry>();
@@ -505,6 +523,9 @@ private:
     std::uint32_t entry;    // index into stash_
     auto operator<=>(const Attached&) const = default;
   };
+  // Blocks of the grain-wall contacts beyond each candidate's first (WallContactSet).
+  using WallBlock = std::array<WallContact<State>, max_wall_contacts - 1>;
+  std::vector<WallBlock> wall_blocks_;
   std::vector<std::uint32_t> free_; // slots of `states` that no contact holds
   std::vector<Entry> stash_;        // copies of one contact hold the same state
   std::vector<WallEntry> wall_stash_;

@@ -46,4 +46,8 @@ void ContactCompute::compute_shaped(ParticleView s, const NeighborList& list,
       forces_);
 }
 
+void ContactCompute::size_for(const NeighborList& list, std::vector<ElementForce>& elements) {
+  std::visit([&](auto& f) { f.size_for(list, elements); }, forces_);
+}
+
 } // namespace yuxi

@@ -59,6 +59,10 @@ public:
                       const std::vector<ShapedWall>& shaped, double t, double dt,
                       std::vector<WallLoad>& loads, std::vector<ElementForce>& elements);
 
+  // After a list build (the history restored): sizes the wall loop's buffers, and `elements`,
+  // for the new list's candidates, so that no step allocates until the next list build.
+  void size_for(const NeighborList& list, std::vector<ElementForce>& elements);
+
   // Calls fn(law) with the law's concrete ContactLaw<Model>.
   template <class F> decltype(auto) visit_law(F&& fn) const {
     return std::visit(std::forward<F>(fn), law_);

@@ -108,8 +108,10 @@ public:
     loads.assign(walls.size(), WallLoad{});
     elements.clear();
     if (list.walls.empty()) return;
-    std::vector<Vec3> torque_points(walls.size());
-    std::vector<std::uint8_t> active(walls.size());
+    std::vector<Vec3>& torque_points = torque_points_;
+    std::vector<std::uint8_t>& active = wall_active_;
+    torque_points.resize(walls.size());
+    active.resize(walls.size());
     for (std::size_t w = 0; w < walls.size(); ++w) {
       torque_points[w] = torque_point(walls[w]);
       active[w] = wall_active(walls[w], t) ? 1 : 0;
@@ -135,6 +137,9 @@ public:
           std::get<CylinderWall>(wall).touches(s.x[i], s.radius[i], touches);
       }
       WallContactSet<State>& set = history.wall[k];
+      const auto contact = [&](std::size_t c) -> WallContact<State>& {
+        return history.wall_contact(k, c);
+      };
       if (touches.n == 0 && set.n == 0) continue;
       const auto& coeffs = law_.coeffs(s.material[i], wall_material(wall));
       // Each new contact (deepest first) takes the free previous state of nearest normal.
@@ -145,14 +150,14 @@ public:
         match[c] = -1;
         double best = 0.5; // cos 60 degrees
         for (std::size_t m = 0; m < set.n; ++m) {
-          const double d = dot(set.at(m).normal, touches.at[c].normal);
+          const double d = dot(contact(m).normal, touches.at[c].normal);
           if (!taken[m] && d > best) best = d, match[c] = static_cast<int>(m);
         }
         if (match[c] >= 0) taken[match[c]] = true;
       }
       for (std::size_t m = 0; m < set.n; ++m)
         if (!taken[m]) {
-          const double released = Model::release(coeffs, set.at(m).state);
+          const double released = Model::release(coeffs, contact(m).state);
           if constexpr (BatchedModel<Model>) {
             if (batched) { // booked in its place among the batch's contacts (flush_walls)
               batch_releases_.push_back({batch_->lanes.size, released});
@@ -161,11 +166,11 @@ public:
           }
           tally.dissipated += released;
         }
-      set.make_room(n);
-      if (n > 1 || set.n > 1) move_matched_states(set, match, n);
+      history.make_wall_room(k, n);
+      if (n > 1 || set.n > 1) move_matched_states(contact, match, n);
       for (std::size_t c = 0; c < n; ++c) {
         const WallTouch& touch = touches.at[c];
-        State& state = set.at(c).state;
+        State& state = contact(c).state;
         double deep = 0.0, approach = 0.0; // (a new contact that began deep: DeepStarts)
         if (match[c] < 0) {
           state = State{};
@@ -174,7 +179,7 @@ public:
             deep = DeepStarts::deep_overlap(s.radius[i] - touch.distance, approach, s.radius[i]);
           }
         }
-        set.at(c).normal = touch.normal;
+        contact(c).normal = touch.normal;
         const WallSite site{
             i,    ref.wall, static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(c), &touch,
             deep, approach};
@@ -198,6 +203,18 @@ public:
     }
     if constexpr (BatchedModel<Model>)
       if (batched) flush_walls(s, dt, books);
+  }
+
+  // Sizes the wall loop's buffers for `list`, and `elements`, by their most: each candidate's
+  // contacts and its candidate elements (a step between list builds then allocates nothing).
+  void size_for(const NeighborList& list, std::vector<ElementForce>& elements) {
+    const std::size_t contacts = list.walls.size() * max_wall_contacts;
+    elements.reserve(contacts);
+    batch_releases_.reserve(contacts);
+    std::size_t most = 0;
+    for (const WallContactRef& ref : list.walls) most = std::max<std::size_t>(most, ref.count);
+    scratch_.reserve(most);
+    order_.reserve(most);
   }
 
 private:
@@ -228,14 +245,15 @@ private:
 
   // Moves the state that wall contact c matched (match[c], -1 for none) to slot c, by swaps
   // (no copy of the whole set).
-  static void move_matched_states(WallContactSet<State>& set, const int* match, std::size_t n) {
+  template <class ContactAt>
+  static void move_matched_states(const ContactAt& contact, const int* match, std::size_t n) {
     int slot_of[max_wall_contacts], held_by[max_wall_contacts];
     for (int m = 0; m < static_cast<int>(max_wall_contacts); ++m) slot_of[m] = held_by[m] = m;
     for (std::size_t c = 0; c < n; ++c) {
       if (match[c] < 0) continue;
       const int from = slot_of[match[c]], here = static_cast<int>(c);
       if (from == here) continue;
-      std::swap(set.at(c), set.at(from));
+      std::swap(contact(c), contact(from));
       const int displaced = held_by[here];
       held_by[here] = match[c], held_by[from] = displaced;
       slot_of[match[c]] = here, slot_of[displaced] = from;
@@ -349,7 +367,6 @@ private:
   template <class Touching>
   YUXI_ALWAYS_INLINE void sweep(const ParticleView& s, const NeighborList& list,
                                 ContactTally& tally, Touching&& touching) {
-    static_assert(ContactHistory<State>::none == no_slot);
     const Vec3* x = s.x;
     const double* radius = s.radius;
     const std::uint32_t* partners = list.partners.data();
@@ -375,17 +392,16 @@ private:
     }
     for (std::uint32_t begin = first; begin < last; begin += chunk) {
       const std::uint32_t end = std::min(begin + chunk, last);
-      const std::uint32_t* slot = history.pair_slot.data();
+      const std::uint8_t* live = history.pair_live.data();
       const OverlapScanCounts found =
-          index ? scan_overlaps(x, radius, rows, partners, slot, index, begin, end, touching_pairs,
+          index ? scan_overlaps(x, radius, rows, partners, live, index, begin, end, touching_pairs,
                                 parted_pairs)
-                : scan_overlaps(x, radius, rows, partners, slot, begin, end, partner_limit,
+                : scan_overlaps(x, radius, rows, partners, live, begin, end, partner_limit,
                                 touching_pairs, parted_pairs);
       for (std::uint32_t k = 0; k < found.parted; ++k) {
         const std::uint32_t p = parted_pairs[k];
-        tally.dissipated +=
-            Model::release(law_.coeffs(s.material[rows[p]], s.material[partners[p]]),
-                           history.states[history.pair_slot[p]]);
+        tally.dissipated += Model::release(
+            law_.coeffs(s.material[rows[p]], s.material[partners[p]]), history.state_of(p));
         history.close(p);
       }
       for (std::uint32_t k = 0; k < found.touching; ++k) {
@@ -484,7 +500,7 @@ private:
       record.keep_pair(p, force, lanes.elastic[k]);
       book_wall_work(s, i, j, force, dt, tally);
       track_overlap(lanes.overlap[k], std::min(lanes.a_i[k], lanes.a_j[k]), i, tally);
-      lanes.save_state(k, history.states[history.pair_slot[p]]);
+      lanes.save_state(k, history.state_of(p));
     }
     lanes.size = 0;
   }
@@ -526,6 +542,8 @@ private:
   ContactLaw<Model> law_;
   std::vector<FeatureTouch> scratch_; // a mesh's candidate touches of one grain
   std::vector<std::uint32_t> order_;
+  std::vector<Vec3> torque_points_;       // each shaped wall's, for the step being computed
+  std::vector<std::uint8_t> wall_active_; // 1 for each shaped wall active in that step
   // The wall contacts in the batch, and the energies of wall contacts released while it filled,
   // each with the lane it came before.
   QueuedWall queued_walls_[Lanes::capacity];

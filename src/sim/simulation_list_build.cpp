@@ -79,6 +79,7 @@ void Simulation::build_lists(const ListBuildPlan& plan) {
   walls_.list_candidates(store_, n_grains_, exchange_.grid(), search_.skin(), time_,
                          search_.list());
   history.restore(store_, search_.list());
+  contacts_.size_for(search_.list(), walls_.element_forces_here());
   if (plan.after != After::load_at_last_build)
     for (std::size_t i = 0; i < store_.n_owned(); ++i) store_.x_build[i] = store_.x[i];
   ++list_builds_;

@@ -50,9 +50,10 @@ Walls::Walls(const SimulationConfig& config, std::vector<PlaneWall> planes,
 bool Walls::place(ParticleStore& s, double t, bool every_one, double* moved2) {
   const double limit2 = 0.25 * skin_ * skin_;
   bool moved_far = place_shaped(t, every_one);
-  std::vector<WallMotionAtTime> now;
-  std::vector<std::uint8_t> skip; // particles of a motion at rest are already in place
-  now.reserve(motions_.size());
+  std::vector<WallMotionAtTime>& now = now_;
+  std::vector<std::uint8_t>& skip = skip_; // particles of a motion at rest are already in place
+  now.clear();
+  skip.clear();
   particles_still_ = true;
   for (const WallMotion& m : motions_) {
     now.push_back(at_time(m, t));

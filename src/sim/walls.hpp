@@ -158,6 +158,10 @@ private:
   // moving cylinder's shift, at the last list build.
   std::vector<std::vector<Vec3>> x_built_;
   double built_at_ = 0.0; // time of the last list build
+  // Each motion at the time being placed, and whether its particles are at rest (kept between
+  // steps: a step allocates nothing).
+  std::vector<WallMotionAtTime> now_;
+  std::vector<std::uint8_t> skip_;
 };
 
 } // namespace yuxi

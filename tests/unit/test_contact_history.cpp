@@ -7,7 +7,9 @@
 #include "core/random.hpp"
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <gtest/gtest.h>
+#include <type_traits>
 
 namespace yuxi {
 namespace {
@@ -59,11 +61,13 @@ TEST(ContactHistory, MirroredStateFollowsTheListedOrientation) {
   EXPECT_EQ(s.mirrored().mirrored(), s);
 }
 
-// A grain's contacts with a shaped wall: the first held in place, the others in a block made
-// for them. Three contacts of one grain and one of another survive a rebuild that lists the
-// grains the other way round, each state with its normal, in order; a copied set keeps its own.
+// A grain's contacts with a shaped wall: the first in the candidate's record (of fixed size,
+// no pointer), the others in a block taken from the room made at the list build. Three contacts
+// of one grain and one of another survive a rebuild that lists the grains the other way round,
+// each state with its normal, in order; taking a block moves no memory.
 TEST(ContactHistory, AGrainsWallContactsSurviveARebuildInOrder) {
   using State = LinearSpringDashpot::State;
+  static_assert(std::is_trivially_copyable_v<WallContactSet<State>>);
   const ParticleStore s =
       test::store_of({test::sphere({0, 0, 0}, 0.5, 1.0), test::sphere({2, 0, 0}, 0.5, 1.0)});
   const auto state = [](double x) {
@@ -76,20 +80,17 @@ TEST(ContactHistory, AGrainsWallContactsSurviveARebuildInOrder) {
   ContactHistory<State> history;
   history.restore(s, before);
   ASSERT_EQ(history.wall.size(), 2u);
-  auto& three = history.wall[0];
-  three.make_room(3);
+  history.make_wall_room(0, 3);
+  const auto* block = &history.wall_contact(0, 1);
+  history.make_wall_room(1, 2); // the second candidate's block, from the same room
+  history.make_wall_room(0, 3); // (it has one)
+  EXPECT_EQ(&history.wall_contact(0, 1), block);
   for (std::size_t c = 0; c < 3; ++c)
-    three.at(c) = {{0, 0, 1.0 + static_cast<double>(c)}, state(1.0 + static_cast<double>(c))};
-  three.n = 3;
-  history.wall[1].at(0) = {{1, 0, 0}, state(9.0)};
+    history.wall_contact(0, c) = {{0, 0, 1.0 + static_cast<double>(c)},
+                                  state(1.0 + static_cast<double>(c))};
+  history.wall[0].n = 3;
+  history.wall_contact(1, 0) = {{1, 0, 0}, state(9.0)};
   history.wall[1].n = 1;
-
-  WallContactSet<State> copy = three;
-  three.at(2).state = state(-1.0);
-  EXPECT_EQ(copy.at(2).state, state(3.0));
-  three.at(2).state = state(3.0);
-  EXPECT_GT(history.memory_bytes(), history.wall_blocks_bytes());
-  EXPECT_GT(history.wall_blocks_bytes(), 0u);
 
   history.stash(s, before);
   NeighborList after;
@@ -97,12 +98,60 @@ TEST(ContactHistory, AGrainsWallContactsSurviveARebuildInOrder) {
   history.restore(s, after);
   ASSERT_EQ(history.wall[1].n, 3u);
   for (std::size_t c = 0; c < 3; ++c) {
-    EXPECT_EQ(history.wall[1].at(c).normal, (Vec3{0, 0, 1.0 + static_cast<double>(c)}));
-    EXPECT_EQ(history.wall[1].at(c).state, state(1.0 + static_cast<double>(c)));
+    EXPECT_EQ(history.wall_contact(1, c).normal, (Vec3{0, 0, 1.0 + static_cast<double>(c)}));
+    EXPECT_EQ(history.wall_contact(1, c).state, state(1.0 + static_cast<double>(c)));
   }
   ASSERT_EQ(history.wall[0].n, 1u);
-  EXPECT_EQ(history.wall[0].at(0).state, state(9.0));
-  EXPECT_EQ(history.wall_blocks_bytes(), history.wall[1].block_bytes());
+  EXPECT_EQ(history.wall_contact(0, 0).state, state(9.0));
+  EXPECT_EQ(history.wall[0].block, WallContactSet<State>::no_block); // one contact: no block
+}
+
+// The room for the slots is made at the list build: opening and closing contacts, over and over,
+// moves no memory, the slots given back being taken again. A state stashed at a list build comes
+// back to its pair, mirrored where the pair is listed the other way round.
+TEST(ContactHistory, OpeningContactsMovesNoMemory) {
+  using State = LinearSpringDashpot::State;
+  const ParticleStore s =
+      test::store_of({test::sphere({0, 0, 0}, 0.5, 1.0), test::sphere({0.9, 0, 0}, 0.5, 1.0),
+                      test::sphere({0, 0.9, 0}, 0.5, 1.0)});
+  // A list of 200 pairs (the same two, over and over: the slots do not care).
+  NeighborList crowded;
+  crowded.offsets = {0, 200, 200, 200};
+  for (std::uint32_t p = 0; p < 200; ++p) crowded.partners.push_back(1 + p % 2);
+  crowded.index_rows();
+  ContactHistory<State> history;
+  history.restore(s, crowded);
+  ASSERT_GE(history.states.capacity(), 200u);
+  const State* room = history.states.data();
+  for (int round = 0; round < 3; ++round) {
+    for (std::uint32_t p = round; p < 200; ++p) { // (a different first pair each round)
+      State& st = history.open(p);
+      EXPECT_EQ(st, State{}) << "pair " << p; // opened fresh, whatever the slot held before
+      st.tangential.spring = {1.0 + p, 2.0, 3.0};
+      EXPECT_EQ(&history.state_of(p), &st);
+    }
+    for (std::uint32_t p = 0; p < 200; ++p)
+      if (history.pair_live[p]) history.close(p);
+    EXPECT_EQ(std::count(history.pair_live.begin(), history.pair_live.end(), 1), 0);
+  }
+  EXPECT_EQ(history.states.data(), room);
+  EXPECT_EQ(history.states.size(), 200u); // no more slots than contacts at once
+
+  NeighborList before;
+  before.offsets = {0, 2, 2, 2};
+  before.partners = {1, 2};
+  before.index_rows();
+  history.restore(s, before);
+  history.open(1).tangential.spring = {4, 5, 6}; // the pair (0, 2)
+  history.stash(s, before);
+  NeighborList after; // (2, 0) listed from particle 2, (0, 1) from 0
+  after.offsets = {0, 1, 1, 2};
+  after.partners = {1, 0};
+  after.index_rows();
+  history.restore(s, after);
+  EXPECT_EQ(history.pair_live[0], 0u); // (0, 1) held nothing: it stays closed
+  ASSERT_EQ(history.pair_live[1], 1u);
+  EXPECT_EQ(history.state_of(1).tangential.spring, (Vec3{-4, -5, -6}));
 }
 
 } // namespace
