@@ -1,6 +1,6 @@
-// A step that builds no lists allocates nothing: the pair loop and the wall loop write each
-// contact's state into a slot given out at the list build (contact/contact_history.hpp), never
-// into memory they take, so a loop on another backend can do the same. The pile of
+// A step that builds no lists allocates nothing: the pair loop and the wall loop keep each
+// contact's state in room made at the list build (contact/contact_history.hpp), never in memory
+// they take. The pile of
 // egg_crate_pile.hpp falls onto the mesh and settles, its contacts with each other and with the
 // mesh opening and closing between list builds, through the SIMD batches and the one-by-one
 // loop. Every allocation is counted (this binary replaces operator new).
