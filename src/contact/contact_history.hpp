@@ -1,15 +1,16 @@
 // Per-contact state kept across list builds.
 //
-// Each listed pair has a byte saying whether it holds a contact (`pair_live`, aligned with the
-// neighbour list) and, while it does, a slot in `states`. The room for the slots is made when the
-// list is built: a slot for every listed pair, and a free list as long (address space: pages are
-// touched only as slots are used), so the pair loop never allocates. A contact that begins takes
-// a free slot (or the next unused one), one that ends gives it back: the states stay as compact
-// as the contacts that touch, and in a granular flow most listed pairs are near misses (the chute
-// lists about six pairs per touching contact), which the pair loop passes with one byte each.
-// (A slot fixed per listed pair, or per near pair, or handed out once per pair and list build,
-// spreads the touching pairs' states over more memory: the chute ran 6, 14 and 2 % slower,
-// docs/performance.md, "Contact history".)//
+// Each listed pair that holds a contact has a slot in `states` (its number is kept aligned with
+// the neighbour list, 4 bytes a pair; `none` for a pair that does not touch). The room for the
+// slots is made when the list is built: a slot for every listed pair, and a free list as long
+// (address space: pages are touched only as slots are used), so the pair loop never allocates.
+// A contact that begins takes a free slot (or the next unused one), one that ends gives it back:
+// the states stay as compact as the contacts that touch, and in a granular flow most listed
+// pairs are near misses (the chute lists about six pairs per touching contact), which the pair
+// loop passes with 4 bytes each, not a whole state. (A slot fixed per listed pair, or per near
+// pair, or handed out once per pair and list build, spreads the touching pairs' states over more
+// memory: the chute ran 6, 14 and 2 % slower, docs/performance.md, "Contact history".)
+//
 // Grain-plane candidates keep one state each. At a list build the states are stashed by the
 // global ids of the two partners, the particles are reordered and the list rebuilt, and each new
 // list entry picks its state back up. A pair listed as (i, j) before and (j, i) after gets the
@@ -125,8 +126,8 @@ public:
   // branches from another's state under another contact law).
   virtual void forget() = 0;
   virtual std::size_t memory_bytes() const = 0;
-  // 1 for each listed pair that holds a contact (aligned with NeighborList::partners).
-  virtual const std::uint8_t* pair_live_flags() const = 0;
+  // The slot of each listed pair (aligned with NeighborList::partners; none: no state).
+  virtual const std::uint32_t* pair_slots() const = 0;
   // The model's state as named columns (contact/state_columns.hpp), for analysis: the fields,
   // and the values of listed pair p (as seen from its row particle), of grain-plane candidate
   // k, or of contact c of grain-wall candidate k, appended to `out` (a fresh state's where the
@@ -164,8 +165,6 @@ template <class State> class ContactHistory final : public ContactStates {
 public:
   static constexpr std::uint32_t none = 0xFFFFFFFFu; // no slot
 
-  // 1 where listed pair p holds a contact (aligned with NeighborList::partners).
-  std::vector<std::uint8_t> pair_live;
   // The slot in `states` of each listed pair that holds a contact, or none.
   std::vector<std::uint32_t> pair_slot;
   // The states of the contacts (and free slots); room for one per listed pair is reserved at
@@ -198,7 +197,6 @@ public:
   State& open(std::uint32_t p) {
     std::uint32_t& slot = pair_slot[p];
     if (slot != none) return states[slot];
-    pair_live[p] = 1;
     if (free_.empty()) {
       slot = static_cast<std::uint32_t>(states.size());
       return states.emplace_back();
@@ -209,7 +207,6 @@ public:
   }
   // Listed pair p has opened: its slot is free for another contact.
   void close(std::uint32_t p) {
-    pair_live[p] = 0;
     free_.push_back(pair_slot[p]);
     pair_slot[p] = none;
   }
@@ -244,7 +241,7 @@ public:
     const State fresh{};
     for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
       for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        if (!pair_live[p] || states[pair_slot[p]] == fresh) continue;
+        if (pair_slot[p] == none || states[pair_slot[p]] == fresh) continue;
         const State& state = states[pair_slot[p]];
         const GlobalId a = s.gid[i], b = s.gid[list.partners[p]];
         out.push_back({{std::min(a, b), std::max(a, b)}, a < b ? state : state.mirrored()});
@@ -283,7 +280,6 @@ public:
 
   // Gives each entry of the new list its stashed state (or a fresh one).
   void restore(const ParticleStore& s, const NeighborList& list) override {
-    pair_live.assign(list.n_pairs(), 0);
     pair_slot.assign(list.n_pairs(), none);
     // Room for a slot per listed pair, and for as many free ones (made again where it would be
     // far too large: its memory would otherwise stay at its largest ever).
@@ -324,22 +320,21 @@ public:
     forget_copies();
   }
 
-  // Bytes held by the per-contact arrays (live flags, slots, states, free list and stash): of the
+  // Bytes held by the per-contact arrays (slots, states, live flags, free list and stash): of the
   // states' room, the slots used (the rest is address space no page of which has been touched).
   std::size_t memory_bytes() const override {
-    return pair_live.capacity() + plane_live.capacity() +
-           (pair_slot.capacity() + free_.size()) * sizeof(std::uint32_t) +
+    return plane_live.capacity() + (pair_slot.capacity() + free_.size()) * sizeof(std::uint32_t) +
            (states.size() + plane.capacity()) * sizeof(State) + stash_.capacity() * sizeof(Entry) +
            wall.capacity() * sizeof(WallContactSet<State>) +
            wall_blocks_.size() * sizeof(WallBlock) + wall_stash_.capacity() * sizeof(WallEntry);
   }
 
   std::size_t stashed() const { return stash_.size(); }
-  const std::uint8_t* pair_live_flags() const override { return pair_live.data(); }
+  const std::uint32_t* pair_slots() const override { return pair_slot.data(); }
 
   std::vector<StateField> state_fields() const override { return yuxi::state_fields<State>(); }
   void pair_state(std::uint32_t p, std::vector<double>& out) const override {
-    const bool held = p < pair_live.size() && pair_live[p];
+    const bool held = p < pair_slot.size() && pair_slot[p] != none;
     append_state_values(held ? states[pair_slot[p]] : State{}, out);
   }
   void plane_state(std::size_t k, std::vector<double>& out) const override {

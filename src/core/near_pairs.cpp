@@ -1,9 +1,11 @@
 #include "core/near_pairs.hpp"
 
+#include "core/overlap_scan.hpp"
+
 namespace yuxi {
 
 void pick_near_pairs(const Vec3* x, const double* radius, const NeighborList& list,
-                     const std::uint8_t* live, double margin, NearPairs& near) {
+                     const std::uint32_t* slot, double margin, NearPairs& near) {
   const auto n = static_cast<std::uint32_t>(list.n_pairs());
   const std::uint32_t* row = list.rows.data();
   const std::uint32_t* partner = list.partners.data();
@@ -12,7 +14,7 @@ void pick_near_pairs(const Vec3* x, const double* radius, const NeighborList& li
     const std::uint32_t i = row[p], j = partner[p];
     const Vec3 d = x[i] - x[j];
     const double reach = radius[i] + radius[j] + margin;
-    return static_cast<std::uint32_t>((norm2(d) < reach * reach) | live[p]);
+    return static_cast<std::uint32_t>((norm2(d) < reach * reach) | (slot[p] != no_slot));
   };
   // The ghost pairs first (a short list), then the pairs of owned particles.
   for (const std::uint32_t p : list.ghost_pairs)

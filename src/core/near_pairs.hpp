@@ -35,10 +35,10 @@ struct NearPairs {
   std::size_t memory_bytes() const { return pairs.capacity() * sizeof(std::uint32_t); }
 };
 
-// Picks the near pairs of `list`: those closer than r_i + r_j + margin, and those that hold a
-// contact (`live`, aligned with the list: 1 for those). Where the list has its ghost pairs
-// apart, so do the near pairs.
+// Picks the near pairs of `list`: those closer than r_i + r_j + margin, and those whose contact
+// state slot (`slot`, aligned with the list; no_slot for none) is taken. Where the list has
+// its ghost pairs apart, so do the near pairs.
 void pick_near_pairs(const Vec3* x, const double* radius, const NeighborList& list,
-                     const std::uint8_t* live, double margin, NearPairs& near);
+                     const std::uint32_t* slot, double margin, NearPairs& near);
 
 } // namespace yuxi

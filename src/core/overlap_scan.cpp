@@ -8,7 +8,7 @@ namespace {
 // a list without its ghost pairs apart, skips the test.)
 template <bool limited, class PairAt>
 OverlapScanCounts scan(const Vec3* x, const double* radius, const std::uint32_t* row,
-                       const std::uint32_t* partner, const std::uint8_t* live, PairAt pair,
+                       const std::uint32_t* partner, const std::uint32_t* slot, PairAt pair,
                        std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
                        std::uint32_t* touching, std::uint32_t* parted) {
   OverlapScanCounts c;
@@ -21,7 +21,7 @@ OverlapScanCounts scan(const Vec3* x, const double* radius, const std::uint32_t*
     touching[c.touching] = p;
     c.touching += close & mine;
     parted[c.parted] = p;
-    c.parted += (close ^ 1u) & mine & static_cast<std::uint32_t>(live[p]);
+    c.parted += (close ^ 1u) & mine & static_cast<std::uint32_t>(slot[p] != no_slot);
   }
   return c;
 }
@@ -29,22 +29,22 @@ OverlapScanCounts scan(const Vec3* x, const double* radius, const std::uint32_t*
 } // namespace
 
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
-                                const std::uint32_t* partner, const std::uint8_t* live,
+                                const std::uint32_t* partner, const std::uint32_t* slot,
                                 std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
                                 std::uint32_t* touching, std::uint32_t* parted) {
   const auto at = [](std::uint32_t q) { return q; };
   return partner_limit == every_partner
-             ? scan<false>(x, radius, row, partner, live, at, begin, end, 0, touching, parted)
-             : scan<true>(x, radius, row, partner, live, at, begin, end, partner_limit, touching,
+             ? scan<false>(x, radius, row, partner, slot, at, begin, end, 0, touching, parted)
+             : scan<true>(x, radius, row, partner, slot, at, begin, end, partner_limit, touching,
                           parted);
 }
 
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
-                                const std::uint32_t* partner, const std::uint8_t* live,
+                                const std::uint32_t* partner, const std::uint32_t* slot,
                                 const std::uint32_t* pairs, std::uint32_t begin, std::uint32_t end,
                                 std::uint32_t* touching, std::uint32_t* parted) {
   return scan<false>(
-      x, radius, row, partner, live, [pairs](std::uint32_t q) { return pairs[q]; }, begin, end, 0,
+      x, radius, row, partner, slot, [pairs](std::uint32_t q) { return pairs[q]; }, begin, end, 0,
       touching, parted);
 }
 

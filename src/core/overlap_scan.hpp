@@ -15,6 +15,9 @@
 
 namespace yuxi {
 
+// Slot of a listed pair that holds no contact state (ContactHistory::pair_slot).
+inline constexpr std::uint32_t no_slot = 0xFFFFFFFFu;
+
 // A partner limit that passes no pair over (scan_overlaps()).
 inline constexpr std::uint32_t every_partner = 0xFFFFFFFFu;
 
@@ -25,18 +28,18 @@ struct OverlapScanCounts {
 
 // Scans the listed pairs p in [begin, end): pair p joins particle row[p] to partner[p]. Writes,
 // in ascending order, to `touching` the pairs that overlap, and to `parted` those that do not
-// but still hold a contact (live[p] == 1: ContactHistory::pair_live): contacts that have just come
-// apart. Pairs whose partner is at or above `partner_limit` are passed over (the ghost pairs,
-// computed apart: NeighborList::ghost_pairs). Each output needs room for end - begin entries.
+// but still hold a contact state (slot[p] != no_slot): contacts that have just come apart.
+// Pairs whose partner is at or above `partner_limit` are passed over (the ghost pairs, computed
+// apart: NeighborList::ghost_pairs). Each output needs room for end - begin entries.
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
-                                const std::uint32_t* partner, const std::uint8_t* live,
+                                const std::uint32_t* partner, const std::uint32_t* slot,
                                 std::uint32_t begin, std::uint32_t end, std::uint32_t partner_limit,
                                 std::uint32_t* touching, std::uint32_t* parted);
 
 // The same over the pairs pairs[begin], ..., pairs[end - 1] (ascending indices into the list:
 // the near pairs, core/near_pairs.hpp).
 OverlapScanCounts scan_overlaps(const Vec3* x, const double* radius, const std::uint32_t* row,
-                                const std::uint32_t* partner, const std::uint8_t* live,
+                                const std::uint32_t* partner, const std::uint32_t* slot,
                                 const std::uint32_t* pairs, std::uint32_t begin, std::uint32_t end,
                                 std::uint32_t* touching, std::uint32_t* parted);
 

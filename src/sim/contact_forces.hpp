@@ -367,6 +367,7 @@ private:
   template <class Touching>
   YUXI_ALWAYS_INLINE void sweep(const ParticleView& s, const NeighborList& list,
                                 ContactTally& tally, Touching&& touching) {
+    static_assert(ContactHistory<State>::none == no_slot);
     const Vec3* x = s.x;
     const double* radius = s.radius;
     const std::uint32_t* partners = list.partners.data();
@@ -392,11 +393,11 @@ private:
     }
     for (std::uint32_t begin = first; begin < last; begin += chunk) {
       const std::uint32_t end = std::min(begin + chunk, last);
-      const std::uint8_t* live = history.pair_live.data();
+      const std::uint32_t* slot = history.pair_slot.data();
       const OverlapScanCounts found =
-          index ? scan_overlaps(x, radius, rows, partners, live, index, begin, end, touching_pairs,
+          index ? scan_overlaps(x, radius, rows, partners, slot, index, begin, end, touching_pairs,
                                 parted_pairs)
-                : scan_overlaps(x, radius, rows, partners, live, begin, end, partner_limit,
+                : scan_overlaps(x, radius, rows, partners, slot, begin, end, partner_limit,
                                 touching_pairs, parted_pairs);
       for (std::uint32_t k = 0; k < found.parted; ++k) {
         const std::uint32_t p = parted_pairs[k];

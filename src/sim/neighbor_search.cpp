@@ -34,7 +34,7 @@ void NeighborSearch::note_displacement(double largest) {
   near_.moved += last_displacement_ + position_round_off_;
 }
 
-void NeighborSearch::refresh_near(const ParticleStore& s, const std::uint8_t* live,
+void NeighborSearch::refresh_near(const ParticleStore& s, const std::uint32_t* slots,
                                   const std::vector<ShapedWall>& shaped, double near_fraction) {
   if (near_.hold()) return;
   near_.picked = false;
@@ -47,7 +47,7 @@ void NeighborSearch::refresh_near(const ParticleStore& s, const std::uint8_t* li
   const double pace = last_displacement_ + position_round_off_;
   const double margin = std::min(near_fraction * skin_, 2.0 * lasting * pace);
   if (!(margin > 0.0) || 2.0 * min_steps * pace >= margin) return;
-  pick_near_pairs(s.x.data(), s.radius.data(), list_, live, margin, near_);
+  pick_near_pairs(s.x.data(), s.radius.data(), list_, slots, margin, near_);
   if (!list_.walls.empty()) pick_near_wall_elements(s, list_, shaped, margin, near_walls_);
 }
 

@@ -46,9 +46,9 @@ public:
   void note_displacement(double largest);
 
   // Picks the near pairs again where those held have lapsed and new ones would last a few
-  // steps; drops them where they would not. `live`: 1 for each listed pair that holds a
-  // contact. `near_fraction`: the margin's most as a fraction of the skin.
-  void refresh_near(const ParticleStore& s, const std::uint8_t* live,
+  // steps; drops them where they would not. `slots`: the contact states' slot of each listed
+  // pair. `near_fraction`: the margin's most as a fraction of the skin.
+  void refresh_near(const ParticleStore& s, const std::uint32_t* slots,
                     const std::vector<ShapedWall>& shaped, double near_fraction);
 
   std::size_t memory_bytes() const;

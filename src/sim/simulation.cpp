@@ -193,7 +193,7 @@ void Simulation::compute_forces(bool advance_history) {
   }
   contacts_.tally() = ContactTally{};
   const double dt = advance_history ? config_.dt : 0.0;
-  search_.refresh_near(store_, contacts_.history().pair_live_flags(), walls_.shaped(),
+  search_.refresh_near(store_, contacts_.history().pair_slots(), walls_.shaped(),
                        config_.near_fraction);
   const NeighborList& list = search_.list();
   const auto compute = [&](PairSet set) {

@@ -20,9 +20,9 @@ TEST(NearPairs, KeepThePairsWithinTheMarginAndThoseInContact) {
   list.partners = {1, 2, 3, 4};
   list.index_rows();
   // gaps: -0.1 (touching), 0.04, 0.2, 0.3; the last pair still holds a contact state
-  const std::vector<std::uint8_t> live{0, 0, 0, 1};
+  const std::vector<std::uint32_t> slot{no_slot, no_slot, no_slot, 7};
   NearPairs near;
-  pick_near_pairs(x.data(), radius.data(), list, live.data(), 0.05, near);
+  pick_near_pairs(x.data(), radius.data(), list, slot.data(), 0.05, near);
   EXPECT_EQ(near.pairs, (std::vector<std::uint32_t>{0, 1, 3}));
   EXPECT_TRUE(near.hold());
   near.moved = 0.024;
@@ -41,14 +41,14 @@ TEST(NearPairs, ComeGhostPairsFirstWhereTheListHasThemApart) {
   list.index_rows();
   list.index_ghost_pairs(true);
   EXPECT_EQ(list.ghost_pairs, (std::vector<std::uint32_t>{2, 3}));
-  const std::vector<std::uint8_t> live{0, 0, 0, 1};
+  const std::vector<std::uint32_t> slot{no_slot, no_slot, no_slot, 7};
   NearPairs near;
-  pick_near_pairs(x.data(), radius.data(), list, live.data(), 0.05, near);
+  pick_near_pairs(x.data(), radius.data(), list, slot.data(), 0.05, near);
   EXPECT_EQ(near.pairs, (std::vector<std::uint32_t>{3, 0, 1}));
   EXPECT_EQ(near.n_ghost, 1u);
   list.index_ghost_pairs(false); // one rank: list order
   EXPECT_TRUE(list.ghost_pairs.empty());
-  pick_near_pairs(x.data(), radius.data(), list, live.data(), 0.05, near);
+  pick_near_pairs(x.data(), radius.data(), list, slot.data(), 0.05, near);
   EXPECT_EQ(near.pairs, (std::vector<std::uint32_t>{0, 1, 3}));
   EXPECT_EQ(near.n_ghost, 0u);
 }

@@ -16,8 +16,7 @@ namespace {
 struct Pairs {
   std::vector<Vec3> x;
   std::vector<double> radius;
-  std::vector<std::uint32_t> row, partner;
-  std::vector<std::uint8_t> live;
+  std::vector<std::uint32_t> row, partner, slot;
 };
 
 // n particles in a small cube, every pair listed; each pair holds a state with probability 1/2.
@@ -32,7 +31,7 @@ Pairs random_pairs(std::size_t n, std::uint64_t seed) {
     for (std::uint32_t j = i + 1; j < n; ++j) {
       s.row.push_back(i);
       s.partner.push_back(j);
-      s.live.push_back(rng.uniform(0.0, 1.0) < 0.5 ? 1 : 0);
+      s.slot.push_back(rng.uniform(0.0, 1.0) < 0.5 ? 7u : no_slot);
     }
   return s;
 }
@@ -50,14 +49,14 @@ TEST(OverlapScan, SelectsTheOverlappingPairsAndTheParted) {
         std::vector<std::uint32_t> touching(end - begin), gone(end - begin);
         const OverlapScanCounts c =
             scan_overlaps(s.x.data(), s.radius.data(), s.row.data(), s.partner.data(),
-                          s.live.data(), begin, end, limit, touching.data(), gone.data());
+                          s.slot.data(), begin, end, limit, touching.data(), gone.data());
         std::vector<std::uint32_t> want_touching, want_gone;
         for (std::uint32_t p = begin; p < end; ++p) {
           if (s.partner[p] >= limit) continue;
           const double dist = norm(s.x[s.row[p]] - s.x[s.partner[p]]);
           const bool overlaps = dist < s.radius[s.row[p]] + s.radius[s.partner[p]];
           if (overlaps) want_touching.push_back(p);
-          if (!overlaps && s.live[p]) want_gone.push_back(p);
+          if (!overlaps && s.slot[p] != no_slot) want_gone.push_back(p);
         }
         ASSERT_EQ(c.touching, want_touching.size());
         ASSERT_EQ(c.parted, want_gone.size());
@@ -77,12 +76,11 @@ TEST(OverlapScan, ExactContactIsNotOverlap) {
   // Two spheres at exactly the sum of their radii (representable: 0.5 + 0.25 = 0.75).
   const std::vector<Vec3> x{{0.0, 0.0, 0.0}, {0.75, 0.0, 0.0}, {0.0, 0.7, 0.0}};
   const std::vector<double> radius{0.5, 0.25, 0.25};
-  const std::vector<std::uint32_t> row{0, 0}, partner{1, 2};
-  const std::vector<std::uint8_t> live{1, 0};
+  const std::vector<std::uint32_t> row{0, 0}, partner{1, 2}, slot{3, no_slot};
   std::uint32_t touching[2], gone[2];
   const std::uint32_t begin = 0, end = 2;
   const OverlapScanCounts c = scan_overlaps(x.data(), radius.data(), row.data(), partner.data(),
-                                            live.data(), begin, end, every_partner, touching, gone);
+                                            slot.data(), begin, end, every_partner, touching, gone);
   ASSERT_EQ(c.touching, 1u);
   EXPECT_EQ(touching[0], 1u); // 0.7 < 0.75
   ASSERT_EQ(c.parted, 1u);
