@@ -39,6 +39,7 @@
 #include "contact/thermodynamic_law.hpp"
 #include "core/always_inline.hpp"
 #include "core/host_device.hpp"
+#include "core/portable_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -157,7 +158,7 @@ YUXI_ALWAYS_INLINE YUXI_HD ContactResult Thermodynamic::evaluate(const ContactGe
   const double w_before = thermo::elastic_energy(k, xi, un, norm2(ut));
   // c. tangential relaxation (40), exact for fixed u_n.
   const double kappa = thermo::tangential_stiffness(k, xi, un);
-  ut *= std::exp(-co.relaxation_rate(s.w_relax) * kappa * dt);
+  ut *= portable::exp(-co.relaxation_rate(s.w_relax) * kappa * dt);
   // d. yield (41): back onto the stability boundary (35).
   const double limit = thermo::yield_limit(xi, un);
   const double ut_len = norm(ut);
@@ -165,7 +166,7 @@ YUXI_ALWAYS_INLINE YUXI_HD ContactResult Thermodynamic::evaluate(const ContactGe
   const double w_el = thermo::elastic_energy(k, xi, un, norm2(ut));
   double heat = w_before - w_el;
   // e. w_R decays into heat (22).
-  double w_relax = s.w_relax * std::exp(-dt / co.tau);
+  double w_relax = s.w_relax * portable::exp(-dt / co.tau);
   heat += s.w_relax - w_relax;
 
   // Force (28)-(29) and the viscous power of (32)/(33).

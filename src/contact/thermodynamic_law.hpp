@@ -11,6 +11,7 @@
 #pragma once
 
 #include "core/host_device.hpp"
+#include "core/portable_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -130,7 +131,8 @@ struct ExampleCoefficients {
   YUXI_HD double viscosity(double delta) const {
     const double on = heaviside(delta / d, epsilon);
     if (on == 0.0) return 0.0;
-    return eta_scale * on * (eta_power == 0 ? 1.0 : std::pow(std::max(delta, 0.0) / d, eta_power));
+    return eta_scale * on *
+           (eta_power == 0 ? 1.0 : portable::pow(std::max(delta, 0.0) / d, eta_power));
   }
   YUXI_HD double relaxation_rate(double w_relax) const {
     return lambda * std::sqrt(std::max(w_relax, 0.0));

@@ -1,0 +1,134 @@
+// exp, log and pow that give the same bits on every backend.
+//
+// The C library's exp and the GPU's differ in the last bit for about 6 % of arguments (pow 23 %,
+// log 0.1 %; measured on an H100 against glibc 2.36: docs/results/gpu/), while sqrt and division
+// are correctly rounded on both and agree always. A contact law that calls std::exp therefore
+// gives a GPU run that drifts from the CPU's. These versions use only what is the same everywhere:
+// +, -, *, / and sqrt, correctly rounded, never fused (FMA contraction is off for g++ and nvcc),
+// and integer work on the bits. They are written by hand because no packaged library promises the
+// same bits on the CPU and on the GPU (docs/ARCHITECTURE.md, "The seam for a second backend").
+//
+// Accuracy (tests/unit/test_portable_math.cpp, against long double): exp and log within 1 ulp;
+// pow(x, p) within 1 + 2 |p ln x| ulp (the error of ln x
+// grows by the factor p ln x). Methods: Cody & Waite's argument reduction with Taylor
+// series (W. J. Cody & W. Waite, Software Manual for the Elementary Functions, 1980).
+#pragma once
+
+#include "core/host_device.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace yuxi::portable {
+
+namespace detail {
+
+YUXI_HD inline double from_bits(std::uint64_t b) {
+  double d;
+  std::memcpy(&d, &b, sizeof d);
+  return d;
+}
+YUXI_HD inline std::uint64_t to_bits(double d) {
+  std::uint64_t b;
+  std::memcpy(&b, &d, sizeof b);
+  return b;
+}
+// 2^k for a normal power, -1022 <= k <= 1023: built from its bits, exactly.
+YUXI_HD inline double power_of_two(int k) {
+  return from_bits(static_cast<std::uint64_t>(k + 1023) << 52);
+}
+
+// ln 2 in two parts: ln2_hi has 32 significant bits, so k * ln2_hi is exact for |k| < 2^20.
+constexpr double ln2_hi = 6.93147180369123816490e-01;
+constexpr double ln2_lo = 1.90821492927058770002e-10;
+constexpr double inv_ln2 = 1.44269504088896338700e+00;
+
+} // namespace detail
+
+// e^x. Reduction x = k ln2 + r with |r| <= ln2/2, e^r by its Taylor series to r^13 (truncation
+// below 4e-18 relative), then scaled by 2^k from the bits.
+YUXI_HD inline double exp(double x) {
+  using namespace detail;
+  if (!(x == x)) return x; // NaN
+  if (x > 709.782712893384) return std::numeric_limits<double>::infinity();
+  if (x < -745.1332191019412) return 0.0;
+  // k = nearest integer to x / ln2; the conversion truncates toward zero, hence the +-0.5.
+  const double t = x * inv_ln2;
+  const int k = static_cast<int>(t < 0 ? t - 0.5 : t + 0.5);
+  const double kd = static_cast<double>(k);
+  const double r = (x - kd * ln2_hi) - kd * ln2_lo;
+  // e^r = 1 + (r + r^2 q), q = 1/2! + r/3! + ... + r^11/13!: the rounding of the r^2 q term is
+  // scaled down by r^2 <= 0.12.
+  double q = 1.0 / 6227020800.0;
+  q = q * r + 1.0 / 479001600.0;
+  q = q * r + 1.0 / 39916800.0;
+  q = q * r + 1.0 / 3628800.0;
+  q = q * r + 1.0 / 362880.0;
+  q = q * r + 1.0 / 40320.0;
+  q = q * r + 1.0 / 5040.0;
+  q = q * r + 1.0 / 720.0;
+  q = q * r + 1.0 / 120.0;
+  q = q * r + 1.0 / 24.0;
+  q = q * r + 1.0 / 6.0;
+  q = q * r + 0.5;
+  const double y = 1.0 + (r + (r * r) * q);
+  if (k >= -1022 && k <= 1023) return y * power_of_two(k);
+  // Results near overflow or below the normal range: two exact scalings, one rounding at the end.
+  const int half = k / 2;
+  return y * power_of_two(half) * power_of_two(k - half);
+}
+
+// ln x. x = 2^e m with sqrt(1/2) <= m < sqrt(2); ln m = 2 atanh(s), s = (m - 1)/(m + 1),
+// |s| <= 0.172, by its series to s^25.
+YUXI_HD inline double log(double x) {
+  using namespace detail;
+  if (!(x > 0))
+    return x == 0 ? -std::numeric_limits<double>::infinity()
+                  : std::numeric_limits<double>::quiet_NaN();
+  if (x == std::numeric_limits<double>::infinity()) return x;
+  int e = 0;
+  if (x < 0x1p-1022) { // subnormal: scale into the normal range first (exact)
+    x *= 0x1p54;
+    e = -54;
+  }
+  const std::uint64_t bits = to_bits(x);
+  e += static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+  double m = from_bits((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL); // in [1, 2)
+  if (m > 1.4142135623730951) {
+    m *= 0.5;
+    ++e;
+  }
+  // f = m - 1 is exact; with s = f / (2 + f), ln(1 + f) = 2 atanh(s) = f - s (f - R), where
+  // R = 2 s^2/3 + 2 s^4/5 + ... : the rounding of the correction s (f - R) is scaled by |s|.
+  const double f = m - 1.0;
+  const double s = f / (2.0 + f);
+  const double s2 = s * s;
+  double q = 2.0 / 25.0;
+  q = q * s2 + 2.0 / 23.0;
+  q = q * s2 + 2.0 / 21.0;
+  q = q * s2 + 2.0 / 19.0;
+  q = q * s2 + 2.0 / 17.0;
+  q = q * s2 + 2.0 / 15.0;
+  q = q * s2 + 2.0 / 13.0;
+  q = q * s2 + 2.0 / 11.0;
+  q = q * s2 + 2.0 / 9.0;
+  q = q * s2 + 2.0 / 7.0;
+  q = q * s2 + 2.0 / 5.0;
+  q = q * s2 + 2.0 / 3.0;
+  const double correction = s * (f - s2 * q);
+  const double ed = static_cast<double>(e);
+  return ed * ln2_hi + (f - (correction - ed * ln2_lo));
+}
+
+// x^p for x >= 0 (NaN for x < 0 unless p is 0): e^(p ln x), with x^0.5 as sqrt (exact rounding).
+YUXI_HD inline double pow(double x, double p) {
+  if (p == 0.0) return 1.0;
+  if (p == 1.0) return x;
+  if (p == 0.5 && x >= 0) return std::sqrt(x);
+  if (x == 0.0) return p > 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  return exp(p * log(x));
+}
+
+} // namespace yuxi::portable
