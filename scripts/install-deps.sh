@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev libboost-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libthrust-dev
   libopenmpi-dev openmpi-bin
   python3 python3-matplotlib python3-numpy python3-pytest python3-mpi4py
   pybind11-dev python3-pybind11

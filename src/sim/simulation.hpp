@@ -130,6 +130,11 @@ public:
   // Owned particles per rank, max over mean (1 when serial). Collective.
   double imbalance() const;
   const std::vector<PlaneWall>& planes() const { return walls_.planes(); }
+  // The wall particles' motions (scene/wall_motion.hpp) and the contact law with its
+  // coefficients per material pair: what another engine (the device engine) needs to run on.
+  const std::vector<WallMotion>& wall_motions() const { return walls_.motions(); }
+  const AnyContactLaw& contact_law() const { return contacts_.law(); }
+  bool has_outlets() const { return sources_.has_outlets(); }
   // The meshes (placed at the current time) and cylinders.
   const std::vector<ShapedWall>& shaped_walls() const { return walls_.shaped(); }
   // What the grains did to each shaped wall at the last force evaluation, and each wall's

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# The GPU check: what a session with a GPU at hand runs first, in one go, in a few minutes.
+#
+#   bench/gpu/device_check.sh OUTDIR [BUNDLE]
+#
+# BUNDLE (default .gpu) is the folder that bench/gpu/bundle.sh made on the build machine: the
+# programs and the shared libraries they need, for a GPU machine with the CUDA toolkit but none of
+# yuxi's Debian packages. Everything goes to OUTDIR:
+#   env.txt        the device, driver, toolkit, commit and machine;
+#   law_bits.txt   every contact law on the GPU against the CPU, bit for bit, over carried state,
+#                  and where the device's sqrt, division, exp, log, pow, sin, cos, cbrt differ
+#                  from the host's libm (bench/gpu/law_bits.cu);
+#   sanitizer.txt  compute-sanitizer memcheck and racecheck on a short law_bits run;
+#   engine.txt     the device engine on LAMMPS's chute: 32k grains on the GPU and in the host
+#                  build on this machine's CPU, with their digests (the same bits or not), and
+#                  the chute replicated to 960k grains on the GPU;
+#   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
+#   cpu_chute.txt  yuxi's CPU engine on this machine's cores, the 32k chute on 1 rank and on one
+#                  rank per core: the baseline that the device engine is measured against.
+# Each part has a time limit, so the whole stays under 7 minutes; a part that fails is logged and
+# the others still run. The exit status is law_bits's (1: a law differs between the sides).
+set -uo pipefail
+out=${1:?usage: device_check.sh OUTDIR [BUNDLE]}
+bundle=$(realpath "${2:-.gpu}")
+mkdir -p "$out"
+out=$(realpath "$out")
+
+export PATH=$bundle/bin:$bundle/mpi/usr/bin:/usr/local/cuda/bin:$PATH
+export LD_LIBRARY_PATH=$bundle/lib:$bundle/mpi/usr/lib/x86_64-linux-gnu/openmpi/lib:/usr/local/cuda/lib64${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export OPAL_PREFIX=$bundle/mpi/usr
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none OMP_NUM_THREADS=1
+cores=$(grep -c ^processor /proc/cpuinfo)
+
+{
+  echo "date: $(date -u +%FT%TZ)"
+  echo "commit: $(cat "$bundle/commit" 2>/dev/null || git rev-parse HEAD)"
+  echo "host: $(uname -srm), $cores cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2 / 1048576}' /proc/meminfo)"
+  grep PRETTY_NAME /etc/os-release
+  ldd --version | head -1
+  nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm,clocks.max.mem --format=csv
+  nvcc --version | tail -2
+  compute-sanitizer --version | head -2
+  mpirun --version | head -1
+} > "$out/env.txt" 2>&1
+
+timeout 150 law_bits 1048576 8 > "$out/law_bits.txt" 2>&1
+status=$?
+echo "exit $status" >> "$out/law_bits.txt"
+
+{
+  echo "== memcheck"
+  timeout 90 compute-sanitizer --tool memcheck --leak-check full law_bits 16384 2 2>&1 | tail -4
+  echo "== racecheck"
+  timeout 60 compute-sanitizer --tool racecheck law_bits 4096 1 2>&1 | tail -3
+} > "$out/sanitizer.txt"
+
+{
+  echo "== GPU, 32k chute, 1000 steps"
+  timeout 120 device_chute_cuda scenes/chute-lammps.toml 1000 --cuda --cpu-too
+  echo "== host build on this CPU, the same run"
+  timeout 120 device_chute scenes/chute-lammps.toml 1000
+  echo "== GPU, chute replicated 5 x 6 (960k grains), 2000 steps"
+  timeout 120 device_chute_cuda scenes/chute-lammps.toml 2000 --cuda --replicate 5 6 1
+} > "$out/engine.txt" 2>&1
+gpu=$(grep -A8 '^== GPU, 32k' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
+host=$(grep -A8 '^== host build' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
+echo "GPU and host build bit for bit after 1000 steps: $([[ -n $gpu && $gpu == "$host" ]] && echo yes || echo "NO ($gpu, $host)")" >> "$out/engine.txt"
+{
+  echo "== memcheck, 20 steps"
+  timeout 120 compute-sanitizer --tool memcheck device_chute_cuda scenes/chute-lammps.toml 20 --cuda 2>&1 | tail -4
+  echo "== racecheck, 5 steps"
+  timeout 90 compute-sanitizer --tool racecheck device_chute_cuda scenes/chute-lammps.toml 5 --cuda 2>&1 | tail -3
+} > "$out/engine_sanitizer.txt"
+
+chute() {
+  local np=$1 steps=$2
+  rm -rf /tmp/yuxi-chute
+  timeout 120 mpirun --oversubscribe --bind-to none -np "$np" yuxi run scenes/chute-lammps.toml \
+    --t-end "$(awk -v s="$steps" 'BEGIN {printf "%.6f", s * 1e-4}')" -o /tmp/yuxi-chute \
+    --no-progress --no-plots > /tmp/yuxi-chute.log 2>&1
+  echo "== chute, $np ranks, $steps steps: exit $?"
+  grep -E 'particle-steps/s|time:|memory:' /tmp/yuxi-chute.log || tail -20 /tmp/yuxi-chute.log
+}
+{
+  chute 1 2000
+  chute "$cores" 10000
+} > "$out/cpu_chute.txt" 2>&1
+exit "$status"

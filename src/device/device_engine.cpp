@@ -1,0 +1,466 @@
+// The device engine's step, written once as Thrust algorithms and the functors of
+// step_phases.hpp. g++ compiles this file with Thrust's CPP system (the host build, which CI
+// tests); with -DYUXI_CUDA=ON nvcc compiles the same file as CUDA. Keep fmt, spdlog and the
+// scene headers out of it: nvcc does not compile fmt 9 under C++20.
+#include "device/device_engine.hpp"
+
+#include "contact/hertz_mindlin.hpp"
+#include "contact/hooke.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "contact/luding.hpp"
+#include "contact/thermodynamic.hpp"
+#include "device/step_phases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <thrust/binary_search.h>
+#include <thrust/copy.h>
+#include <thrust/count.h>
+#include <thrust/device_vector.h>
+#include <thrust/execution_policy.h>
+#include <thrust/for_each.h>
+#include <thrust/functional.h>
+#include <thrust/gather.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/reduce.h>
+#include <thrust/scan.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
+#include <vector>
+
+#if defined(__CUDACC__)
+#include <cuda_runtime.h>
+#endif
+
+namespace yuxi::device {
+namespace {
+
+template <class T> using DeviceVector = thrust::device_vector<T>;
+
+template <class T> T* raw(DeviceVector<T>& v) {
+  return thrust::raw_pointer_cast(v.data());
+}
+template <class T> const T* raw(const DeviceVector<T>& v) {
+  return thrust::raw_pointer_cast(v.data());
+}
+template <class T> std::size_t bytes(const DeviceVector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+// Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
+template <class F> void for_each_index(std::uint32_t n, const F& f) {
+  if (n == 0) return;
+  thrust::for_each_n(thrust::device, thrust::counting_iterator<std::uint32_t>(0), n, f);
+}
+
+template <class T> T read_one(const DeviceVector<T>& v, std::size_t k) {
+  return v[k];
+}
+
+struct IsSet {
+  YUXI_HD bool operator()(std::uint8_t b) const { return b != 0; }
+};
+
+// Row i's pairs learn their row.
+struct MarkRows {
+  const std::uint32_t* row_start;
+  std::uint32_t* pair_row;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    for (std::uint32_t k = row_start[i]; k < row_start[i + 1]; ++k) pair_row[k] = i;
+  }
+};
+
+// A grain outside the box along an open axis.
+struct Escaped {
+  Particles p;
+  DeviceBox box;
+  YUXI_HD bool operator()(std::uint32_t i) const {
+    if (p.kind[i] != Kind::grain) return false;
+    for (int a = 0; a < 3; ++a)
+      if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) return true;
+    return false;
+  }
+};
+
+template <class Model> class Engine final : public DeviceEngine {
+public:
+  using State = typename Model::State;
+  using Coeffs = typename Model::Coeffs;
+
+  Engine(const DeviceScene& scene, const std::vector<Coeffs>& coeffs) {
+    const HostParticles& hp = scene.particles;
+    if (hp.size() >= (std::size_t{1} << 31))
+      throw std::invalid_argument("device engine: more than 2^31 particles");
+    for (const GlobalId id : hp.gid)
+      if (id < 0 || id >= (GlobalId{1} << 32))
+        throw std::invalid_argument("device engine: a particle id beyond 32 bits (" +
+                                    std::to_string(id) + ")");
+    if (coeffs.size() != scene.n_materials * scene.n_materials)
+      throw std::invalid_argument("device engine: coefficients for " +
+                                  std::to_string(coeffs.size()) + " material pairs, expected " +
+                                  std::to_string(scene.n_materials * scene.n_materials));
+    n_ = static_cast<std::uint32_t>(hp.size());
+    x_ = hp.x;
+    v_ = hp.v;
+    w_ = hp.w;
+    f_.assign(n_, Vec3{});
+    torque_.assign(n_, Vec3{});
+    x_build_ = hp.x;
+    radius_ = hp.radius;
+    mass_ = hp.mass;
+    inv_mass_ = hp.inv_mass;
+    inv_inertia_ = hp.inv_inertia;
+    gid_ = hp.gid;
+    kind_ = hp.kind;
+    material_ = hp.material;
+    coeffs_ = coeffs;
+    n_materials_ = static_cast<std::uint32_t>(scene.n_materials);
+
+    box_.lo = scene.lo;
+    box_.hi = scene.hi;
+    for (int a = 0; a < 3; ++a) box_.periodic[a] = scene.periodic[a];
+    gravity_ = scene.gravity;
+    for (int a = 0; a < 3; ++a) g_periodic_[a] = scene.periodic[a] ? scene.gravity[a] : 0.0;
+    dt_ = scene.dt;
+    skin_ = scene.skin;
+    time_ = scene.time;
+    double largest = 0.0;
+    for (const double r : hp.radius) largest = std::max(largest, r);
+    const double edge = std::max(scene.cell_size, 2 * largest + scene.skin);
+    cells_.lo = scene.lo;
+    for (int a = 0; a < 3; ++a) {
+      const double length = scene.hi[a] - scene.lo[a];
+      cells_.n[a] = std::max(1, static_cast<int>(std::floor(length / edge)));
+      cells_.edge[a] = length / cells_.n[a];
+      if (scene.periodic[a] && cells_.n[a] < 3)
+        throw std::invalid_argument("device engine: the periodic box is less than 3 cells of " +
+                                    std::to_string(edge) + " along axis " + std::to_string(a));
+    }
+    gravity_work_.resize(n_);
+    moved_far_.resize(n_);
+    build_list();
+    compute_forces(0.0); // the start: the history does not advance
+  }
+
+  void run(std::int64_t steps) override {
+    for (std::int64_t s = 0; s < steps; ++s) step_once();
+  }
+
+  HostParticles particles() const override {
+    HostParticles h;
+    const auto get = [&](const auto& from, auto& to) {
+      to.resize(from.size());
+      thrust::copy(from.begin(), from.end(), to.begin());
+    };
+    HostParticles sorted;
+    get(x_, sorted.x);
+    get(v_, sorted.v);
+    get(w_, sorted.w);
+    get(f_, sorted.f);
+    get(torque_, sorted.torque);
+    get(radius_, sorted.radius);
+    get(mass_, sorted.mass);
+    get(inv_mass_, sorted.inv_mass);
+    get(inv_inertia_, sorted.inv_inertia);
+    get(gid_, sorted.gid);
+    get(kind_, sorted.kind);
+    get(material_, sorted.material);
+    std::vector<std::uint32_t> order(n_);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return sorted.gid[a] < sorted.gid[b]; });
+    const auto pick = [&](const auto& from, auto& to) {
+      to.resize(n_);
+      for (std::uint32_t k = 0; k < n_; ++k) to[k] = from[order[k]];
+    };
+    pick(sorted.x, h.x);
+    pick(sorted.v, h.v);
+    pick(sorted.w, h.w);
+    pick(sorted.f, h.f);
+    pick(sorted.torque, h.torque);
+    pick(sorted.radius, h.radius);
+    pick(sorted.mass, h.mass);
+    pick(sorted.inv_mass, h.inv_mass);
+    pick(sorted.inv_inertia, h.inv_inertia);
+    pick(sorted.gid, h.gid);
+    pick(sorted.kind, h.kind);
+    pick(sorted.material, h.material);
+    return h;
+  }
+
+  DeviceEnergies energies() const override {
+    DeviceEnergies e;
+    DeviceVector<double> translation(n_), rotation(n_);
+    for_each_index(n_, KineticEnergy{view(), raw(translation), raw(rotation)});
+    e.translational = ordered_sum(translation);
+    e.rotational = ordered_sum(rotation);
+    e.elastic = ordered_sum(elastic_);
+    e.dissipated = dissipated_total_;
+    e.gravity_work = gravity_work_total_;
+    return e;
+  }
+
+  std::int64_t step() const override { return step_; }
+  double time() const override { return time_; }
+  std::int64_t list_builds() const override { return builds_; }
+  std::size_t listed_pairs() const override { return partner_.size(); }
+
+  std::size_t device_bytes() const override {
+    return bytes(x_) + bytes(v_) + bytes(w_) + bytes(f_) + bytes(torque_) + bytes(x_build_) +
+           bytes(radius_) + bytes(mass_) + bytes(inv_mass_) + bytes(inv_inertia_) + bytes(gid_) +
+           bytes(kind_) + bytes(material_) + bytes(cell_) + bytes(order_) + bytes(cell_start_) +
+           bytes(count_) + bytes(row_start_) + bytes(partner_) + bytes(pair_row_) + bytes(image_) +
+           bytes(reverse_start_) + bytes(reverse_pair_) + bytes(state_) + bytes(open_) +
+           bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
+           bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) +
+           bytes(coeffs_);
+  }
+
+  std::string device_name() const override {
+#if defined(__CUDACC__)
+    int device = 0;
+    cudaDeviceProp prop{};
+    if (cudaGetDevice(&device) == cudaSuccess &&
+        cudaGetDeviceProperties(&prop, device) == cudaSuccess)
+      return std::string("cuda: ") + prop.name;
+    return "cuda";
+#else
+    return "host (Thrust CPP)";
+#endif
+  }
+
+private:
+  Particles view() const {
+    // The functors write through these pointers; the engine owns the arrays.
+    auto& self = const_cast<Engine&>(*this);
+    return Particles{raw(self.x_),      raw(self.v_),
+                     raw(self.w_),      raw(self.f_),
+                     raw(self.torque_), raw(self.x_build_),
+                     raw(radius_),      raw(mass_),
+                     raw(inv_mass_),    raw(inv_inertia_),
+                     raw(gid_),         raw(kind_),
+                     raw(material_),    n_};
+  }
+  PairList pair_list() const {
+    return PairList{raw(row_start_), raw(partner_),       raw(pair_row_),
+                    raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
+  }
+  PairOutput pair_output() {
+    return PairOutput{raw(force_), raw(torque_i_), raw(torque_j_), raw(elastic_), raw(dissipated_)};
+  }
+
+  // Sum of v in a fixed order (BlockSum): the same bits on the GPU and on the CPU.
+  double ordered_sum(const DeviceVector<double>& v) const {
+    const std::uint32_t n = static_cast<std::uint32_t>(v.size()), block = 1024;
+    if (n == 0) return 0.0;
+    const std::uint32_t blocks = (n + block - 1) / block;
+    DeviceVector<double>& partial = const_cast<Engine&>(*this).partial_;
+    if (partial.size() < blocks) partial.resize(blocks);
+    for_each_index(blocks, BlockSum{raw(v), n, block, raw(partial)});
+    std::vector<double> host(blocks);
+    thrust::copy(partial.begin(), partial.begin() + blocks, host.begin());
+    double s = 0.0;
+    for (const double b : host) s += b;
+    return s;
+  }
+
+  // field[k] = field[order[k]], through scratch.
+  template <class T>
+  static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
+                         DeviceVector<T>& scratch) {
+    scratch.resize(field.size());
+    thrust::gather(thrust::device, order.begin(), order.end(), field.begin(), scratch.begin());
+    field.swap(scratch);
+  }
+  // Reorders a per-particle array by order_ (the cell sort).
+  template <class T> void permute(DeviceVector<T>& field, DeviceVector<T>& scratch) {
+    permute_by(order_, field, scratch);
+  }
+
+  void build_list() {
+    // 1. The open contacts' states, keyed by the particles' global ids.
+    const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
+    DeviceVector<std::uint32_t> open_pairs(pairs);
+    const std::uint32_t n_open = static_cast<std::uint32_t>(
+        thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+                        thrust::counting_iterator<std::uint32_t>(pairs), open_.begin(),
+                        open_pairs.begin(), IsSet{}) -
+        open_pairs.begin());
+    DeviceVector<std::uint64_t> keys(n_open);
+    DeviceVector<State> stashed(n_open);
+    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(state_), raw(open_pairs),
+                                               raw(keys), raw(stashed)});
+    // Sorted by key; the states follow through an index (a state can be too large to ride in
+    // the sort itself: radix sort keeps its values in shared memory).
+    DeviceVector<std::uint32_t> by_key(n_open);
+    thrust::sequence(thrust::device, by_key.begin(), by_key.end());
+    thrust::sort_by_key(thrust::device, keys.begin(), keys.end(), by_key.begin());
+    {
+      DeviceVector<State> scratch;
+      permute_by(by_key, stashed, scratch);
+    }
+
+    // 2. Grains that left through an open face stop the run.
+    const auto escaped =
+        thrust::count_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+                         thrust::counting_iterator<std::uint32_t>(n_), Escaped{view(), box_});
+    if (escaped > 0)
+      throw std::runtime_error("device engine: " + std::to_string(escaped) +
+                               " grains left the box through an open face at step " +
+                               std::to_string(step_));
+
+    // 3. Wrap, sort by cell (stable: equal cells keep their order), and find each cell's start.
+    cell_.resize(n_);
+    for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(cell_)});
+    order_.resize(n_);
+    thrust::sequence(thrust::device, order_.begin(), order_.end());
+    thrust::stable_sort_by_key(thrust::device, cell_.begin(), cell_.end(), order_.begin());
+    {
+      DeviceVector<Vec3> v3;
+      DeviceVector<double> d;
+      permute(x_, v3);
+      permute(v_, v3);
+      permute(w_, v3);
+      permute(f_, v3);
+      permute(torque_, v3);
+      permute(x_build_, v3);
+      permute(radius_, d);
+      permute(mass_, d);
+      permute(inv_mass_, d);
+      permute(inv_inertia_, d);
+      DeviceVector<GlobalId> g;
+      permute(gid_, g);
+      DeviceVector<Kind> k;
+      permute(kind_, k);
+      DeviceVector<std::uint8_t> m;
+      permute(material_, m);
+    }
+    cell_start_.resize(cells_.count() + 1);
+    thrust::lower_bound(
+        thrust::device, cell_.begin(), cell_.end(), thrust::counting_iterator<std::uint32_t>(0),
+        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), cell_start_.begin());
+
+    // 4. The half list: count, offsets, fill.
+    count_.resize(n_);
+    FindPartners find{view(),      box_,    cells_,  raw(cell_start_), skin_,
+                      raw(count_), nullptr, nullptr, nullptr};
+    for_each_index(n_, find);
+    row_start_.resize(n_ + 1);
+    thrust::exclusive_scan(thrust::device, count_.begin(), count_.end(), row_start_.begin());
+    const std::uint32_t total =
+        n_ == 0 ? 0 : read_one(row_start_, n_ - 1) + read_one(count_, n_ - 1);
+    row_start_[n_] = total;
+    partner_.resize(total);
+    image_.resize(total);
+    pair_row_.resize(total);
+    find.count = nullptr;
+    find.out_start = raw(row_start_);
+    find.partner = raw(partner_);
+    find.image = raw(image_);
+    for_each_index(n_, find);
+    for_each_index(n_, MarkRows{raw(row_start_), raw(pair_row_)});
+
+    // 5. Each particle's pairs as the partner, in pair order.
+    DeviceVector<std::uint32_t> partner_sorted = partner_;
+    reverse_pair_.resize(total);
+    thrust::sequence(thrust::device, reverse_pair_.begin(), reverse_pair_.end());
+    thrust::stable_sort_by_key(thrust::device, partner_sorted.begin(), partner_sorted.end(),
+                               reverse_pair_.begin());
+    reverse_start_.resize(n_ + 1);
+    thrust::lower_bound(thrust::device, partner_sorted.begin(), partner_sorted.end(),
+                        thrust::counting_iterator<std::uint32_t>(0),
+                        thrust::counting_iterator<std::uint32_t>(n_ + 1), reverse_start_.begin());
+
+    // 6. Per-pair room, and the open contacts' states back in their new pairs.
+    state_.resize(total);
+    open_.resize(total);
+    force_.resize(total);
+    torque_i_.resize(total);
+    torque_j_.resize(total);
+    elastic_.resize(total);
+    dissipated_.resize(total);
+    for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
+                                                n_open, raw(state_), raw(open_)});
+    ++builds_;
+  }
+
+  void compute_forces(double dt) {
+    const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
+    for_each_index(pairs, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
+                                            dt, raw(state_), raw(open_), pair_output()});
+    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), gravity_});
+  }
+
+  void step_once() {
+    for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, g_periodic_, raw(gravity_work_),
+                                 raw(moved_far_)});
+    gravity_work_total_ += ordered_sum(gravity_work_);
+    time_ += dt_;
+    ++step_;
+    const bool build = thrust::reduce(thrust::device, moved_far_.begin(), moved_far_.end(),
+                                      std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
+    if (build) build_list();
+    compute_forces(dt_);
+    for_each_index(n_, FinalKick{view(), dt_});
+    dissipated_total_ += ordered_sum(dissipated_);
+  }
+
+  std::uint32_t n_ = 0, n_materials_ = 1;
+  DeviceVector<Vec3> x_, v_, w_, f_, torque_, x_build_;
+  DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
+  DeviceVector<GlobalId> gid_;
+  DeviceVector<Kind> kind_;
+  DeviceVector<std::uint8_t> material_;
+  DeviceVector<std::uint32_t> cell_, order_, cell_start_, count_;
+  DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
+  DeviceVector<std::uint8_t> image_;
+  DeviceVector<State> state_;
+  DeviceVector<std::uint8_t> open_;
+  DeviceVector<Vec3> force_, torque_i_, torque_j_;
+  DeviceVector<double> elastic_, dissipated_;
+  DeviceVector<double> gravity_work_;
+  DeviceVector<std::uint32_t> moved_far_;
+  DeviceVector<double> partial_;
+  DeviceVector<Coeffs> coeffs_;
+  DeviceBox box_;
+  DeviceCells cells_;
+  Vec3 gravity_, g_periodic_;
+  double dt_ = 0, skin_ = 0, time_ = 0;
+  double dissipated_total_ = 0, gravity_work_total_ = 0;
+  std::int64_t step_ = 0, builds_ = 0;
+};
+
+} // namespace
+
+// The one factory this compilation defines: make_cuda_engine where nvcc compiles the file,
+// make_host_engine where g++ does. Both libraries can then be linked into one program.
+#if defined(__CUDACC__)
+#define YUXI_ENGINE_FACTORY make_cuda_engine
+#else
+#define YUXI_ENGINE_FACTORY make_host_engine
+#endif
+
+template <class Model>
+std::unique_ptr<DeviceEngine>
+YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs) {
+#if defined(__CUDACC__)
+  int devices = 0;
+  if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0)
+    throw std::runtime_error("device engine: this build runs on a GPU, and no CUDA GPU was found");
+#endif
+  return std::make_unique<Engine<Model>>(scene, coeffs);
+}
+
+#define YUXI_INSTANTIATE_ENGINE(Model)                                                             \
+  template std::unique_ptr<DeviceEngine> YUXI_ENGINE_FACTORY<Model>(                               \
+      const DeviceScene&, const std::vector<Model::Coeffs>&);
+YUXI_INSTANTIATE_ENGINE(LinearSpringDashpot)
+YUXI_INSTANTIATE_ENGINE(HertzMindlin)
+YUXI_INSTANTIATE_ENGINE(Luding)
+YUXI_INSTANTIATE_ENGINE(Thermodynamic)
+YUXI_INSTANTIATE_ENGINE(Hooke)
+
+} // namespace yuxi::device

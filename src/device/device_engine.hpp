@@ -1,0 +1,84 @@
+// The device engine: the whole step on a GPU, or, in the host build, the same code on the CPU
+// through Thrust's CPP system (docs/ARCHITECTURE.md, "The device engine"). Its state stays on
+// the device between the calls below; the host sees it only when it asks (particles(),
+// energies()).
+//
+// This header is plain C++ (no Thrust, no CUDA): the rest of yuxi includes it from files that g++
+// compiles. make_device_engine<Model> is defined in device_engine.cpp, which is compiled by g++
+// with Thrust's CPP system (library yuxi_device) and, with -DYUXI_CUDA=ON, by nvcc as CUDA
+// (library yuxi_device_cuda).
+#pragma once
+
+#include "core/particle_fields.hpp"
+#include "core/vec3.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace yuxi::device {
+
+// The particles a device engine starts from, or that it gives back (in global-id order).
+struct HostParticles {
+  std::vector<Vec3> x, v, w, f, torque;
+  std::vector<double> radius, mass, inv_mass, inv_inertia;
+  std::vector<GlobalId> gid;
+  std::vector<Kind> kind;
+  std::vector<std::uint8_t> material;
+  std::size_t size() const { return x.size(); }
+};
+
+// What the device engine runs: particles in a box that is periodic or open along each axis,
+// gravity, one contact law with its coefficients per material pair (Model::Coeffs, row-major,
+// n_materials^2 of them). Wall particles stand still.
+struct DeviceScene {
+  HostParticles particles;
+  Vec3 lo, hi;
+  bool periodic[3] = {false, false, false};
+  Vec3 gravity;
+  double dt = 0, skin = 0, cell_size = 0, time = 0;
+  std::size_t n_materials = 1;
+};
+
+// The energy books, each summed in a fixed order [energy].
+struct DeviceEnergies {
+  double translational = 0, rotational = 0; // now
+  double elastic = 0;                       // held in the contacts' springs now
+  double dissipated = 0;                    // since the start, releases included
+  double gravity_work = 0;                  // of periodic gravity since the start
+};
+
+class DeviceEngine {
+public:
+  virtual ~DeviceEngine() = default;
+  // Advances the state by `steps` time steps.
+  virtual void run(std::int64_t steps) = 0;
+  // A copy of the particles, in global-id order (forces and torques of the last evaluation).
+  virtual HostParticles particles() const = 0;
+  virtual DeviceEnergies energies() const = 0;
+  virtual std::int64_t step() const = 0;
+  virtual double time() const = 0;
+  virtual std::int64_t list_builds() const = 0;
+  virtual std::size_t listed_pairs() const = 0;
+  // Bytes held on the device now (particles, cells, list, contact states, per-pair results).
+  virtual std::size_t device_bytes() const = 0;
+  // "cuda: <device name>" or "host (Thrust CPP)".
+  virtual std::string device_name() const = 0;
+};
+
+// An engine for contact law `Model`, on the CPU through Thrust's CPP system (the host build,
+// library yuxi_device) or as CUDA on the GPU (library yuxi_device_cuda, built with
+// -DYUXI_CUDA=ON): the same source, device_engine.cpp. It builds the list and computes the forces
+// of the start (without advancing the contacts' history), as the CPU engine does. Throws
+// std::invalid_argument naming what it cannot run (a periodic axis of fewer than 3 cells, ids
+// beyond 32 bits), and make_cuda_engine std::runtime_error where no GPU is found.
+template <class Model>
+std::unique_ptr<DeviceEngine> make_host_engine(const DeviceScene& scene,
+                                               const std::vector<typename Model::Coeffs>& coeffs);
+template <class Model>
+std::unique_ptr<DeviceEngine> make_cuda_engine(const DeviceScene& scene,
+                                               const std::vector<typename Model::Coeffs>& coeffs);
+
+} // namespace yuxi::device

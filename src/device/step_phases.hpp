@@ -1,0 +1,380 @@
+// The device engine's phases, one functor each: plain data in, plain data out, YUXI_HD, so the
+// same code runs as a CUDA kernel and, in the host build, on the CPU (Thrust's CPP system).
+// Each functor is applied to an index: a particle, a pair or a block of values. None adds to a
+// value that another index also writes (no atomics): a pair writes its own force, and a particle
+// sums the forces of its pairs in a fixed order, so the bits do not depend on the order in which
+// the indices run (docs/ARCHITECTURE.md, "The device engine").
+#pragma once
+
+#include "contact/contact_geometry.hpp"
+#include "core/host_device.hpp"
+#include "core/particle_fields.hpp"
+#include "core/vec3.hpp"
+
+#include <cstdint>
+
+namespace yuxi::device {
+
+// The box as the device sees it: bounds and which axes are periodic.
+struct DeviceBox {
+  Vec3 lo, hi;
+  bool periodic[3] = {false, false, false};
+
+  YUXI_HD double length(int a) const { return hi[a] - lo[a]; }
+  // Box::wrap (core/box.cpp), operation for operation: a position into [lo, hi) on periodic axes.
+  YUXI_HD Vec3 wrap(Vec3 p) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!periodic[a]) continue;
+      const double l = length(a);
+      p[a] -= l * std::floor((p[a] - lo[a]) / l);
+      if (p[a] >= hi[a]) p[a] -= l;
+      if (p[a] < lo[a]) p[a] = lo[a];
+    }
+    return p;
+  }
+};
+
+// Linked cells over the box: n[a] cells of edge `edge[a]` along each axis.
+struct DeviceCells {
+  Vec3 lo, edge;
+  int n[3] = {1, 1, 1};
+
+  YUXI_HD int axis_cell(double x, int a) const {
+    const double c = std::floor((x - lo[a]) / edge[a]);
+    return c < 0 ? 0 : (c >= n[a] ? n[a] - 1 : static_cast<int>(c));
+  }
+  YUXI_HD std::uint32_t cell_of(const Vec3& x) const {
+    return static_cast<std::uint32_t>((axis_cell(x.z, 2) * n[1] + axis_cell(x.y, 1)) * n[0] +
+                                      axis_cell(x.x, 0));
+  }
+  YUXI_HD std::uint32_t count() const { return static_cast<std::uint32_t>(n[0] * n[1] * n[2]); }
+};
+
+// A pair's periodic image: for each axis 0 (none), 1 (+L) or 2 (-L), as a base-3 number. The
+// partner is seen at x_j + shift, as the CPU engine's ghost image of it is.
+YUXI_HD inline Vec3 image_shift(std::uint8_t image, const DeviceBox& box) {
+  Vec3 s;
+  for (int a = 0; a < 3; ++a) {
+    const int code = image % 3;
+    image = static_cast<std::uint8_t>(image / 3);
+    s[a] = code == 1 ? box.length(a) : (code == 2 ? -box.length(a) : 0.0);
+  }
+  return s;
+}
+
+// d = x_i - x_j with the partner j at its image. Along an axis where the image is one box length
+// up, d = x_i - (x_j + L); where it is one length down, d = -(x_j - (x_i + L)): the particle near
+// the lower face is always the one shifted up, as the CPU engine's ghosts are (domain/halo.hpp),
+// so that both engines round the same sums and a pair's overlap agrees to the bit.
+YUXI_HD inline Vec3 separation(const Vec3& xi, const Vec3& xj, std::uint8_t image,
+                               const DeviceBox& box) {
+  Vec3 d;
+  for (int a = 0; a < 3; ++a) {
+    const int code = image % 3;
+    image = static_cast<std::uint8_t>(image / 3);
+    d[a] = code == 1   ? xi[a] - (xj[a] + box.length(a))
+           : code == 2 ? -(xj[a] - (xi[a] + box.length(a)))
+                       : xi[a] - xj[a];
+  }
+  return d;
+}
+
+// The particles, sorted by cell at each list build.
+struct Particles {
+  Vec3 *x, *v, *w, *f, *torque, *x_build;
+  const double *radius, *mass, *inv_mass, *inv_inertia;
+  const GlobalId* gid;
+  const Kind* kind;
+  const std::uint8_t* material;
+  std::uint32_t n;
+};
+
+// The half list in compressed rows: particle i's partners j > i are partner[row_start[i] ..
+// row_start[i + 1]), each with its image; pair_row[p] is the row of pair p.
+struct PairList {
+  const std::uint32_t *row_start, *partner, *pair_row;
+  const std::uint8_t* image;
+  // The pairs where a particle is the partner, in pair order: reverse_pair[reverse_start[j] ..
+  // reverse_start[j + 1]).
+  const std::uint32_t *reverse_start, *reverse_pair;
+};
+
+// Cell of each particle (after wrapping it into the periodic box).
+struct CellOfParticle {
+  Particles p;
+  DeviceBox box;
+  DeviceCells cells;
+  std::uint32_t* cell;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    p.x[i] = box.wrap(p.x[i]);
+    p.x_build[i] = p.x[i];
+    cell[i] = cells.cell_of(p.x[i]);
+  }
+};
+
+// Particle i's partners: every later particle (in cell order) of the 27 cells around it, closer
+// than a_i + a_j + skin, that is not a wall particle with another wall particle. Counts them
+// (count != nullptr) or writes them from out_start[i].
+struct FindPartners {
+  Particles p;
+  DeviceBox box;
+  DeviceCells cells;
+  const std::uint32_t* cell_start; // first particle of each cell, and the total at the end
+  double skin;
+  std::uint32_t* count;
+  const std::uint32_t* out_start;
+  std::uint32_t* partner;
+  std::uint8_t* image;
+
+  YUXI_HD void operator()(std::uint32_t i) const {
+    const Vec3 xi = p.x[i];
+    int c[3];
+    for (int a = 0; a < 3; ++a) c[a] = cells.axis_cell(xi[a], a);
+    std::uint32_t found = 0, at = count ? 0 : out_start[i];
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int d[3] = {dx, dy, dz};
+          int nc[3];
+          std::uint8_t code = 0, weight = 1;
+          bool inside = true;
+          for (int a = 0; a < 3; ++a, weight = static_cast<std::uint8_t>(weight * 3)) {
+            nc[a] = c[a] + d[a];
+            if (nc[a] < 0 || nc[a] >= cells.n[a]) {
+              if (!box.periodic[a]) {
+                inside = false;
+                break;
+              }
+              // Across the periodic face: the partner's image is one box length away.
+              const bool below = nc[a] < 0;
+              nc[a] = below ? nc[a] + cells.n[a] : nc[a] - cells.n[a];
+              code = static_cast<std::uint8_t>(code + weight * (below ? 2 : 1));
+            }
+          }
+          if (!inside) continue;
+          const std::uint32_t cell =
+              static_cast<std::uint32_t>((nc[2] * cells.n[1] + nc[1]) * cells.n[0] + nc[0]);
+          const Vec3 shift = image_shift(code, box);
+          for (std::uint32_t j = cell_start[cell]; j < cell_start[cell + 1]; ++j) {
+            if (j <= i) continue;
+            if (p.kind[i] == Kind::wall && p.kind[j] == Kind::wall) continue;
+            const Vec3 dij = xi - (p.x[j] + shift);
+            const double reach = p.radius[i] + p.radius[j] + skin;
+            if (!(norm2(dij) < reach * reach)) continue;
+            if (count) {
+              ++found;
+            } else {
+              partner[at] = j;
+              image[at] = code;
+              ++at;
+            }
+          }
+        }
+    if (count) count[i] = found;
+  }
+};
+
+// Each contact's key, the global ids of its two particles (smaller first, as 32-bit halves), so
+// that its state follows it across list builds whatever the local order.
+YUXI_HD inline std::uint64_t contact_key(GlobalId a, GlobalId b) {
+  const std::uint64_t lo = static_cast<std::uint64_t>(a < b ? a : b);
+  const std::uint64_t hi = static_cast<std::uint64_t>(a < b ? b : a);
+  return (lo << 32) | hi;
+}
+
+// Before a list build: the key and the state (as seen from the smaller id) of each open contact.
+template <class Model> struct StashContact {
+  Particles p;
+  PairList list;
+  const typename Model::State* state;
+  const std::uint32_t* open_pairs;
+  std::uint64_t* key;
+  typename Model::State* stashed;
+  YUXI_HD void operator()(std::uint32_t k) const {
+    const std::uint32_t pair = open_pairs[k];
+    const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
+    key[k] = contact_key(gi, gj);
+    stashed[k] = gi < gj ? state[pair] : state[pair].mirrored();
+  }
+};
+
+// After a list build: each pair takes its stashed state back (binary search on the sorted keys).
+template <class Model> struct RestoreContact {
+  Particles p;
+  PairList list;
+  const std::uint64_t* key;
+  const typename Model::State* stashed;
+  std::uint32_t n_stashed;
+  typename Model::State* state;
+  std::uint8_t* open;
+  YUXI_HD void operator()(std::uint32_t pair) const {
+    const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
+    const std::uint64_t k = contact_key(gi, gj);
+    std::uint32_t lo = 0, hi = n_stashed;
+    while (lo < hi) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (key[mid] < k)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    const bool found = lo < n_stashed && key[lo] == k;
+    open[pair] = found ? 1 : 0;
+    state[pair] =
+        !found ? typename Model::State{} : (gi < gj ? stashed[lo] : stashed[lo].mirrored());
+  }
+};
+
+// What a pair's contact gave this step, for the sums over its particles and the energy books.
+struct PairOutput {
+  Vec3* force;    // on the row particle i (-force on the partner j)
+  Vec3* torque_i; // on i
+  Vec3* torque_j; // on j
+  double* elastic;
+  double* dissipated; // this step, releases of parted contacts included
+};
+
+// The contact law on each listed pair (contact_forces.hpp's sweep and compute_pairs): a pair
+// that overlaps is evaluated, one that has come apart releases what its springs held.
+template <class Model> struct PairForces {
+  Particles p;
+  PairList list;
+  DeviceBox box;
+  const typename Model::Coeffs* coeffs; // per material pair, n_materials^2
+  std::uint32_t n_materials;
+  double dt;
+  typename Model::State* state;
+  std::uint8_t* open;
+  PairOutput out;
+
+  YUXI_HD void operator()(std::uint32_t pair) const {
+    const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
+    const Vec3 d = separation(p.x[i], p.x[j], list.image[pair], box);
+    const double r2 = norm2(d);
+    const double touch = p.radius[i] + p.radius[j];
+    const typename Model::Coeffs& c = coeffs[p.material[i] * n_materials + p.material[j]];
+    ContactResult r;
+    double released = 0.0;
+    if (r2 < touch * touch) {
+      open[pair] = 1;
+      const ContactGeometry g = pair_geometry(d, r2, p.radius[i], p.radius[j], p.v[i], p.v[j],
+                                              p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
+      r = Model::evaluate(g, c, state[pair]);
+    } else if (open[pair]) {
+      released = Model::release(c, state[pair]);
+      state[pair] = typename Model::State{};
+      open[pair] = 0;
+    }
+    out.force[pair] = r.force;
+    out.torque_i[pair] = r.torque_i;
+    out.torque_j[pair] = r.torque_j;
+    out.elastic[pair] = r.elastic;
+    out.dissipated[pair] = r.dissipated + released;
+  }
+};
+
+// Each grain's force and torque: gravity, then its pairs as the row particle, then its pairs as
+// the partner, each in pair order. Wall particles keep none.
+struct SumForces {
+  Particles p;
+  PairList list;
+  PairOutput out;
+  Vec3 gravity;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    if (p.kind[i] != Kind::grain) {
+      p.f[i] = Vec3{};
+      p.torque[i] = Vec3{};
+      return;
+    }
+    Vec3 f = gravity * p.mass[i], t;
+    for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
+      f += out.force[k];
+      t += out.torque_i[k];
+    }
+    for (std::uint32_t k = list.reverse_start[i]; k < list.reverse_start[i + 1]; ++k) {
+      const std::uint32_t pair = list.reverse_pair[k];
+      f -= out.force[pair];
+      t += out.torque_j[pair];
+    }
+    p.f[i] = f;
+    p.torque[i] = t;
+  }
+};
+
+// The first half kick and the drift of every grain (Simulation::kick_drift, operation for
+// operation); per grain, the work of periodic gravity m g_p . dx and whether it moved more than
+// half the skin since the last list build.
+struct KickDrift {
+  Particles p;
+  double dt, limit2;
+  Vec3 g_periodic;
+  double* gravity_work;
+  std::uint32_t*
+      moved_far; // 1 where the grain moved far (32-bit: CUB reduces 8-bit flags with spills)
+  YUXI_HD void operator()(std::uint32_t i) const {
+    if (p.kind[i] != Kind::grain) {
+      gravity_work[i] = 0.0;
+      moved_far[i] = 0;
+      return;
+    }
+    const double half_dt = 0.5 * dt;
+    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i], m = p.mass[i];
+    const Vec3 f = p.f[i], torque = p.torque[i];
+    Vec3 v = p.v[i], x = p.x[i], w = p.w[i];
+    v.x = v.x + f.x * kick, v.y = v.y + f.y * kick, v.z = v.z + f.z * kick;
+    const double xx = x.x + v.x * dt, xy = x.y + v.y * dt, xz = x.z + v.z * dt;
+    w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
+    x.x = xx, x.y = xy, x.z = xz;
+    gravity_work[i] = m * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
+    const Vec3 b = p.x_build[i];
+    const double dx = xx - b.x, dy = xy - b.y, dz = xz - b.z;
+    moved_far[i] = !(dx * dx + dy * dy + dz * dz <= limit2) ? 1 : 0; // NaN too
+    p.v[i] = v;
+    p.w[i] = w;
+    p.x[i] = x;
+  }
+};
+
+// The second half kick (Simulation::final_kick).
+struct FinalKick {
+  Particles p;
+  double dt;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    if (p.kind[i] != Kind::grain) return;
+    const double half_dt = 0.5 * dt;
+    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
+    const Vec3 f = p.f[i], torque = p.torque[i];
+    Vec3& v = p.v[i];
+    Vec3& w = p.w[i];
+    v.x += f.x * kick, v.y += f.y * kick, v.z += f.z * kick;
+    w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
+  }
+};
+
+// Kinetic energy of translation and of rotation of each grain [energy].
+struct KineticEnergy {
+  Particles p;
+  double* translation;
+  double* rotation;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    const bool grain = p.kind[i] == Kind::grain;
+    translation[i] = grain ? 0.5 * p.mass[i] * norm2(p.v[i]) : 0.0;
+    rotation[i] = grain && p.inv_inertia[i] > 0 ? 0.5 * norm2(p.w[i]) / p.inv_inertia[i] : 0.0;
+  }
+};
+
+// A sum in a fixed order: block b adds values [b B, (b + 1) B) one after the other; the host
+// then adds the blocks in order. The same bits on every backend.
+struct BlockSum {
+  const double* values;
+  std::uint32_t n, block;
+  double* partial;
+  YUXI_HD void operator()(std::uint32_t b) const {
+    double s = 0.0;
+    const std::uint32_t end = (b + 1) * block < n ? (b + 1) * block : n;
+    for (std::uint32_t k = b * block; k < end; ++k) s += values[k];
+    partial[b] = s;
+  }
+};
+
+} // namespace yuxi::device

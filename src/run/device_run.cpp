@@ -1,0 +1,127 @@
+#include "run/device_run.hpp"
+
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
+
+namespace yuxi {
+
+std::vector<std::string> device_engine_refusals(const Simulation& sim) {
+  std::vector<std::string> no;
+  if (sim.comm().size() > 1)
+    no.push_back(
+        fmt::format("{} MPI ranks (the device engine runs in one process)", sim.comm().size()));
+  if (!sim.planes().empty()) no.push_back("[[plane]] walls, or [domain] boundary = \"wall\"");
+  for (const ShapedWall& wall : sim.shaped_walls())
+    no.push_back(std::holds_alternative<CylinderWall>(wall) ? "a [[cylinder]] wall"
+                                                            : "a [[mesh]] wall");
+  for (const WallMotion& motion : sim.wall_motions())
+    if (!std::holds_alternative<StaticMotion>(motion)) {
+      no.push_back("wall particles in motion ([[wall_particles]] or the basin's vibration)");
+      break;
+    }
+  if (!sim.inserts().empty()) no.push_back("[[insert]] sources");
+  if (sim.has_outlets()) no.push_back("[[outlet]] sinks");
+  if (sim.config().on_escape != EscapePolicy::stop)
+    no.push_back("[domain] on_escape = \"remove\" (the device engine stops on an escape)");
+  return no;
+}
+
+namespace {
+
+// Tiles the particles and the box `r` times along each axis.
+void replicate(device::DeviceScene& scene, const Replicas& r) {
+  const device::HostParticles one = scene.particles;
+  GlobalId largest = 0;
+  for (const GlobalId id : one.gid) largest = std::max(largest, id);
+  device::HostParticles& all = scene.particles;
+  all = {};
+  const Vec3 length = scene.hi - scene.lo;
+  int copy = 0;
+  for (int cz = 0; cz < r.n[2]; ++cz)
+    for (int cy = 0; cy < r.n[1]; ++cy)
+      for (int cx = 0; cx < r.n[0]; ++cx, ++copy) {
+        const Vec3 shift{cx * length.x, cy * length.y, cz * length.z};
+        for (std::size_t i = 0; i < one.size(); ++i) {
+          all.x.push_back(one.x[i] + shift);
+          all.v.push_back(one.v[i]);
+          all.w.push_back(one.w[i]);
+          all.radius.push_back(one.radius[i]);
+          all.mass.push_back(one.mass[i]);
+          all.inv_mass.push_back(one.inv_mass[i]);
+          all.inv_inertia.push_back(one.inv_inertia[i]);
+          all.gid.push_back(one.gid[i] + copy * (largest + 1));
+          all.kind.push_back(one.kind[i]);
+          all.material.push_back(one.material[i]);
+        }
+      }
+  for (int a = 0; a < 3; ++a) scene.hi[a] = scene.lo[a] + r.n[a] * length[a];
+}
+
+template <class Model>
+std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
+                                                 const ContactLaw<Model>& law, DeviceChoice choice,
+                                                 const Replicas& replicas) {
+  device::DeviceScene scene;
+  const ParticleStore& s = sim.particles();
+  const std::size_t n = s.n_owned();
+  device::HostParticles& p = scene.particles;
+  p.x.assign(s.x.begin(), s.x.begin() + n);
+  p.v.assign(s.v.begin(), s.v.begin() + n);
+  p.w.assign(s.w.begin(), s.w.begin() + n);
+  p.radius.assign(s.radius.begin(), s.radius.begin() + n);
+  p.mass.assign(s.mass.begin(), s.mass.begin() + n);
+  p.inv_mass.assign(s.inv_mass.begin(), s.inv_mass.begin() + n);
+  p.inv_inertia.assign(s.inv_inertia.begin(), s.inv_inertia.begin() + n);
+  p.gid.assign(s.gid.begin(), s.gid.begin() + n);
+  p.kind.assign(s.kind.begin(), s.kind.begin() + n);
+  p.material.assign(s.material.begin(), s.material.begin() + n);
+  const SimulationConfig& c = sim.config();
+  scene.lo = c.box.lo;
+  scene.hi = c.box.hi;
+  for (int a = 0; a < 3; ++a) scene.periodic[a] = c.box.periodic(a);
+  scene.gravity = c.gravity;
+  scene.dt = c.dt;
+  scene.skin = c.skin;
+  scene.cell_size = c.cell_size;
+  scene.time = sim.time();
+  replicate(scene, replicas);
+  const std::size_t m = law.coeffs.n_materials();
+  scene.n_materials = m;
+  std::vector<typename Model::Coeffs> table(m * m);
+  for (std::size_t a = 0; a < m; ++a)
+    for (std::size_t b = 0; b < m; ++b)
+      if (law.coeffs.has(a, b)) table[a * m + b] = law.coeffs(a, b);
+  if (choice == DeviceChoice::cuda) {
+#if defined(YUXI_HAVE_CUDA)
+    return device::make_cuda_engine<Model>(scene, table);
+#else
+    throw std::runtime_error("this build of yuxi has no CUDA: configure it with -DYUXI_CUDA=ON "
+                             "(docs/gpu.md) to run on a GPU");
+#endif
+  }
+  return device::make_host_engine<Model>(scene, table);
+}
+
+} // namespace
+
+std::unique_ptr<device::DeviceEngine> make_device_engine(const Simulation& sim, DeviceChoice choice,
+                                                         Replicas replicas) {
+  std::vector<std::string> no = device_engine_refusals(sim);
+  for (int a = 0; a < 3; ++a)
+    if (replicas.n[a] < 1 || (replicas.n[a] > 1 && !sim.config().box.periodic(a)))
+      no.push_back(fmt::format("{} copies along axis {}, which is not periodic", replicas.n[a], a));
+  if (!no.empty()) {
+    std::string what = "the device engine does not run this scene's";
+    for (const std::string& line : no) what += "\n  - " + line;
+    throw std::invalid_argument(what);
+  }
+  return std::visit([&](const auto& law) { return engine_for(sim, law, choice, replicas); },
+                    sim.contact_law());
+}
+
+} // namespace yuxi

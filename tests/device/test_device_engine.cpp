@@ -1,0 +1,137 @@
+// The device engine's host build (Thrust's CPP system) against the CPU engine, on LAMMPS's chute
+// (32,000 spheres, the linear law with LAMMPS's friction convention, periodic in x and y, a
+// frozen rough base): the forces of the start to 1e-13 relative, the energy books after 1,000
+// steps to 1e-9, and its own runs repeated to the bit. Its sums run in another order than the CPU
+// engine's, so the two agree to round-off, not to the bit (docs/ARCHITECTURE.md, "The device
+// engine"). Label "device".
+#include "io/scene_reader.hpp"
+#include "run/device_run.hpp"
+#include "run/scene_builder.hpp"
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+#include <string>
+
+namespace yuxi {
+namespace {
+
+std::unique_ptr<Simulation> scene_simulation(const std::string& name) {
+  const std::string path = std::string(YUXI_SCENES_DIR "/") + name;
+  std::ifstream in(path);
+  const std::string text{std::istreambuf_iterator<char>(in), {}};
+  Scene scene = read_scene_text(text, path);
+  return build_simulation(scene, false);
+}
+
+// max over particles and components of |a - b|, over max |b|.
+double relative_difference(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      diff = std::max(diff, std::abs(a[i][k] - b[i][k]));
+      scale = std::max(scale, std::abs(b[i][k]));
+    }
+  return scale > 0 ? diff / scale : diff;
+}
+
+// The CPU engine's owned grains and walls, in global-id order (serial: all of them).
+ParticleStore by_id(const Simulation& sim) {
+  return sim.gather_particles();
+}
+
+TEST(DeviceEngine, ChuteStartForcesMatchTheCpuEngine) {
+  const auto sim = scene_simulation("chute-lammps.toml");
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  const device::HostParticles got = engine->particles();
+  const ParticleStore expected = by_id(*sim);
+  ASSERT_EQ(got.size(), expected.n_owned());
+  for (std::size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got.gid[i], expected.gid[i]);
+  // The grains' (the CPU engine's wall particles collect their contacts' reactions, the device
+  // engine's keep none: neither moves them).
+  std::vector<Vec3> f, t, got_f, got_t;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (expected.kind[i] == Kind::grain) {
+      f.push_back(expected.f[i]);
+      t.push_back(expected.torque[i]);
+      got_f.push_back(got.f[i]);
+      got_t.push_back(got.torque[i]);
+    }
+  ASSERT_GT(f.size(), 30000u);
+  EXPECT_GT(engine->listed_pairs(), 3 * got.size()) << "the chute is dense";
+  EXPECT_LE(relative_difference(got_f, f), 1e-13);
+  EXPECT_LE(relative_difference(got_t, t), 1e-13);
+  EXPECT_LE(relative_difference(
+                got.x, std::vector<Vec3>(expected.x.begin(), expected.x.begin() + got.size())),
+            0.0);
+}
+
+TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
+  const auto sim = scene_simulation("chute-lammps.toml");
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  const std::int64_t steps = 1000;
+  sim->run(steps);
+  engine->run(steps);
+  EXPECT_EQ(engine->step(), steps);
+  EXPECT_GT(engine->list_builds(), 5) << "the flow rebuilt its list";
+  const EnergyBooks cpu = sim->energies();
+  const device::DeviceEnergies dev = engine->energies();
+  const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+  EXPECT_PRED2(close, dev.translational, cpu.translational);
+  EXPECT_PRED2(close, dev.rotational, cpu.rotational);
+  EXPECT_PRED2(close, dev.elastic, cpu.elastic);
+  EXPECT_PRED2(close, dev.dissipated, cpu.dissipated);
+  EXPECT_PRED2(close, dev.gravity_work, cpu.gravity_work);
+  EXPECT_GT(cpu.dissipated, 0.0);
+  const device::HostParticles got = engine->particles();
+  const ParticleStore expected = by_id(*sim);
+  EXPECT_LE(relative_difference(
+                got.v, std::vector<Vec3>(expected.v.begin(), expected.v.begin() + got.size())),
+            1e-8);
+}
+
+TEST(DeviceEngine, RepeatsItselfToTheBit) {
+  const auto sim = scene_simulation("chute-lammps.toml");
+  const auto a = make_device_engine(*sim, DeviceChoice::host);
+  const auto b = make_device_engine(*sim, DeviceChoice::host);
+  a->run(300);
+  b->run(300);
+  const device::HostParticles pa = a->particles(), pb = b->particles();
+  ASSERT_EQ(pa.size(), pb.size());
+  EXPECT_EQ(std::memcmp(pa.x.data(), pb.x.data(), pa.size() * sizeof(Vec3)), 0);
+  EXPECT_EQ(std::memcmp(pa.v.data(), pb.v.data(), pa.size() * sizeof(Vec3)), 0);
+  EXPECT_EQ(std::memcmp(pa.w.data(), pb.w.data(), pa.size() * sizeof(Vec3)), 0);
+  const device::DeviceEnergies ea = a->energies(), eb = b->energies();
+  EXPECT_EQ(ea.dissipated, eb.dissipated);
+  EXPECT_EQ(ea.elastic, eb.elastic);
+}
+
+TEST(DeviceEngine, RefusesWhatItDoesNotRunByName) {
+  const auto sim = scene_simulation("basin-small.toml");
+  try {
+    make_device_engine(*sim, DeviceChoice::host);
+    FAIL() << "the basin's vibrating wall particles are not run on the device yet";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("wall particles in motion"), std::string::npos)
+        << e.what();
+  }
+}
+
+#if !defined(YUXI_HAVE_CUDA)
+TEST(DeviceEngine, AskingForAGpuWithoutCudaSaysHowToGetOne) {
+  const auto sim = scene_simulation("chute-lammps.toml");
+  try {
+    make_device_engine(*sim, DeviceChoice::cuda);
+    FAIL() << "this build has no CUDA";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("-DYUXI_CUDA=ON"), std::string::npos) << e.what();
+  }
+}
+#endif
+
+} // namespace
+} // namespace yuxi
