@@ -21,7 +21,7 @@ scripts/check-layers.sh
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null
 cmake --build --preset asan
-ctest --test-dir build/asan -L "unit|validation|cli|mpi" -LE "heavy|long|reliability" -j 2 \
+ctest --test-dir build/asan -L "unit|validation|cli|mpi|device" -LE "heavy|long|reliability" -j 2 \
   --output-on-failure
 
 echo "== fuzzers (bounded)"

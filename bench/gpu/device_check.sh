@@ -12,8 +12,9 @@
 #                  from the host's libm (bench/gpu/law_bits.cu);
 #   sanitizer.txt  compute-sanitizer memcheck and racecheck on a short law_bits run;
 #   engine.txt     the device engine on LAMMPS's chute: 32k grains on the GPU and in the host
-#                  build on this machine's CPU, with their digests (the same bits or not), and
-#                  the chute replicated to 960k grains on the GPU;
+#                  build on this machine's CPU, with their digests (the same bits or not), the
+#                  chute replicated to 960k grains on the GPU, and the chute under each other
+#                  contact law (scenes/chute-laws/) on both sides, digests compared;
 #   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
 #   cpu_chute.txt  yuxi's CPU engine on this machine's cores, the 32k chute on 1 rank and on one
 #                  rank per core: the baseline that the device engine is measured against.
@@ -66,6 +67,13 @@ echo "exit $status" >> "$out/law_bits.txt"
 gpu=$(grep -A8 '^== GPU, 32k' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
 host=$(grep -A8 '^== host build' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
 echo "GPU and host build bit for bit after 1000 steps: $([[ -n $gpu && $gpu == "$host" ]] && echo yes || echo "NO ($gpu, $host)")" >> "$out/engine.txt"
+# Every other contact law (scenes/chute-laws/): 300 steps on the GPU and in the host build.
+for law in hooke hertz luding thermo; do
+  scene=scenes/chute-laws/chute-$law.toml
+  gpu=$(timeout 60 device_chute_cuda "$scene" 300 --cuda 2>&1 | grep -oP 'digest \K\w+')
+  host=$(timeout 60 device_chute "$scene" 300 2>&1 | grep -oP 'digest \K\w+')
+  echo "$law: GPU $gpu, host build $host: $([[ -n $gpu && $gpu == "$host" ]] && echo "the same bits" || echo DIFFER)"
+done >> "$out/engine.txt"
 {
   echo "== memcheck, 20 steps"
   timeout 120 compute-sanitizer --tool memcheck device_chute_cuda scenes/chute-lammps.toml 20 --cuda 2>&1 | tail -4

@@ -198,6 +198,7 @@ public:
     e.translational = ordered_sum(translation);
     e.rotational = ordered_sum(rotation);
     e.elastic = ordered_sum(elastic_);
+    e.relaxation = ordered_sum(relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
     return e;
@@ -215,8 +216,8 @@ public:
            bytes(count_) + bytes(row_start_) + bytes(partner_) + bytes(pair_row_) + bytes(image_) +
            bytes(reverse_start_) + bytes(reverse_pair_) + bytes(state_) + bytes(open_) +
            bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
-           bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) +
-           bytes(coeffs_);
+           bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
+           bytes(partial_) + bytes(coeffs_);
   }
 
   std::string device_name() const override {
@@ -249,7 +250,8 @@ private:
                     raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
   }
   PairOutput pair_output() {
-    return PairOutput{raw(force_), raw(torque_i_), raw(torque_j_), raw(elastic_), raw(dissipated_)};
+    return PairOutput{raw(force_),   raw(torque_i_),   raw(torque_j_),
+                      raw(elastic_), raw(relaxation_), raw(dissipated_)};
   }
 
   // Sum of v in a fixed order (BlockSum): the same bits on the GPU and on the CPU.
@@ -381,6 +383,7 @@ private:
     torque_i_.resize(total);
     torque_j_.resize(total);
     elastic_.resize(total);
+    relaxation_.resize(total);
     dissipated_.resize(total);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
                                                 n_open, raw(state_), raw(open_)});
@@ -420,7 +423,7 @@ private:
   DeviceVector<State> state_;
   DeviceVector<std::uint8_t> open_;
   DeviceVector<Vec3> force_, torque_i_, torque_j_;
-  DeviceVector<double> elastic_, dissipated_;
+  DeviceVector<double> elastic_, relaxation_, dissipated_;
   DeviceVector<double> gravity_work_;
   DeviceVector<std::uint32_t> moved_far_;
   DeviceVector<double> partial_;

@@ -46,8 +46,9 @@ struct DeviceScene {
 struct DeviceEnergies {
   double translational = 0, rotational = 0; // now
   double elastic = 0;                       // held in the contacts' springs now
-  double dissipated = 0;                    // since the start, releases included
-  double gravity_work = 0;                  // of periodic gravity since the start
+  double relaxation = 0;   // held in the contacts' relaxation buffers now (thermodynamic law)
+  double dissipated = 0;   // since the start, releases included
+  double gravity_work = 0; // of periodic gravity since the start
 };
 
 class DeviceEngine {

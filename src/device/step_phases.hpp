@@ -231,6 +231,7 @@ struct PairOutput {
   Vec3* torque_i; // on i
   Vec3* torque_j; // on j
   double* elastic;
+  double* relaxation; // held in the contact's relaxation buffer (the thermodynamic law)
   double* dissipated; // this step, releases of parted contacts included
 };
 
@@ -269,6 +270,7 @@ template <class Model> struct PairForces {
     out.torque_i[pair] = r.torque_i;
     out.torque_j[pair] = r.torque_j;
     out.elastic[pair] = r.elastic;
+    out.relaxation[pair] = r.relaxation;
     out.dissipated[pair] = r.dissipated + released;
   }
 };

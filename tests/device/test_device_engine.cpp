@@ -39,6 +39,20 @@ double relative_difference(const std::vector<Vec3>& a, const std::vector<Vec3>& 
   return scale > 0 ? diff / scale : diff;
 }
 
+// Every book of the device engine against the CPU engine's, within `relative` of the CPU's.
+void expect_books_agree(const device::DeviceEnergies& dev, const EnergyBooks& cpu,
+                        double relative) {
+  const auto close = [relative](double a, double b) {
+    return std::abs(a - b) <= relative * std::abs(b);
+  };
+  EXPECT_PRED2(close, dev.translational, cpu.translational);
+  EXPECT_PRED2(close, dev.rotational, cpu.rotational);
+  EXPECT_PRED2(close, dev.elastic, cpu.elastic);
+  EXPECT_PRED2(close, dev.relaxation, cpu.relaxation);
+  EXPECT_PRED2(close, dev.dissipated, cpu.dissipated);
+  EXPECT_PRED2(close, dev.gravity_work, cpu.gravity_work);
+}
+
 // The CPU engine's owned grains and walls, in global-id order (serial: all of them).
 ParticleStore by_id(const Simulation& sim) {
   return sim.gather_particles();
@@ -80,12 +94,7 @@ TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
   EXPECT_GT(engine->list_builds(), 5) << "the flow rebuilt its list";
   const EnergyBooks cpu = sim->energies();
   const device::DeviceEnergies dev = engine->energies();
-  const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
-  EXPECT_PRED2(close, dev.translational, cpu.translational);
-  EXPECT_PRED2(close, dev.rotational, cpu.rotational);
-  EXPECT_PRED2(close, dev.elastic, cpu.elastic);
-  EXPECT_PRED2(close, dev.dissipated, cpu.dissipated);
-  EXPECT_PRED2(close, dev.gravity_work, cpu.gravity_work);
+  expect_books_agree(dev, cpu, 1e-9);
   EXPECT_GT(cpu.dissipated, 0.0);
   const device::HostParticles got = engine->particles();
   const ParticleStore expected = by_id(*sim);
@@ -93,6 +102,37 @@ TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
                 got.v, std::vector<Vec3>(expected.v.begin(), expected.v.begin() + got.size())),
             1e-8);
 }
+
+// Every other contact law, 300 steps of the chute under it (scenes/chute-laws/): the device
+// engine's host build against the CPU engine, the energy books to 1e-9 and the velocities to
+// 1e-8.
+class DeviceEngineLaw : public testing::TestWithParam<const char*> {};
+
+TEST_P(DeviceEngineLaw, AgreesWithTheCpuEngine) {
+  const auto sim = scene_simulation(std::string("chute-laws/chute-") + GetParam() + ".toml");
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  const std::int64_t steps = 300;
+  sim->run(steps);
+  engine->run(steps);
+  const EnergyBooks cpu = sim->energies();
+  const device::DeviceEnergies dev = engine->energies();
+  ASSERT_GT(cpu.dissipated, 0.0) << "the law dissipates in this flow";
+  ASSERT_GT(sim->last_tally().touching, 5000u) << "a dense flow";
+  expect_books_agree(dev, cpu, 1e-9);
+  const device::HostParticles got = engine->particles();
+  const ParticleStore expected = by_id(*sim);
+  const auto owned = [&](const std::vector<Vec3>& a) {
+    return std::vector<Vec3>(a.begin(), a.begin() + got.size());
+  };
+  EXPECT_LE(relative_difference(got.v, owned(expected.v)), 1e-8);
+  EXPECT_LE(relative_difference(got.w, owned(expected.w)), 1e-8);
+}
+
+INSTANTIATE_TEST_SUITE_P(Laws, DeviceEngineLaw,
+                         testing::Values("hooke", "hertz", "luding", "thermo"),
+                         [](const testing::TestParamInfo<const char*>& law) {
+                           return std::string(law.param);
+                         });
 
 TEST(DeviceEngine, RepeatsItselfToTheBit) {
   const auto sim = scene_simulation("chute-lammps.toml");
