@@ -52,7 +52,8 @@ seam=(src/core/host_device.hpp src/core/always_inline.hpp src/core/units.hpp src
   src/core/particle_fields.hpp src/core/particle_view.hpp src/contact/contact_geometry.hpp src/contact/frictional_spring.hpp
   src/contact/rolling_resistance.hpp src/contact/hooke.hpp src/contact/linear_spring_dashpot.hpp
   src/contact/hertz_mindlin.hpp src/contact/luding.hpp src/contact/thermodynamic.hpp
-  src/contact/thermodynamic_law.hpp src/core/portable_math.hpp src/device/step_phases.hpp)
+  src/contact/thermodynamic_law.hpp src/core/portable_math.hpp src/core/radial_wave.hpp
+  src/device/step_phases.hpp)
 standard=" cmath cstdint cstddef cstring algorithm limits string_view numbers type_traits array "
 for header in "${seam[@]}"; do
   while IFS= read -r line; do

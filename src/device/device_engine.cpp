@@ -50,6 +50,15 @@ template <class T> std::size_t bytes(const DeviceVector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
+// Thrust 1.17's CPP system grows an empty vector by copying its no elements from a null pointer
+// with memmove, which UBSan rejects: an empty vector is replaced by a new one instead.
+template <class T> void resize(DeviceVector<T>& v, std::size_t n) {
+  if (!v.empty())
+    v.resize(n);
+  else if (n > 0)
+    DeviceVector<T>(n).swap(v);
+}
+
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
 template <class F> void for_each_index(std::uint32_t n, const F& f) {
   if (n == 0) return;
@@ -74,15 +83,30 @@ struct MarkRows {
 };
 
 // A grain outside the box along an open axis.
+// 1 for a grain outside the box along an open axis (NaN too), and its mechanical energy
+// 0.5 m v^2 + 0.5 J w^2 - m g_p . x (sim/energy_ledger.hpp, mechanical_energy); 0 for the others.
 struct Escaped {
   Particles p;
   DeviceBox box;
-  YUXI_HD bool operator()(std::uint32_t i) const {
-    if (p.kind[i] != Kind::grain) return false;
-    for (int a = 0; a < 3; ++a)
-      if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) return true;
-    return false;
+  Vec3 g_potential;
+  std::uint32_t* gone;
+  double* energy;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    bool out = false;
+    if (p.kind[i] == Kind::grain)
+      for (int a = 0; a < 3; ++a)
+        if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) out = true;
+    gone[i] = out ? 1 : 0;
+    const double inv = p.inv_inertia[i];
+    energy[i] = !out ? 0.0
+                     : 0.5 * p.mass[i] * norm2(p.v[i]) +
+                           (inv > 0 ? 0.5 * norm2(p.w[i]) / inv : 0.0) -
+                           p.mass[i] * dot(g_potential, p.x[i]);
   }
+};
+
+struct IsZero {
+  YUXI_HD bool operator()(std::uint32_t b) const { return b == 0; }
 };
 
 template <class Model> class Engine final : public DeviceEngine {
@@ -90,7 +114,8 @@ public:
   using State = typename Model::State;
   using Coeffs = typename Model::Coeffs;
 
-  Engine(const DeviceScene& scene, const std::vector<Coeffs>& coeffs) {
+  Engine(const DeviceScene& scene, const std::vector<Coeffs>& coeffs,
+         const std::vector<KeyedState<State>>& contacts) {
     const HostParticles& hp = scene.particles;
     if (hp.size() >= (std::size_t{1} << 31))
       throw std::invalid_argument("device engine: more than 2^31 particles");
@@ -106,8 +131,13 @@ public:
     x_ = hp.x;
     v_ = hp.v;
     w_ = hp.w;
-    f_.assign(n_, Vec3{});
-    torque_.assign(n_, Vec3{});
+    if (scene.forces_given) {
+      f_ = hp.f;
+      torque_ = hp.torque;
+    } else {
+      f_.assign(n_, Vec3{});
+      torque_.assign(n_, Vec3{});
+    }
     x_build_ = hp.x;
     radius_ = hp.radius;
     mass_ = hp.mass;
@@ -116,6 +146,21 @@ public:
     gid_ = hp.gid;
     kind_ = hp.kind;
     material_ = hp.material;
+    x_rest_ = hp.x_rest.size() == hp.size() ? hp.x_rest : hp.x;
+    if (hp.motion.size() == hp.size())
+      motion_ = hp.motion;
+    else
+      motion_.assign(n_, std::uint16_t{0});
+    motions_ = scene.motions.empty() ? std::vector<DeviceMotion>(1) : scene.motions;
+    if (motions_.size() > static_cast<std::size_t>(max_wall_motions))
+      throw std::invalid_argument("device engine: " + std::to_string(motions_.size()) +
+                                  " wall motions; it runs at most " +
+                                  std::to_string(max_wall_motions));
+    for (const std::uint16_t m : hp.motion)
+      if (m >= motions_.size())
+        throw std::invalid_argument("device engine: a wall particle of motion " +
+                                    std::to_string(m) + ", beyond the scene's " +
+                                    std::to_string(motions_.size()));
     coeffs_ = coeffs;
     n_materials_ = static_cast<std::uint32_t>(scene.n_materials);
 
@@ -124,6 +169,8 @@ public:
     for (int a = 0; a < 3; ++a) box_.periodic[a] = scene.periodic[a];
     gravity_ = scene.gravity;
     for (int a = 0; a < 3; ++a) g_periodic_[a] = scene.periodic[a] ? scene.gravity[a] : 0.0;
+    g_potential_ = scene.gravity - g_periodic_;
+    remove_escaped_ = scene.remove_escaped;
     dt_ = scene.dt;
     skin_ = scene.skin;
     time_ = scene.time;
@@ -139,10 +186,31 @@ public:
         throw std::invalid_argument("device engine: the periodic box is less than 3 cells of " +
                                     std::to_string(edge) + " along axis " + std::to_string(a));
     }
-    gravity_work_.resize(n_);
-    moved_far_.resize(n_);
+    resize(gravity_work_, n_);
+    resize(moved_far_, n_);
+    // The open contacts at the start, sorted by key: the first list build takes them back.
+    std::vector<std::pair<std::uint64_t, State>> open(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      open[k] = {contact_key(contacts[k].first, contacts[k].second), contacts[k].state};
+    std::sort(open.begin(), open.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::uint64_t> keys(open.size());
+    std::vector<State> states(open.size());
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      keys[k] = open[k].first;
+      states[k] = open[k].second;
+    }
+    if (!keys.empty()) {
+      start_keys_ = keys;
+      start_states_ = states;
+    }
     build_list();
-    compute_forces(0.0); // the start: the history does not advance
+    start_keys_.clear();
+    start_states_.clear();
+    // The forces of the start, without advancing the history, unless they came with the state:
+    // a run continued mid-way keeps the forces its last step computed, at the half-step
+    // velocities, as a resumed checkpoint does.
+    if (!scene.forces_given) compute_forces(0.0);
   }
 
   void run(std::int64_t steps) override {
@@ -153,7 +221,7 @@ public:
     HostParticles h;
     const auto get = [&](const auto& from, auto& to) {
       to.resize(from.size());
-      thrust::copy(from.begin(), from.end(), to.begin());
+      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
     };
     HostParticles sorted;
     get(x_, sorted.x);
@@ -168,6 +236,8 @@ public:
     get(gid_, sorted.gid);
     get(kind_, sorted.kind);
     get(material_, sorted.material);
+    get(x_rest_, sorted.x_rest);
+    get(motion_, sorted.motion);
     std::vector<std::uint32_t> order(n_);
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(),
@@ -188,6 +258,8 @@ public:
     pick(sorted.gid, h.gid);
     pick(sorted.kind, h.kind);
     pick(sorted.material, h.material);
+    pick(sorted.x_rest, h.x_rest);
+    pick(sorted.motion, h.motion);
     return h;
   }
 
@@ -201,6 +273,9 @@ public:
     e.relaxation = ordered_sum(relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
+    e.wall_work = wall_work_total_;
+    e.removed = removed_total_;
+    e.escaped = escaped_;
     return e;
   }
 
@@ -212,12 +287,12 @@ public:
   std::size_t device_bytes() const override {
     return bytes(x_) + bytes(v_) + bytes(w_) + bytes(f_) + bytes(torque_) + bytes(x_build_) +
            bytes(radius_) + bytes(mass_) + bytes(inv_mass_) + bytes(inv_inertia_) + bytes(gid_) +
-           bytes(kind_) + bytes(material_) + bytes(cell_) + bytes(order_) + bytes(cell_start_) +
-           bytes(count_) + bytes(row_start_) + bytes(partner_) + bytes(pair_row_) + bytes(image_) +
-           bytes(reverse_start_) + bytes(reverse_pair_) + bytes(state_) + bytes(open_) +
-           bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
-           bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
-           bytes(partial_) + bytes(coeffs_);
+           bytes(x_rest_) + bytes(motion_) + bytes(wall_work_) + bytes(kind_) + bytes(material_) +
+           bytes(cell_) + bytes(order_) + bytes(cell_start_) + bytes(count_) + bytes(row_start_) +
+           bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
+           bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(force_) + bytes(torque_i_) +
+           bytes(torque_j_) + bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) +
+           bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) + bytes(coeffs_);
   }
 
   std::string device_name() const override {
@@ -250,8 +325,8 @@ private:
                     raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
   }
   PairOutput pair_output() {
-    return PairOutput{raw(force_),   raw(torque_i_),   raw(torque_j_),
-                      raw(elastic_), raw(relaxation_), raw(dissipated_)};
+    return PairOutput{raw(force_),      raw(torque_i_),   raw(torque_j_), raw(elastic_),
+                      raw(relaxation_), raw(dissipated_), raw(wall_work_)};
   }
 
   // Sum of v in a fixed order (BlockSum): the same bits on the GPU and on the CPU.
@@ -260,7 +335,7 @@ private:
     if (n == 0) return 0.0;
     const std::uint32_t blocks = (n + block - 1) / block;
     DeviceVector<double>& partial = const_cast<Engine&>(*this).partial_;
-    if (partial.size() < blocks) partial.resize(blocks);
+    if (partial.size() < blocks) resize(partial, blocks);
     for_each_index(blocks, BlockSum{raw(v), n, block, raw(partial)});
     std::vector<double> host(blocks);
     thrust::copy(partial.begin(), partial.begin() + blocks, host.begin());
@@ -273,10 +348,47 @@ private:
   template <class T>
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
-    scratch.resize(field.size());
+    resize(scratch, order.size());
     thrust::gather(thrust::device, order.begin(), order.end(), field.begin(), scratch.begin());
     field.swap(scratch);
   }
+  // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
+  void remove_escaped() {
+    DeviceVector<std::uint32_t> gone(n_);
+    DeviceVector<double> energy(n_);
+    for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
+    const std::uint32_t n_gone =
+        thrust::reduce(thrust::device, gone.begin(), gone.end(), std::uint32_t{0});
+    if (n_gone == 0) return;
+    if (!remove_escaped_)
+      throw std::runtime_error("device engine: " + std::to_string(n_gone) +
+                               " grains left the box through an open face at step " +
+                               std::to_string(step_) + " (on_escape = \"stop\")");
+    removed_total_ += ordered_sum(energy);
+    escaped_ += n_gone;
+    DeviceVector<std::uint32_t> keep(n_ - n_gone);
+    thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+                    thrust::counting_iterator<std::uint32_t>(n_), gone.begin(), keep.begin(),
+                    IsZero{});
+    DeviceVector<Vec3> v3;
+    DeviceVector<double> d;
+    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_, &x_rest_})
+      permute_by(keep, *field, v3);
+    for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
+      permute_by(keep, *field, d);
+    DeviceVector<GlobalId> g;
+    permute_by(keep, gid_, g);
+    DeviceVector<Kind> k;
+    permute_by(keep, kind_, k);
+    DeviceVector<std::uint8_t> m;
+    permute_by(keep, material_, m);
+    DeviceVector<std::uint16_t> motion;
+    permute_by(keep, motion_, motion);
+    n_ -= n_gone;
+    resize(gravity_work_, n_);
+    resize(moved_far_, n_);
+  }
+
   // Reorders a per-particle array by order_ (the cell sort).
   template <class T> void permute(DeviceVector<T>& field, DeviceVector<T>& scratch) {
     permute_by(order_, field, scratch);
@@ -304,20 +416,20 @@ private:
       DeviceVector<State> scratch;
       permute_by(by_key, stashed, scratch);
     }
+    if (builds_ == 0 && !start_keys_.empty()) { // the start: the contacts the engine was given
+      keys = start_keys_;
+      stashed = start_states_;
+    }
+    const std::uint32_t n_stashed = static_cast<std::uint32_t>(keys.size());
 
-    // 2. Grains that left through an open face stop the run.
-    const auto escaped =
-        thrust::count_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                         thrust::counting_iterator<std::uint32_t>(n_), Escaped{view(), box_});
-    if (escaped > 0)
-      throw std::runtime_error("device engine: " + std::to_string(escaped) +
-                               " grains left the box through an open face at step " +
-                               std::to_string(step_));
+    // 2. Grains that left through an open face stop the run, or leave it with their mechanical
+    // energy booked as removed (Simulation::handle_escapes_here).
+    remove_escaped();
 
     // 3. Wrap, sort by cell (stable: equal cells keep their order), and find each cell's start.
-    cell_.resize(n_);
+    resize(cell_, n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(cell_)});
-    order_.resize(n_);
+    resize(order_, n_);
     thrust::sequence(thrust::device, order_.begin(), order_.end());
     thrust::stable_sort_by_key(thrust::device, cell_.begin(), cell_.end(), order_.begin());
     {
@@ -329,6 +441,7 @@ private:
       permute(f_, v3);
       permute(torque_, v3);
       permute(x_build_, v3);
+      permute(x_rest_, v3);
       permute(radius_, d);
       permute(mass_, d);
       permute(inv_mass_, d);
@@ -339,25 +452,27 @@ private:
       permute(kind_, k);
       DeviceVector<std::uint8_t> m;
       permute(material_, m);
+      DeviceVector<std::uint16_t> motion;
+      permute(motion_, motion);
     }
-    cell_start_.resize(cells_.count() + 1);
+    resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
         thrust::device, cell_.begin(), cell_.end(), thrust::counting_iterator<std::uint32_t>(0),
         thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), cell_start_.begin());
 
     // 4. The half list: count, offsets, fill.
-    count_.resize(n_);
+    resize(count_, n_);
     FindPartners find{view(),      box_,    cells_,  raw(cell_start_), skin_,
                       raw(count_), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
-    row_start_.resize(n_ + 1);
+    resize(row_start_, n_ + 1);
     thrust::exclusive_scan(thrust::device, count_.begin(), count_.end(), row_start_.begin());
     const std::uint32_t total =
         n_ == 0 ? 0 : read_one(row_start_, n_ - 1) + read_one(count_, n_ - 1);
     row_start_[n_] = total;
-    partner_.resize(total);
-    image_.resize(total);
-    pair_row_.resize(total);
+    resize(partner_, total);
+    resize(image_, total);
+    resize(pair_row_, total);
     find.count = nullptr;
     find.out_start = raw(row_start_);
     find.partner = raw(partner_);
@@ -367,26 +482,27 @@ private:
 
     // 5. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
-    reverse_pair_.resize(total);
+    resize(reverse_pair_, total);
     thrust::sequence(thrust::device, reverse_pair_.begin(), reverse_pair_.end());
     thrust::stable_sort_by_key(thrust::device, partner_sorted.begin(), partner_sorted.end(),
                                reverse_pair_.begin());
-    reverse_start_.resize(n_ + 1);
+    resize(reverse_start_, n_ + 1);
     thrust::lower_bound(thrust::device, partner_sorted.begin(), partner_sorted.end(),
                         thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), reverse_start_.begin());
 
     // 6. Per-pair room, and the open contacts' states back in their new pairs.
-    state_.resize(total);
-    open_.resize(total);
-    force_.resize(total);
-    torque_i_.resize(total);
-    torque_j_.resize(total);
-    elastic_.resize(total);
-    relaxation_.resize(total);
-    dissipated_.resize(total);
+    resize(state_, total);
+    resize(open_, total);
+    resize(force_, total);
+    resize(torque_i_, total);
+    resize(torque_j_, total);
+    resize(elastic_, total);
+    resize(relaxation_, total);
+    resize(dissipated_, total);
+    resize(wall_work_, total);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
-                                                n_open, raw(state_), raw(open_)});
+                                                n_stashed, raw(state_), raw(open_)});
     ++builds_;
   }
 
@@ -403,12 +519,30 @@ private:
     gravity_work_total_ += ordered_sum(gravity_work_);
     time_ += dt_;
     ++step_;
+    place_walls();
     const bool build = thrust::reduce(thrust::device, moved_far_.begin(), moved_far_.end(),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     if (build) build_list();
     compute_forces(dt_);
     for_each_index(n_, FinalKick{view(), dt_});
     dissipated_total_ += ordered_sum(dissipated_);
+    wall_work_total_ += ordered_sum(wall_work_);
+  }
+
+  // The wall particles of each started motion at time_ (RadialCosineMotion::at_time, on the
+  // host: the same sine and cosine for every backend).
+  void place_walls() {
+    PlaceWalls place{view(), raw(x_rest_), raw(motion_), {}, 0.25 * skin_ * skin_, raw(moved_far_)};
+    bool any = false;
+    for (std::size_t k = 0; k < motions_.size(); ++k) {
+      const DeviceMotion& m = motions_[k];
+      if (!m.radial_cosine || time_ < m.t0) continue;
+      const double phase = m.omega * (time_ - m.t0);
+      place.now[k] = MotionNow{true, m.center, std::abs(m.mode), m.amplitude * std::sin(phase),
+                               m.omega * m.amplitude * std::cos(phase)};
+      any = true;
+    }
+    if (any) for_each_index(n_, place);
   }
 
   std::uint32_t n_ = 0, n_materials_ = 1;
@@ -432,7 +566,17 @@ private:
   DeviceCells cells_;
   Vec3 gravity_, g_periodic_;
   double dt_ = 0, skin_ = 0, time_ = 0;
-  double dissipated_total_ = 0, gravity_work_total_ = 0;
+  double dissipated_total_ = 0, gravity_work_total_ = 0, wall_work_total_ = 0;
+  double removed_total_ = 0;
+  std::int64_t escaped_ = 0;
+  bool remove_escaped_ = false;
+  Vec3 g_potential_;
+  DeviceVector<Vec3> x_rest_;
+  DeviceVector<std::uint16_t> motion_;
+  DeviceVector<double> wall_work_;
+  std::vector<DeviceMotion> motions_;
+  DeviceVector<std::uint64_t> start_keys_;
+  DeviceVector<State> start_states_;
   std::int64_t step_ = 0, builds_ = 0;
 };
 
@@ -448,18 +592,20 @@ private:
 
 template <class Model>
 std::unique_ptr<DeviceEngine>
-YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs) {
+YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
+                    const std::vector<KeyedState<typename Model::State>>& contacts) {
 #if defined(__CUDACC__)
   int devices = 0;
   if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0)
     throw std::runtime_error("device engine: this build runs on a GPU, and no CUDA GPU was found");
 #endif
-  return std::make_unique<Engine<Model>>(scene, coeffs);
+  return std::make_unique<Engine<Model>>(scene, coeffs, contacts);
 }
 
 #define YUXI_INSTANTIATE_ENGINE(Model)                                                             \
   template std::unique_ptr<DeviceEngine> YUXI_ENGINE_FACTORY<Model>(                               \
-      const DeviceScene&, const std::vector<Model::Coeffs>&);
+      const DeviceScene&, const std::vector<Model::Coeffs>&,                                       \
+      const std::vector<KeyedState<Model::State>>&);
 YUXI_INSTANTIATE_ENGINE(LinearSpringDashpot)
 YUXI_INSTANTIATE_ENGINE(HertzMindlin)
 YUXI_INSTANTIATE_ENGINE(Luding)

@@ -22,17 +22,27 @@ namespace yuxi::device {
 
 // The particles a device engine starts from, or that it gives back (in global-id order).
 struct HostParticles {
-  std::vector<Vec3> x, v, w, f, torque;
+  std::vector<Vec3> x, v, w, f, torque, x_rest;
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   std::vector<GlobalId> gid;
   std::vector<Kind> kind;
   std::vector<std::uint8_t> material;
+  std::vector<std::uint16_t> motion; // a wall particle's index into DeviceScene::motions
   std::size_t size() const { return x.size(); }
+};
+
+// A wall particles' motion: standing still, or the fish basin's radial cosine wave
+// (scene/wall_motion.hpp, RadialCosineMotion).
+struct DeviceMotion {
+  bool radial_cosine = false;
+  Vec3 center;
+  int mode = 2;
+  double amplitude = 0, omega = 0, t0 = 0;
 };
 
 // What the device engine runs: particles in a box that is periodic or open along each axis,
 // gravity, one contact law with its coefficients per material pair (Model::Coeffs, row-major,
-// n_materials^2 of them). Wall particles stand still.
+// n_materials^2 of them), wall particles standing or moving by one of `motions` (at most 8).
 struct DeviceScene {
   HostParticles particles;
   Vec3 lo, hi;
@@ -40,15 +50,23 @@ struct DeviceScene {
   Vec3 gravity;
   double dt = 0, skin = 0, cell_size = 0, time = 0;
   std::size_t n_materials = 1;
+  std::vector<DeviceMotion> motions;
+  bool remove_escaped = false; // a grain out of the box leaves (else it stops the run)
+  // The particles' f and torque are those of the last step (a run continued mid-way): kept, not
+  // computed again at the start.
+  bool forces_given = false;
 };
 
 // The energy books, each summed in a fixed order [energy].
 struct DeviceEnergies {
   double translational = 0, rotational = 0; // now
   double elastic = 0;                       // held in the contacts' springs now
-  double relaxation = 0;   // held in the contacts' relaxation buffers now (thermodynamic law)
-  double dissipated = 0;   // since the start, releases included
-  double gravity_work = 0; // of periodic gravity since the start
+  double relaxation = 0;    // held in the contacts' relaxation buffers now (thermodynamic law)
+  double dissipated = 0;    // since the start, releases included
+  double gravity_work = 0;  // of periodic gravity since the start
+  double wall_work = 0;     // of moving wall particles on the grains since the start
+  double removed = 0;       // mechanical energy of the grains removed on escape since the start
+  std::int64_t escaped = 0; // grains removed on escape since the start
 };
 
 class DeviceEngine {
@@ -75,11 +93,20 @@ public:
 // of the start (without advancing the contacts' history), as the CPU engine does. Throws
 // std::invalid_argument naming what it cannot run (a periodic axis of fewer than 3 cells, ids
 // beyond 32 bits), and make_cuda_engine std::runtime_error where no GPU is found.
+//
+// `contacts` are the contacts open at the start (a run continued from another engine): each
+// keyed by its particles' ids, smaller first, its state as seen from the smaller.
+template <class State> struct KeyedState {
+  GlobalId first = 0, second = 0;
+  State state;
+};
 template <class Model>
-std::unique_ptr<DeviceEngine> make_host_engine(const DeviceScene& scene,
-                                               const std::vector<typename Model::Coeffs>& coeffs);
+std::unique_ptr<DeviceEngine>
+make_host_engine(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
+                 const std::vector<KeyedState<typename Model::State>>& contacts = {});
 template <class Model>
-std::unique_ptr<DeviceEngine> make_cuda_engine(const DeviceScene& scene,
-                                               const std::vector<typename Model::Coeffs>& coeffs);
+std::unique_ptr<DeviceEngine>
+make_cuda_engine(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
+                 const std::vector<KeyedState<typename Model::State>>& contacts = {});
 
 } // namespace yuxi::device

@@ -9,6 +9,7 @@
 #include "contact/contact_geometry.hpp"
 #include "core/host_device.hpp"
 #include "core/particle_fields.hpp"
+#include "core/radial_wave.hpp"
 #include "core/vec3.hpp"
 
 #include <cstdint>
@@ -233,6 +234,7 @@ struct PairOutput {
   double* elastic;
   double* relaxation; // held in the contact's relaxation buffer (the thermodynamic law)
   double* dissipated; // this step, releases of parted contacts included
+  double* wall_work;  // this step, by a moving wall particle on its partner
 };
 
 // The contact law on each listed pair (contact_forces.hpp's sweep and compute_pairs): a pair
@@ -255,12 +257,15 @@ template <class Model> struct PairForces {
     const double touch = p.radius[i] + p.radius[j];
     const typename Model::Coeffs& c = coeffs[p.material[i] * n_materials + p.material[j]];
     ContactResult r;
-    double released = 0.0;
+    double released = 0.0, work = 0.0;
     if (r2 < touch * touch) {
       open[pair] = 1;
       const ContactGeometry g = pair_geometry(d, r2, p.radius[i], p.radius[j], p.v[i], p.v[j],
                                               p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
       r = Model::evaluate(g, c, state[pair]);
+      // Work of a wall particle's prescribed motion (contact_forces.hpp, book_wall_work).
+      if (p.kind[j] == Kind::wall) work += dot(r.force, p.v[j]) * dt;
+      if (p.kind[i] == Kind::wall) work -= dot(r.force, p.v[i]) * dt;
     } else if (open[pair]) {
       released = Model::release(c, state[pair]);
       state[pair] = typename Model::State{};
@@ -272,6 +277,7 @@ template <class Model> struct PairForces {
     out.elastic[pair] = r.elastic;
     out.relaxation[pair] = r.relaxation;
     out.dissipated[pair] = r.dissipated + released;
+    out.wall_work[pair] = work;
   }
 };
 
@@ -334,6 +340,36 @@ struct KickDrift {
     p.v[i] = v;
     p.w[i] = w;
     p.x[i] = x;
+  }
+};
+
+// A wall motion at one time, as the host computed it: sine and cosine once per step on the
+// host, so that every backend places the walls with the same bits (scene/wall_motion.hpp).
+struct MotionNow {
+  bool moving = false; // a radial cosine wave that has started; otherwise the walls stand
+  Vec3 center;
+  int mode = 0;
+  double radial = 0, speed = 0;
+};
+constexpr int max_wall_motions = 8;
+
+// Wall particles in motion placed at the new time (Walls::place), and whether each moved more
+// than half the skin since the last list build.
+struct PlaceWalls {
+  Particles p;
+  const Vec3* x_rest;
+  const std::uint16_t* motion;
+  MotionNow now[max_wall_motions];
+  double limit2;
+  std::uint32_t* moved_far;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    if (p.kind[i] == Kind::grain) return;
+    const MotionNow& m = now[motion[i]];
+    if (!m.moving) return;
+    const PlacedPoint q = radial_cosine_place(m.center, m.mode, m.radial, m.speed, x_rest[i]);
+    p.x[i] = q.position;
+    p.v[i] = q.velocity;
+    if (!(norm2(q.position - p.x_build[i]) <= limit2)) moved_far[i] = 1;
   }
 };
 

@@ -1,5 +1,6 @@
 #include "run/device_run.hpp"
 
+#include "device/step_phases.hpp"
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -20,14 +21,15 @@ std::vector<std::string> device_engine_refusals(const Simulation& sim) {
     no.push_back(std::holds_alternative<CylinderWall>(wall) ? "a [[cylinder]] wall"
                                                             : "a [[mesh]] wall");
   for (const WallMotion& motion : sim.wall_motions())
-    if (!std::holds_alternative<StaticMotion>(motion)) {
-      no.push_back("wall particles in motion ([[wall_particles]] or the basin's vibration)");
+    if (std::holds_alternative<RigidMotion>(motion)) {
+      no.push_back("wall particles in rigid motion ([[wall_particles]] with a motion)");
       break;
     }
+  if (sim.wall_motions().size() > static_cast<std::size_t>(device::max_wall_motions))
+    no.push_back(fmt::format("{} wall motions (at most {})", sim.wall_motions().size(),
+                             device::max_wall_motions));
   if (!sim.inserts().empty()) no.push_back("[[insert]] sources");
   if (sim.has_outlets()) no.push_back("[[outlet]] sinks");
-  if (sim.config().on_escape != EscapePolicy::stop)
-    no.push_back("[domain] on_escape = \"remove\" (the device engine stops on an escape)");
   return no;
 }
 
@@ -57,6 +59,12 @@ void replicate(device::DeviceScene& scene, const Replicas& r) {
           all.gid.push_back(one.gid[i] + copy * (largest + 1));
           all.kind.push_back(one.kind[i]);
           all.material.push_back(one.material[i]);
+          all.x_rest.push_back(one.x_rest[i] + shift);
+          if (!one.f.empty()) {
+            all.f.push_back(one.f[i]);
+            all.torque.push_back(one.torque[i]);
+          }
+          all.motion.push_back(one.motion[i]);
         }
       }
   for (int a = 0; a < 3; ++a) scene.hi[a] = scene.lo[a] + r.n[a] * length[a];
@@ -80,6 +88,26 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
   p.gid.assign(s.gid.begin(), s.gid.begin() + n);
   p.kind.assign(s.kind.begin(), s.kind.begin() + n);
   p.material.assign(s.material.begin(), s.material.begin() + n);
+  p.x_rest.assign(s.x_rest.begin(), s.x_rest.begin() + n);
+  // Past the start, the forces of the last step come along (computed at its half-step
+  // velocities: computing them again at the full-step ones would change the trajectory).
+  scene.forces_given = sim.step_count() > 0;
+  if (scene.forces_given) {
+    p.f.assign(s.f.begin(), s.f.begin() + n);
+    p.torque.assign(s.torque.begin(), s.torque.begin() + n);
+  }
+  p.motion.assign(s.motion.begin(), s.motion.begin() + n);
+  for (const WallMotion& motion : sim.wall_motions()) {
+    device::DeviceMotion& m = scene.motions.emplace_back();
+    if (const auto* wave = std::get_if<RadialCosineMotion>(&motion)) {
+      m.radial_cosine = true;
+      m.center = wave->center;
+      m.mode = wave->mode;
+      m.amplitude = wave->amplitude;
+      m.omega = wave->omega;
+      m.t0 = wave->t0;
+    }
+  }
   const SimulationConfig& c = sim.config();
   scene.lo = c.box.lo;
   scene.hi = c.box.hi;
@@ -89,6 +117,7 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
   scene.skin = c.skin;
   scene.cell_size = c.cell_size;
   scene.time = sim.time();
+  scene.remove_escaped = c.on_escape == EscapePolicy::remove;
   replicate(scene, replicas);
   const std::size_t m = law.coeffs.n_materials();
   scene.n_materials = m;
@@ -96,15 +125,32 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
   for (std::size_t a = 0; a < m; ++a)
     for (std::size_t b = 0; b < m; ++b)
       if (law.coeffs.has(a, b)) table[a * m + b] = law.coeffs(a, b);
+  // The contacts open now, with their states (a run continued on the device).
+  std::vector<device::KeyedState<typename Model::State>> open;
+  if (const auto* history =
+          dynamic_cast<const ContactHistory<typename Model::State>*>(&sim.contact_states()))
+    for (const auto& e : history->entries(s, sim.neighbor_list()))
+      open.push_back({e.key.first, e.key.second, e.state});
+  const int copies = replicas.n[0] * replicas.n[1] * replicas.n[2];
+  if (copies > 1) { // each copy's contacts, its ids offset as replicate() offsets them
+    GlobalId largest = 0;
+    for (const GlobalId id : s.gid) largest = std::max(largest, id);
+    const std::size_t one = open.size();
+    open.reserve(one * static_cast<std::size_t>(copies));
+    for (int copy = 1; copy < copies; ++copy)
+      for (std::size_t k = 0; k < one; ++k)
+        open.push_back({open[k].first + copy * (largest + 1), open[k].second + copy * (largest + 1),
+                        open[k].state});
+  }
   if (choice == DeviceChoice::cuda) {
 #if defined(YUXI_HAVE_CUDA)
-    return device::make_cuda_engine<Model>(scene, table);
+    return device::make_cuda_engine<Model>(scene, table, open);
 #else
     throw std::runtime_error("this build of yuxi has no CUDA: configure it with -DYUXI_CUDA=ON "
                              "(docs/gpu.md) to run on a GPU");
 #endif
   }
-  return device::make_host_engine<Model>(scene, table);
+  return device::make_host_engine<Model>(scene, table, open);
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 // mesh vertex never integrates an equation of motion.
 #pragma once
 
+#include "core/radial_wave.hpp"
 #include "core/vec3.hpp"
 #include "scene/placed_state.hpp"
 #include "scene/rigid_motion.hpp"
@@ -34,10 +35,8 @@ struct RadialCosineMotion {
   double omega = 0;     // [1/time]
   double t0 = 0;        // start of the excitation [time]
 
-  // The motion at one time: the phase terms are computed once for all wall particles, and
-  // cos(m alpha) of each from cos(alpha) by the Chebyshev recurrence
-  // T_{k+1}(c) = 2 c T_k(c) - T_{k-1}(c), T_m(cos alpha) = cos(m alpha): no trigonometric call
-  // per particle.
+  // The motion at one time: the phase terms are computed once for all wall particles
+  // (core/radial_wave.hpp places each).
   struct AtTime {
     Vec3 center;
     int mode = 0;
@@ -48,20 +47,8 @@ struct RadialCosineMotion {
     bool at_rest() const { return !moving; }
     PlacedState place(const Vec3& rest) const {
       if (!moving) return {rest, {}};
-      const double dx = rest.x - center.x, dy = rest.y - center.y;
-      const double r0 = std::sqrt(dx * dx + dy * dy);
-      if (r0 == 0.0) return {rest, {}};
-      const double c = dx / r0, s = dy / r0; // cos(alpha), sin(alpha)
-      double before = 1.0, shape = c;        // T_0, T_1
-      for (int k = 1; k < mode; ++k) {
-        const double next = 2.0 * c * shape - before;
-        before = shape;
-        shape = next;
-      }
-      if (mode == 0) shape = 1.0;
-      const double r = r0 + shape * radial;
-      const double rdot = shape * speed;
-      return {{center.x + r * c, center.y + r * s, rest.z}, {rdot * c, rdot * s, 0.0}};
+      const PlacedPoint p = radial_cosine_place(center, mode, radial, speed, rest);
+      return {p.position, p.velocity};
     }
   };
   AtTime at_time(double t) const {
