@@ -21,7 +21,9 @@ scripts/check-layers.sh
 echo "== sanitizers (ASan + UBSan)"
 cmake --preset asan > /dev/null
 cmake --build --preset asan
-ctest --test-dir build/asan -L "unit|validation|cli|mpi|device" -LE "heavy|long|reliability" -j 2 \
+# (Not the device engine's tests: Debian's Thrust 1.17 binds references to a null execution
+# policy inside its own CPU sort, which UBSan stops in /usr/include/thrust, not in yuxi.)
+ctest --test-dir build/asan -L "unit|validation|cli|mpi" -LE "heavy|long|reliability" -j 2 \
   --output-on-failure
 
 echo "== fuzzers (bounded)"

@@ -12,6 +12,7 @@
 #include "device/step_phases.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -59,14 +60,38 @@ template <class T> void resize(DeviceVector<T>& v, std::size_t n) {
     DeviceVector<T>(n).swap(v);
 }
 
+// A vector's elements as raw pointers, for the algorithms that take thrust::device: the same
+// memory on either backend, and no element references (Thrust 1.17's bind a null execution
+// policy, which UBSan stops, in its CPU radix sort among others).
+template <class T> T* first(DeviceVector<T>& v) {
+  return thrust::raw_pointer_cast(v.data());
+}
+template <class T> const T* first(const DeviceVector<T>& v) {
+  return thrust::raw_pointer_cast(v.data());
+}
+template <class T> T* last(DeviceVector<T>& v) {
+  return first(v) + v.size();
+}
+template <class T> const T* last(const DeviceVector<T>& v) {
+  return first(v) + v.size();
+}
+
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
 template <class F> void for_each_index(std::uint32_t n, const F& f) {
   if (n == 0) return;
   thrust::for_each_n(thrust::device, thrust::counting_iterator<std::uint32_t>(0), n, f);
 }
 
+// One element to or from the device. Through copies, not v[k]: Thrust 1.17's element reference
+// binds a null execution policy, which UBSan stops.
 template <class T> T read_one(const DeviceVector<T>& v, std::size_t k) {
-  return v[k];
+  std::array<T, 1> one{};
+  thrust::copy_n(v.begin() + static_cast<std::ptrdiff_t>(k), 1, one.begin());
+  return one[0];
+}
+template <class T> void write_one(DeviceVector<T>& v, std::size_t k, const T& value) {
+  const std::array<T, 1> one{value};
+  thrust::copy_n(one.begin(), 1, v.begin() + static_cast<std::ptrdiff_t>(k));
 }
 
 struct IsSet {
@@ -349,7 +374,7 @@ private:
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
     resize(scratch, order.size());
-    thrust::gather(thrust::device, order.begin(), order.end(), field.begin(), scratch.begin());
+    thrust::gather(thrust::device, first(order), last(order), first(field), first(scratch));
     field.swap(scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
@@ -358,7 +383,7 @@ private:
     DeviceVector<double> energy(n_);
     for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
     const std::uint32_t n_gone =
-        thrust::reduce(thrust::device, gone.begin(), gone.end(), std::uint32_t{0});
+        thrust::reduce(thrust::device, first(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
     if (!remove_escaped_)
       throw std::runtime_error("device engine: " + std::to_string(n_gone) +
@@ -368,7 +393,7 @@ private:
     escaped_ += n_gone;
     DeviceVector<std::uint32_t> keep(n_ - n_gone);
     thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                    thrust::counting_iterator<std::uint32_t>(n_), gone.begin(), keep.begin(),
+                    thrust::counting_iterator<std::uint32_t>(n_), first(gone), first(keep),
                     IsZero{});
     DeviceVector<Vec3> v3;
     DeviceVector<double> d;
@@ -400,9 +425,9 @@ private:
     DeviceVector<std::uint32_t> open_pairs(pairs);
     const std::uint32_t n_open = static_cast<std::uint32_t>(
         thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(pairs), open_.begin(),
-                        open_pairs.begin(), IsSet{}) -
-        open_pairs.begin());
+                        thrust::counting_iterator<std::uint32_t>(pairs), first(open_),
+                        first(open_pairs), IsSet{}) -
+        first(open_pairs));
     DeviceVector<std::uint64_t> keys(n_open);
     DeviceVector<State> stashed(n_open);
     for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(state_), raw(open_pairs),
@@ -410,8 +435,8 @@ private:
     // Sorted by key; the states follow through an index (a state can be too large to ride in
     // the sort itself: radix sort keeps its values in shared memory).
     DeviceVector<std::uint32_t> by_key(n_open);
-    thrust::sequence(thrust::device, by_key.begin(), by_key.end());
-    thrust::sort_by_key(thrust::device, keys.begin(), keys.end(), by_key.begin());
+    thrust::sequence(thrust::device, first(by_key), last(by_key));
+    thrust::sort_by_key(thrust::device, first(keys), last(keys), first(by_key));
     {
       DeviceVector<State> scratch;
       permute_by(by_key, stashed, scratch);
@@ -430,8 +455,8 @@ private:
     resize(cell_, n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(cell_)});
     resize(order_, n_);
-    thrust::sequence(thrust::device, order_.begin(), order_.end());
-    thrust::stable_sort_by_key(thrust::device, cell_.begin(), cell_.end(), order_.begin());
+    thrust::sequence(thrust::device, first(order_), last(order_));
+    thrust::stable_sort_by_key(thrust::device, first(cell_), last(cell_), first(order_));
     {
       DeviceVector<Vec3> v3;
       DeviceVector<double> d;
@@ -457,8 +482,8 @@ private:
     }
     resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
-        thrust::device, cell_.begin(), cell_.end(), thrust::counting_iterator<std::uint32_t>(0),
-        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), cell_start_.begin());
+        thrust::device, first(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
+        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), first(cell_start_));
 
     // 4. The half list: count, offsets, fill.
     resize(count_, n_);
@@ -466,10 +491,10 @@ private:
                       raw(count_), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
     resize(row_start_, n_ + 1);
-    thrust::exclusive_scan(thrust::device, count_.begin(), count_.end(), row_start_.begin());
+    thrust::exclusive_scan(thrust::device, first(count_), last(count_), first(row_start_));
     const std::uint32_t total =
         n_ == 0 ? 0 : read_one(row_start_, n_ - 1) + read_one(count_, n_ - 1);
-    row_start_[n_] = total;
+    write_one(row_start_, n_, total);
     resize(partner_, total);
     resize(image_, total);
     resize(pair_row_, total);
@@ -483,13 +508,13 @@ private:
     // 5. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
     resize(reverse_pair_, total);
-    thrust::sequence(thrust::device, reverse_pair_.begin(), reverse_pair_.end());
-    thrust::stable_sort_by_key(thrust::device, partner_sorted.begin(), partner_sorted.end(),
-                               reverse_pair_.begin());
+    thrust::sequence(thrust::device, first(reverse_pair_), last(reverse_pair_));
+    thrust::stable_sort_by_key(thrust::device, first(partner_sorted), last(partner_sorted),
+                               first(reverse_pair_));
     resize(reverse_start_, n_ + 1);
-    thrust::lower_bound(thrust::device, partner_sorted.begin(), partner_sorted.end(),
+    thrust::lower_bound(thrust::device, first(partner_sorted), last(partner_sorted),
                         thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(n_ + 1), reverse_start_.begin());
+                        thrust::counting_iterator<std::uint32_t>(n_ + 1), first(reverse_start_));
 
     // 6. Per-pair room, and the open contacts' states back in their new pairs.
     resize(state_, total);
@@ -520,7 +545,7 @@ private:
     time_ += dt_;
     ++step_;
     place_walls();
-    const bool build = thrust::reduce(thrust::device, moved_far_.begin(), moved_far_.end(),
+    const bool build = thrust::reduce(thrust::device, first(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     if (build) build_list();
     compute_forces(dt_);
