@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The GPU check: what a session with a GPU at hand runs first, in one go, in a few minutes.
+# The GPU check: everything to run on a machine with an NVIDIA GPU, in one go, in a few minutes.
 #
 #   bench/gpu/device_check.sh OUTDIR [BUNDLE]
 #
