@@ -60,20 +60,14 @@ template <class T> void resize(DeviceVector<T>& v, std::size_t n) {
     DeviceVector<T>(n).swap(v);
 }
 
-// A vector's elements as raw pointers, for the algorithms that take thrust::device: the same
-// memory on either backend, and no element references (Thrust 1.17's bind a null execution
-// policy, which UBSan stops, in its CPU radix sort among others).
-template <class T> T* first(DeviceVector<T>& v) {
-  return thrust::raw_pointer_cast(v.data());
-}
-template <class T> const T* first(const DeviceVector<T>& v) {
-  return thrust::raw_pointer_cast(v.data());
-}
+// The end of a vector as a raw pointer: the algorithms that take thrust::device are given
+// [raw(v), last(v)), the same memory on either backend and no element references (Thrust
+// 1.17's bind a null execution policy, which UBSan stops, in its CPU radix sort among others).
 template <class T> T* last(DeviceVector<T>& v) {
-  return first(v) + v.size();
+  return raw(v) + v.size();
 }
 template <class T> const T* last(const DeviceVector<T>& v) {
-  return first(v) + v.size();
+  return raw(v) + v.size();
 }
 
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
@@ -107,9 +101,8 @@ struct MarkRows {
   }
 };
 
-// A grain outside the box along an open axis.
 // 1 for a grain outside the box along an open axis (NaN too), and its mechanical energy
-// 0.5 m v^2 + 0.5 J w^2 - m g_p . x (sim/energy_ledger.hpp, mechanical_energy); 0 for the others.
+// (core/particle_energy.hpp); 0 for the others.
 struct Escaped {
   Particles p;
   DeviceBox box;
@@ -122,11 +115,9 @@ struct Escaped {
       for (int a = 0; a < 3; ++a)
         if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) out = true;
     gone[i] = out ? 1 : 0;
-    const double inv = p.inv_inertia[i];
-    energy[i] = !out ? 0.0
-                     : 0.5 * p.mass[i] * norm2(p.v[i]) +
-                           (inv > 0 ? 0.5 * norm2(p.w[i]) / inv : 0.0) -
-                           p.mass[i] * dot(g_potential, p.x[i]);
+    energy[i] =
+        out ? mechanical_energy(p.mass[i], p.x[i], p.v[i], p.w[i], p.inv_inertia[i], g_potential)
+            : 0.0;
   }
 };
 
@@ -225,13 +216,13 @@ public:
       keys[k] = open[k].first;
       states[k] = open[k].second;
     }
-    if (!keys.empty()) {
-      start_keys_ = keys;
-      start_states_ = states;
+    DeviceVector<std::uint64_t> start_keys;
+    DeviceVector<State> start_states;
+    if (!keys.empty()) { // (assigned only when not empty: see resize())
+      start_keys = keys;
+      start_states = states;
     }
-    build_list();
-    start_keys_.clear();
-    start_states_.clear();
+    build_list(start_keys, start_states);
     // The forces of the start, without advancing the history, unless they came with the state:
     // a run continued mid-way keeps the forces its last step computed, at the half-step
     // velocities, as a resumed checkpoint does.
@@ -374,7 +365,7 @@ private:
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
     resize(scratch, order.size());
-    thrust::gather(thrust::device, first(order), last(order), first(field), first(scratch));
+    thrust::gather(thrust::device, raw(order), last(order), raw(field), raw(scratch));
     field.swap(scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
@@ -383,7 +374,7 @@ private:
     DeviceVector<double> energy(n_);
     for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
     const std::uint32_t n_gone =
-        thrust::reduce(thrust::device, first(gone), last(gone), std::uint32_t{0});
+        thrust::reduce(thrust::device, raw(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
     if (!remove_escaped_)
       throw std::runtime_error("device engine: " + std::to_string(n_gone) +
@@ -393,105 +384,88 @@ private:
     escaped_ += n_gone;
     DeviceVector<std::uint32_t> keep(n_ - n_gone);
     thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                    thrust::counting_iterator<std::uint32_t>(n_), first(gone), first(keep),
-                    IsZero{});
-    DeviceVector<Vec3> v3;
-    DeviceVector<double> d;
-    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_, &x_rest_})
-      permute_by(keep, *field, v3);
-    for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
-      permute_by(keep, *field, d);
-    DeviceVector<GlobalId> g;
-    permute_by(keep, gid_, g);
-    DeviceVector<Kind> k;
-    permute_by(keep, kind_, k);
-    DeviceVector<std::uint8_t> m;
-    permute_by(keep, material_, m);
-    DeviceVector<std::uint16_t> motion;
-    permute_by(keep, motion_, motion);
+                    thrust::counting_iterator<std::uint32_t>(n_), raw(gone), raw(keep), IsZero{});
+    permute_particles(keep);
     n_ -= n_gone;
     resize(gravity_work_, n_);
     resize(moved_far_, n_);
   }
 
-  // Reorders a per-particle array by order_ (the cell sort).
-  template <class T> void permute(DeviceVector<T>& field, DeviceVector<T>& scratch) {
-    permute_by(order_, field, scratch);
+  // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
+  void permute_particles(const DeviceVector<std::uint32_t>& order) {
+    DeviceVector<Vec3> v3;
+    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_, &x_rest_})
+      permute_by(order, *field, v3);
+    DeviceVector<double> d;
+    for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
+      permute_by(order, *field, d);
+    DeviceVector<GlobalId> g;
+    permute_by(order, gid_, g);
+    DeviceVector<Kind> k;
+    permute_by(order, kind_, k);
+    DeviceVector<std::uint8_t> m;
+    permute_by(order, material_, m);
+    DeviceVector<std::uint16_t> motion;
+    permute_by(order, motion_, motion);
   }
 
+  // A list build in a step: the open contacts' states stashed, then the list built afresh.
   void build_list() {
-    // 1. The open contacts' states, keyed by the particles' global ids.
+    DeviceVector<std::uint64_t> keys;
+    DeviceVector<State> stashed;
+    stash_open_contacts(keys, stashed);
+    build_list(keys, stashed);
+  }
+
+  // The open contacts' keys (the particles' global ids) in ascending order, and their states.
+  void stash_open_contacts(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) {
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
     DeviceVector<std::uint32_t> open_pairs(pairs);
     const std::uint32_t n_open = static_cast<std::uint32_t>(
         thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(pairs), first(open_),
-                        first(open_pairs), IsSet{}) -
-        first(open_pairs));
-    DeviceVector<std::uint64_t> keys(n_open);
-    DeviceVector<State> stashed(n_open);
+                        thrust::counting_iterator<std::uint32_t>(pairs), raw(open_),
+                        raw(open_pairs), IsSet{}) -
+        raw(open_pairs));
+    resize(keys, n_open);
+    resize(stashed, n_open);
     for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(state_), raw(open_pairs),
                                                raw(keys), raw(stashed)});
     // Sorted by key; the states follow through an index (a state can be too large to ride in
     // the sort itself: radix sort keeps its values in shared memory).
     DeviceVector<std::uint32_t> by_key(n_open);
-    thrust::sequence(thrust::device, first(by_key), last(by_key));
-    thrust::sort_by_key(thrust::device, first(keys), last(keys), first(by_key));
-    {
-      DeviceVector<State> scratch;
-      permute_by(by_key, stashed, scratch);
-    }
-    if (builds_ == 0 && !start_keys_.empty()) { // the start: the contacts the engine was given
-      keys = start_keys_;
-      stashed = start_states_;
-    }
-    const std::uint32_t n_stashed = static_cast<std::uint32_t>(keys.size());
+    thrust::sequence(thrust::device, raw(by_key), last(by_key));
+    thrust::sort_by_key(thrust::device, raw(keys), last(keys), raw(by_key));
+    DeviceVector<State> scratch;
+    permute_by(by_key, stashed, scratch);
+  }
 
-    // 2. Grains that left through an open face stop the run, or leave it with their mechanical
+  // Escapes, the cell sort and the list, with the open contacts (sorted `keys`, their `stashed`
+  // states) taken back by their new pairs.
+  void build_list(const DeviceVector<std::uint64_t>& keys, const DeviceVector<State>& stashed) {
+    const std::uint32_t n_stashed = static_cast<std::uint32_t>(keys.size());
+    // 1. Grains that left through an open face stop the run, or leave it with their mechanical
     // energy booked as removed (Simulation::handle_escapes_here).
     remove_escaped();
 
-    // 3. Wrap, sort by cell (stable: equal cells keep their order), and find each cell's start.
+    // 2. Wrap, sort by cell (stable: equal cells keep their order), and find each cell's start.
     resize(cell_, n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(cell_)});
     resize(order_, n_);
-    thrust::sequence(thrust::device, first(order_), last(order_));
-    thrust::stable_sort_by_key(thrust::device, first(cell_), last(cell_), first(order_));
-    {
-      DeviceVector<Vec3> v3;
-      DeviceVector<double> d;
-      permute(x_, v3);
-      permute(v_, v3);
-      permute(w_, v3);
-      permute(f_, v3);
-      permute(torque_, v3);
-      permute(x_build_, v3);
-      permute(x_rest_, v3);
-      permute(radius_, d);
-      permute(mass_, d);
-      permute(inv_mass_, d);
-      permute(inv_inertia_, d);
-      DeviceVector<GlobalId> g;
-      permute(gid_, g);
-      DeviceVector<Kind> k;
-      permute(kind_, k);
-      DeviceVector<std::uint8_t> m;
-      permute(material_, m);
-      DeviceVector<std::uint16_t> motion;
-      permute(motion_, motion);
-    }
+    thrust::sequence(thrust::device, raw(order_), last(order_));
+    thrust::stable_sort_by_key(thrust::device, raw(cell_), last(cell_), raw(order_));
+    permute_particles(order_);
     resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
-        thrust::device, first(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
-        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), first(cell_start_));
+        thrust::device, raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
+        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
 
-    // 4. The half list: count, offsets, fill.
+    // 3. The half list: count, offsets, fill.
     resize(count_, n_);
     FindPartners find{view(),      box_,    cells_,  raw(cell_start_), skin_,
                       raw(count_), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
     resize(row_start_, n_ + 1);
-    thrust::exclusive_scan(thrust::device, first(count_), last(count_), first(row_start_));
+    thrust::exclusive_scan(thrust::device, raw(count_), last(count_), raw(row_start_));
     const std::uint32_t total =
         n_ == 0 ? 0 : read_one(row_start_, n_ - 1) + read_one(count_, n_ - 1);
     write_one(row_start_, n_, total);
@@ -505,18 +479,18 @@ private:
     for_each_index(n_, find);
     for_each_index(n_, MarkRows{raw(row_start_), raw(pair_row_)});
 
-    // 5. Each particle's pairs as the partner, in pair order.
+    // 4. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
     resize(reverse_pair_, total);
-    thrust::sequence(thrust::device, first(reverse_pair_), last(reverse_pair_));
-    thrust::stable_sort_by_key(thrust::device, first(partner_sorted), last(partner_sorted),
-                               first(reverse_pair_));
+    thrust::sequence(thrust::device, raw(reverse_pair_), last(reverse_pair_));
+    thrust::stable_sort_by_key(thrust::device, raw(partner_sorted), last(partner_sorted),
+                               raw(reverse_pair_));
     resize(reverse_start_, n_ + 1);
-    thrust::lower_bound(thrust::device, first(partner_sorted), last(partner_sorted),
+    thrust::lower_bound(thrust::device, raw(partner_sorted), last(partner_sorted),
                         thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(n_ + 1), first(reverse_start_));
+                        thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
-    // 6. Per-pair room, and the open contacts' states back in their new pairs.
+    // 5. Per-pair room, and the open contacts' states back in their new pairs.
     resize(state_, total);
     resize(open_, total);
     resize(force_, total);
@@ -545,7 +519,7 @@ private:
     time_ += dt_;
     ++step_;
     place_walls();
-    const bool build = thrust::reduce(thrust::device, first(moved_far_), last(moved_far_),
+    const bool build = thrust::reduce(thrust::device, raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     if (build) build_list();
     compute_forces(dt_);
@@ -600,8 +574,6 @@ private:
   DeviceVector<std::uint16_t> motion_;
   DeviceVector<double> wall_work_;
   std::vector<DeviceMotion> motions_;
-  DeviceVector<std::uint64_t> start_keys_;
-  DeviceVector<State> start_states_;
   std::int64_t step_ = 0, builds_ = 0;
 };
 

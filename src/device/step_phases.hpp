@@ -8,6 +8,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "core/host_device.hpp"
+#include "core/particle_energy.hpp"
 #include "core/particle_fields.hpp"
 #include "core/radial_wave.hpp"
 #include "core/vec3.hpp"
@@ -396,8 +397,8 @@ struct KineticEnergy {
   double* rotation;
   YUXI_HD void operator()(std::uint32_t i) const {
     const bool grain = p.kind[i] == Kind::grain;
-    translation[i] = grain ? 0.5 * p.mass[i] * norm2(p.v[i]) : 0.0;
-    rotation[i] = grain && p.inv_inertia[i] > 0 ? 0.5 * norm2(p.w[i]) / p.inv_inertia[i] : 0.0;
+    translation[i] = grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
+    rotation[i] = grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
   }
 };
 

@@ -12,7 +12,7 @@ EnergyBooks EnergyLedger::parts(const ParticleStore& s, const SimulationConfig& 
   e.time = time;
   for (std::size_t i = 0; i < s.n_owned(); ++i) {
     if (!s.is_grain(i)) continue;
-    e.translational += 0.5 * s.mass[i] * norm2(s.v[i]);
+    e.translational += translational_energy(s.mass[i], s.v[i]);
     e.rotational += rotational_energy(s, i);
     e.gravitational -= s.mass[i] * dot(g_potential, s.x[i]);
     ++e.grains;

@@ -5,6 +5,7 @@
 // energy (docs/ARCHITECTURE.md, "Energy books"); the simulation formats the diagnosis.
 #pragma once
 
+#include "core/particle_energy.hpp"
 #include "core/particle_store.hpp"
 #include "sim/contact_tally.hpp"
 #include "sim/energy_books.hpp"
@@ -16,17 +17,14 @@
 
 namespace yuxi {
 
-// J w^2 / 2 of particle i (0 when its rotation is locked: infinite inertia, which keeps its spin
-// and its energy).
+// J w^2 / 2 of particle i (core/particle_energy.hpp).
 inline double rotational_energy(const ParticleStore& s, std::size_t i) {
-  const double inv = s.inv_inertia[i];
-  return inv > 0 ? 0.5 * norm2(s.w[i]) / inv : 0.0;
+  return rotational_energy(s.w[i], s.inv_inertia[i]);
 }
 
 // Kinetic plus gravitational energy of particle i under gravity's potential part g_potential.
 inline double mechanical_energy(const ParticleStore& s, std::size_t i, const Vec3& g_potential) {
-  return 0.5 * s.mass[i] * norm2(s.v[i]) + rotational_energy(s, i) -
-         s.mass[i] * dot(g_potential, s.x[i]);
+  return mechanical_energy(s.mass[i], s.x[i], s.v[i], s.w[i], s.inv_inertia[i], g_potential);
 }
 
 class EnergyLedger {
