@@ -52,18 +52,7 @@ struct DeviceCells {
   YUXI_HD std::uint32_t count() const { return static_cast<std::uint32_t>(n[0] * n[1] * n[2]); }
 };
 
-// A pair's periodic image: for each axis 0 (none), 1 (+L) or 2 (-L), as a base-3 number. The
-// partner is seen at x_j + shift, as the CPU engine's ghost image of it is.
-YUXI_HD inline Vec3 image_shift(std::uint8_t image, const DeviceBox& box) {
-  Vec3 s;
-  for (int a = 0; a < 3; ++a) {
-    const int code = image % 3;
-    image = static_cast<std::uint8_t>(image / 3);
-    s[a] = code == 1 ? box.length(a) : (code == 2 ? -box.length(a) : 0.0);
-  }
-  return s;
-}
-
+// A pair's periodic image: for each axis 0 (none), 1 (+L) or 2 (-L), as a base-3 number.
 // d = x_i - x_j with the partner j at its image. Along an axis where the image is one box length
 // up, d = x_i - (x_j + L); where it is one length down, d = -(x_j - (x_i + L)): the particle near
 // the lower face is always the one shifted up, as the CPU engine's ghosts are (domain/halo.hpp),
@@ -156,11 +145,10 @@ struct FindPartners {
           if (!inside) continue;
           const std::uint32_t cell =
               static_cast<std::uint32_t>((nc[2] * cells.n[1] + nc[1]) * cells.n[0] + nc[0]);
-          const Vec3 shift = image_shift(code, box);
           for (std::uint32_t j = cell_start[cell]; j < cell_start[cell + 1]; ++j) {
             if (j <= i) continue;
             if (p.kind[i] == Kind::wall && p.kind[j] == Kind::wall) continue;
-            const Vec3 dij = xi - (p.x[j] + shift);
+            const Vec3 dij = separation(xi, p.x[j], code, box); // as PairForces sees the pair
             const double reach = p.radius[i] + p.radius[j] + skin;
             if (!(norm2(dij) < reach * reach)) continue;
             if (count) {
