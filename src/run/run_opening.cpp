@@ -86,6 +86,10 @@ OpenedRun open_resume(const fs::path& run_folder, const std::function<bool(Scene
   size_for_saved_grains(r.scene, data.largest_grain_radius); // (a run branched without grains)
   // Later checkpoints carry the new settings.
   if (adjust && adjust(r.scene)) r.scene_text = resolved_scene_toml(r.scene);
+  if (r.scene.run.t_end < data.time - 0.5 * r.scene.sim.dt)
+    throw SceneError(fmt::format("run.t_end = {} is before the time of {}, t = {}: a run goes "
+                                 "forwards only (give a later end)",
+                                 r.scene.run.t_end, data.file.string(), data.time));
   r.sim = continue_checkpoint(r.scene, data, std::nullopt, true, &r.report);
   r.origin =
       fmt::format("resuming from {} at step {}, t = {}", data.file.string(), data.step, data.time);

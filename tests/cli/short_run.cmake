@@ -35,4 +35,10 @@ set(resumed_builds ${CMAKE_MATCH_1})
 if(first_builds STREQUAL "" OR NOT resumed_builds STREQUAL first_builds)
   message(FATAL_ERROR "list builds: ${first_builds} in the first run, ${resumed_builds} resumed")
 endif()
+# An end before the checkpoint's time is refused, not run as nothing to do.
+execute_process(COMMAND ${YUXI} run --resume ${WORK}/short --t-end 0.01 --no-plots
+  RESULT_VARIABLE rc4 ERROR_VARIABLE err4)
+if(NOT rc4 EQUAL 2 OR NOT err4 MATCHES "goes forwards only")
+  message(FATAL_ERROR "resuming to an earlier end: ${rc4} ${err4}")
+endif()
 message(STATUS "ok")
