@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   run->add_option("--t-end", opt.t_end, "Override run.t_end");
   run->add_option("--balance-by", opt.balance_by, "Override domain.balance_by")
       ->check(CLI::IsMember({"pairs", "time"}));
+  run->add_option("--device", opt.device,
+                  "Override run.device: cpu (the CPU engine), gpu (the device engine on a GPU), "
+                  "host (the device engine's code on the CPU)")
+      ->check(CLI::IsMember({"cpu", "gpu", "host"}));
   run->add_flag("!--no-progress", opt.progress, "Do not show progress on the terminal");
   run->add_flag("!--no-plots", opt.plots, "Do not draw the plots at the end");
 

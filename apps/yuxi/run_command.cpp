@@ -34,9 +34,27 @@ std::string with_remedy(const std::exception& e) {
   return e.what();
 }
 
-void apply_balance_by(const RunCommandOptions& o, Scene& scene) {
+// The command line's overrides of the scene's settings; true where one was given.
+bool apply_overrides(const RunCommandOptions& o, Scene& scene) {
   if (!o.balance_by.empty())
     scene.sim.balance_by = o.balance_by == "time" ? BalanceBy::time : BalanceBy::pairs;
+  if (!o.device.empty()) scene.run.device = *run_device_named(o.device);
+  return !o.balance_by.empty() || !o.device.empty();
+}
+
+// A run asked for the device engine that it cannot run says so before its folder is made.
+bool device_run_possible(const Scene& scene, const Simulation& sim) {
+  const std::optional<DeviceChoice> choice = device_choice(scene.run.device);
+  if (!choice) return true;
+  try {
+    check_device_run(scene, sim, *choice);
+    return true;
+  } catch (const std::exception& e) {
+    print_error(fmt::format("{}\n(run.device = \"{}\"; pass --device cpu to run on the CPU "
+                            "engine)",
+                            e.what(), run_device_name(scene.run.device)));
+    return false;
+  }
 }
 
 Scene load(const RunCommandOptions& o) {
@@ -46,7 +64,7 @@ Scene load(const RunCommandOptions& o) {
     if (!(*o.t_end > 0)) throw SceneError(fmt::format("--t-end: must be > 0 (got {})", *o.t_end));
     scene.run.t_end = *o.t_end;
   }
-  apply_balance_by(o, scene);
+  apply_overrides(o, scene);
   if (Comm::world().root())
     for (const auto& w : scene.warnings) fmt::print(stderr, "warning: {}\n", w);
   return scene;
@@ -107,8 +125,7 @@ bool open(const RunCommandOptions& o, OpenedRun& run) {
     if (!o.resume.empty()) {
       run = open_resume(o.resume, [&](Scene& scene) {
         if (o.t_end) scene.run.t_end = *o.t_end;
-        apply_balance_by(o, scene);
-        return o.t_end || !o.balance_by.empty();
+        return apply_overrides(o, scene) || o.t_end;
       });
     } else {
       run = open_branch(load(o), o.from, o.force_dt);
@@ -135,6 +152,7 @@ int run_command(const RunCommandOptions& o) {
   const Scene& scene = run.scene;
   const std::unique_ptr<Simulation>& sim = run.sim;
   const std::string& scene_text = run.scene_text;
+  if (!device_run_possible(scene, *sim)) return 2;
   fs::path dir = o.resume;
   if (o.resume.empty()) {
     // (only once the scene is known to be good)
@@ -155,6 +173,7 @@ int run_command(const RunCommandOptions& o) {
   ro.scene_text = scene_text;
   ro.resumed = !o.resume.empty();
   ro.stop = &stop_signal;
+  ro.device = device_choice(scene.run.device);
   if (sim->comm().size() > 1)
     spdlog::info("{} MPI ranks: {}; owned particles max/mean {:.3f}", sim->comm().size(),
                  sim->decomposition().describe(), sim->imbalance());
@@ -203,16 +222,24 @@ int run_command(const RunCommandOptions& o) {
   // Shares of the run's wall time; what no phase timer covers is output (energies, snapshots,
   // checkpoints, progress) and the analyses.
   const double wall = std::max({s.wall_seconds, t.total(), 1e-9});
-  spdlog::info(
-      "time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  output "
-      "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%)  ({} list builds){}",
-      100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
-      100 * (wall - t.total()) / wall, 100 * s.snapshot_seconds / wall,
-      100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before,
-      sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
-                                           "{:.3f} in listed pairs, {:.3f} in compute time",
-                                           imbalance, pair_imbalance, busy_imbalance)
-                             : std::string());
+  if (s.device.empty())
+    spdlog::info(
+        "time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  output "
+        "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%)  ({} list builds){}",
+        100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
+        100 * (wall - t.total()) / wall, 100 * s.snapshot_seconds / wall,
+        100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before,
+        sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
+                                             "{:.3f} in listed pairs, {:.3f} in compute time",
+                                             imbalance, pair_imbalance, busy_imbalance)
+                               : std::string());
+  if (!s.device.empty())
+    spdlog::info("device engine on {}: {:.0f} bytes of device memory per particle; time: stepping "
+                 "on the device {:.1f}%, handing the state to the host {:.1f}%, snapshots {:.1f}%, "
+                 "checkpoints {:.1f}%  ({} list builds)",
+                 s.device, s.device_bytes_per_particle, 100 * s.device_seconds / wall,
+                 100 * s.handover_seconds / wall, 100 * s.snapshot_seconds / wall,
+                 100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before);
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "
                "ghosts ({:.1f} per 100 particles: {:.0f} periodic images, {:.0f} copies of other "

@@ -18,6 +18,7 @@ struct RunCommandOptions {
   bool force_dt = false;
   std::optional<double> t_end;
   std::string balance_by; // empty: the scene's domain.balance_by
+  std::string device;     // empty: the scene's run.device
   bool progress = true;
   bool plots = true; // draw the energy plot, or the basin figures of an [analysis] table
 };

@@ -3,6 +3,7 @@
 #include "py_scene.hpp"
 #include "py_simulation.hpp"
 #include "py_studies.hpp"
+#include "run/device_run.hpp"
 
 #include <pybind11/pybind11.h>
 
@@ -20,4 +21,5 @@ PYBIND11_MODULE(_yuxi, m) {
     session = nullptr;
   });
   m.attr("_mpi_started_here") = session->started_here();
+  m.attr("has_cuda") = yuxi::build_has_cuda();
 }

@@ -200,24 +200,50 @@ py::list tallies(const std::vector<Simulation::SourceTally>& flows) {
   return out;
 }
 
+// The scene's run.device set to `device`, where given; true where it was.
+bool set_device(Scene& scene, const std::optional<std::string>& device) {
+  if (!device) return false;
+  const std::optional<RunDevice> named = run_device_named(*device);
+  if (!named)
+    throw py::value_error(
+        fmt::format("device: '{}' is none of \"cpu\", \"gpu\", \"host\"", *device));
+  scene.run.device = *named;
+  return true;
+}
+
+// A run asked for the device engine that cannot run there is refused before its folder is made.
+void check_device(const OpenedRun& run) {
+  if (const auto choice = device_choice(run.scene.run.device))
+    check_device_run(run.scene, *run.sim, *choice);
+}
+
 } // namespace
 
 PySimulation::PySimulation(const PyScene& scene, const std::string& output, bool overwrite,
-                           bool progress, bool force_dt)
+                           bool progress, bool force_dt, const std::optional<std::string>& device)
     : progress_(progress) {
-  run_ = open_scene(scene.scene, force_dt);
+  Scene chosen = scene.scene;
+  set_device(chosen, device);
+  run_ = open_scene(std::move(chosen), force_dt);
+  check_device(run_);
   folder_ = create_run_folder(run_.sim->comm(), output, run_.scene, overwrite, run_.scene_text);
   open_driver(false);
 }
 
 std::unique_ptr<PySimulation> PySimulation::resume(const std::string& folder,
-                                                   std::optional<double> t_end, bool progress) {
+                                                   std::optional<double> t_end, bool progress,
+                                                   const std::optional<std::string>& device) {
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
+  if (device) { // (a bad name raises before the checkpoint is read)
+    Scene probe;
+    set_device(probe, device);
+  }
   s->run_ = open_resume(folder, [&](Scene& scene) {
     if (t_end) scene.run.t_end = *t_end;
-    return t_end.has_value();
+    return set_device(scene, device) || t_end.has_value();
   });
+  check_device(s->run_);
   s->folder_ = folder;
   s->open_driver(true);
   return s;
@@ -225,10 +251,14 @@ std::unique_ptr<PySimulation> PySimulation::resume(const std::string& folder,
 
 std::unique_ptr<PySimulation> PySimulation::branch(const std::string& from, const PyScene& scene,
                                                    const std::string& output, bool overwrite,
-                                                   bool progress, bool force_dt) {
+                                                   bool progress, bool force_dt,
+                                                   const std::optional<std::string>& device) {
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
-  s->run_ = open_branch(scene.scene, from, force_dt);
+  Scene chosen = scene.scene;
+  set_device(chosen, device);
+  s->run_ = open_branch(std::move(chosen), from, force_dt);
+  check_device(s->run_);
   s->folder_ =
       create_run_folder(s->run_.sim->comm(), output, s->run_.scene, overwrite, s->run_.scene_text);
   s->open_driver(false);
@@ -249,6 +279,7 @@ void PySimulation::open_driver(bool resumed) {
     return true;
   };
   o.progress_sink = write_progress;
+  o.device = device_choice(run_.scene.run.device);
   driver_ = std::make_unique<RunDriver>(run_.scene, *run_.sim, o);
   guard_ = std::make_unique<CollectiveGuard>(run_.sim->comm());
 }
@@ -338,6 +369,10 @@ py::dict PySimulation::finish() {
   d["steps"] = s.steps;
   d["wall_seconds"] = s.wall_seconds;
   d["particle_steps_per_second"] = s.particle_steps_per_second;
+  if (!s.device.empty()) {
+    d["device"] = s.device;
+    d["device_bytes_per_particle"] = s.device_bytes_per_particle;
+  }
   d["energies"] = books_dict(s.final_energies);
   return d;
 }
@@ -355,14 +390,17 @@ void bind_simulation(py::module_& m) {
   // A collective call that not every rank made (domain/collective_guard.hpp).
   py::register_exception<CollectiveMismatch>(m, "CollectiveError", PyExc_RuntimeError);
   py::class_<PySimulation>(m, "_Simulation")
-      .def(py::init<const PyScene&, const std::string&, bool, bool, bool>(), py::arg("scene"),
-           py::arg("output") = "", py::arg("overwrite") = false, py::arg("progress") = true,
-           py::arg("force_dt") = false)
+      .def(py::init<const PyScene&, const std::string&, bool, bool, bool,
+                    const std::optional<std::string>&>(),
+           py::arg("scene"), py::arg("output") = "", py::arg("overwrite") = false,
+           py::arg("progress") = true, py::arg("force_dt") = false,
+           py::arg("device") = std::nullopt)
       .def_static("resume", &PySimulation::resume, py::arg("folder"),
-                  py::arg("t_end") = std::nullopt, py::arg("progress") = true)
+                  py::arg("t_end") = std::nullopt, py::arg("progress") = true,
+                  py::arg("device") = std::nullopt)
       .def_static("branch", &PySimulation::branch, py::arg("checkpoint"), py::arg("scene"),
                   py::arg("output") = "", py::arg("overwrite") = false, py::arg("progress") = true,
-                  py::arg("force_dt") = false)
+                  py::arg("force_dt") = false, py::arg("device") = std::nullopt)
       .def(
           "advance",
           [](py::object self, std::int64_t until, py::object callback, std::int64_t every) {
@@ -501,7 +539,14 @@ void bind_simulation(py::module_& m) {
              s.sim().stop_insert(insert_index(s.sim(), name));
            })
       .def("add_insert", &PySimulation::add_insert, py::arg("table"))
-      .def("record_contacts", [](PySimulation& s, bool on) { s.sim().record_contacts(on); })
+      .def("record_contacts",
+           [](PySimulation& s, bool on) {
+             if (on && device_choice(s.scene().run.device))
+               throw std::runtime_error("contacts are recorded by the CPU engine only: this run "
+                                        "is on the device engine (device = \"cpu\" records "
+                                        "them)");
+             s.sim().record_contacts(on);
+           })
       .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); });
 }
 

@@ -19,15 +19,18 @@ namespace yuxi::python {
 class PySimulation {
 public:
   // A scene from t = 0, writing into `output` (runs/<name> when empty).
+  // `device` ("cpu", "gpu" or "host"), where given, overrides the scene's run.device.
   PySimulation(const PyScene& scene, const std::string& output, bool overwrite, bool progress,
-               bool force_dt);
+               bool force_dt, const std::optional<std::string>& device);
   // A run folder from its newest valid checkpoint (to a later end if `t_end` is given).
   static std::unique_ptr<PySimulation> resume(const std::string& folder,
-                                              std::optional<double> t_end, bool progress);
+                                              std::optional<double> t_end, bool progress,
+                                              const std::optional<std::string>& device);
   // A checkpoint's state under another scene (yuxi run SCENE --from CHECKPOINT).
   static std::unique_ptr<PySimulation> branch(const std::string& from, const PyScene& scene,
                                               const std::string& output, bool overwrite,
-                                              bool progress, bool force_dt);
+                                              bool progress, bool force_dt,
+                                              const std::optional<std::string>& device);
 
   // Steps to `until` (a step count), calling `callback(self)` every `every` steps; the
   // callback stops the run by returning False.

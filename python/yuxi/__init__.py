@@ -27,7 +27,7 @@ except ImportError:  # pragma: no cover - mpi4py is a dependency, but optional h
     _MPI = None
 
 from . import _yuxi
-from ._yuxi import CollectiveError, SceneError, built_in_models
+from ._yuxi import CollectiveError, SceneError, built_in_models, has_cuda
 
 __all__ = [
     "CollectiveError",
@@ -37,6 +37,7 @@ __all__ = [
     "StaleViewError",
     "built_in_models",
     "collide",
+    "has_cuda",
     "two_grain",
     "validate",
     "validation_cases",
@@ -236,6 +237,12 @@ class Particles:
 _live = weakref.WeakSet()
 
 
+def _device(device):
+    if device is None or isinstance(device, str):
+        return device
+    raise TypeError(f"device: expected \"cpu\", \"gpu\" or \"host\", got {type(device).__name__}")
+
+
 def _stderr_shows_progress():
     return sys.stderr.isatty() or "ipykernel" in sys.modules
 
@@ -245,28 +252,32 @@ class Simulation:
 
     ``output`` defaults to ``runs/<scene name>``; a folder that holds files is refused unless
     ``overwrite``. ``progress`` (steps, simulated time, rate, ETA) shows on a terminal and in a
-    notebook by default.
+    notebook by default. ``device`` ("cpu", "gpu" or "host") overrides the scene's
+    ``[run] device``: the engine that steps the run (docs/gpu.md).
     """
 
     def __init__(self, scene, output=None, overwrite=False, progress=None, force_dt=False,
-                 _core=None):
+                 device=None, _core=None):
         if _core is None:
             scene = scene if isinstance(scene, Scene) else Scene(scene)
             _core = _yuxi._Simulation(scene._core, _path(output), overwrite,
-                                      _progress(progress), force_dt)
+                                      _progress(progress), force_dt, _device(device))
         self._core = _core
         self._stop = False
         _live.add(self)
 
     @classmethod
-    def resume(cls, folder, t_end=None, progress=None):
-        """Continues the run in ``folder`` from its newest valid checkpoint, bit for bit."""
+    def resume(cls, folder, t_end=None, progress=None, device=None):
+        """Continues the run in ``folder`` from its newest valid checkpoint, bit for bit.
+
+        ``device`` moves it to another engine ("cpu", "gpu", "host"): a correct continuation,
+        not a bitwise one."""
         return cls(None, _core=_yuxi._Simulation.resume(os.fspath(folder), t_end,
-                                                         _progress(progress)))
+                                                         _progress(progress), _device(device)))
 
     @classmethod
     def branch(cls, checkpoint, scene, output=None, overwrite=False, progress=None,
-               force_dt=False):
+               force_dt=False, device=None):
         """A checkpoint's state (a file, or a run folder's newest) under another scene.
 
         What ``yuxi run SCENE --from CHECKPOINT`` does: particles, walls' state, contact history
@@ -276,7 +287,7 @@ class Simulation:
         scene = scene if isinstance(scene, Scene) else Scene(scene)
         return cls(None, _core=_yuxi._Simulation.branch(
             os.fspath(checkpoint), scene._core, _path(output), overwrite, _progress(progress),
-            force_dt))
+            force_dt, _device(device)))
 
     # -- running ---------------------------------------------------------------------------
     def run(self, t_end=None, steps=None, callback=None, every=100):

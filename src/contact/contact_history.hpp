@@ -403,6 +403,11 @@ public:
       }
     }
   }
+  // Pair contacts' states keyed by global ids (another engine's), as give() takes them.
+  static std::string pack_entries(std::span<const Entry> entries) {
+    return pack({reinterpret_cast<const char*>(entries.data()), entries.size() * sizeof(Entry)},
+                {});
+  }
   // Every stashed state as bytes (one block, for give()).
   std::string stashed_bytes() const override {
     return pack({reinterpret_cast<const char*>(stash_.data()), stash_.size() * sizeof(Entry)},

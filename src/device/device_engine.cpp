@@ -125,7 +125,7 @@ struct IsZero {
   YUXI_HD bool operator()(std::uint32_t b) const { return b == 0; }
 };
 
-template <class Model> class Engine final : public DeviceEngine {
+template <class Model> class Engine final : public LawEngine<Model> {
 public:
   using State = typename Model::State;
   using Coeffs = typename Model::Coeffs;
@@ -202,6 +202,9 @@ public:
         throw std::invalid_argument("device engine: the periodic box is less than 3 cells of " +
                                     std::to_string(edge) + " along axis " + std::to_string(a));
     }
+    if (static_cast<double>(cells_.n[0]) * cells_.n[1] * cells_.n[2] >= 2147483648.0)
+      throw std::invalid_argument("device engine: the box holds 2^31 cells or more of " +
+                                  std::to_string(edge) + "; it indexes cells with 31 bits");
     resize(gravity_work_, n_);
     resize(moved_far_, n_);
     // The open contacts at the start, sorted by key: the first list build takes them back.
@@ -222,7 +225,18 @@ public:
       start_keys = keys;
       start_states = states;
     }
+    // A run continued mid-way makes its last list build again, where the particles stood then
+    // (Simulation::build_lists_after_load does the same): the same cells, order and pairs.
+    const bool rebuild = hp.x_build.size() == hp.size() && n_ > 0;
+    if (rebuild) {
+      x_now_ = hp.x;
+      x_ = hp.x_build;
+    }
     build_list(start_keys, start_states);
+    if (rebuild) {
+      x_.swap(x_now_);
+      DeviceVector<Vec3>().swap(x_now_);
+    }
     // The forces of the start, without advancing the history, unless they came with the state:
     // a run continued mid-way keeps the forces its last step computed, at the half-step
     // velocities, as a resumed checkpoint does.
@@ -253,6 +267,7 @@ public:
     get(kind_, sorted.kind);
     get(material_, sorted.material);
     get(x_rest_, sorted.x_rest);
+    get(x_build_, sorted.x_build);
     get(motion_, sorted.motion);
     std::vector<std::uint32_t> order(n_);
     std::iota(order.begin(), order.end(), 0u);
@@ -275,6 +290,7 @@ public:
     pick(sorted.kind, h.kind);
     pick(sorted.material, h.material);
     pick(sorted.x_rest, h.x_rest);
+    pick(sorted.x_build, h.x_build);
     pick(sorted.motion, h.motion);
     return h;
   }
@@ -293,6 +309,23 @@ public:
     e.removed = removed_total_;
     e.escaped = escaped_;
     return e;
+  }
+
+  std::vector<KeyedState<State>> open_contacts() const override {
+    DeviceVector<std::uint64_t> keys;
+    DeviceVector<State> states;
+    stash_open_contacts(keys, states);
+    std::vector<std::uint64_t> k(keys.size());
+    std::vector<State> st(states.size());
+    if (!k.empty()) {
+      thrust::copy(keys.begin(), keys.end(), k.begin());
+      thrust::copy(states.begin(), states.end(), st.begin());
+    }
+    std::vector<KeyedState<State>> out(k.size());
+    for (std::size_t c = 0; c < k.size(); ++c)
+      out[c] = {static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu),
+                st[c]};
+    return out;
   }
 
   std::int64_t step() const override { return step_; }
@@ -396,6 +429,7 @@ private:
     DeviceVector<Vec3> v3;
     for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_, &x_rest_})
       permute_by(order, *field, v3);
+    if (!x_now_.empty()) permute_by(order, x_now_, v3);
     DeviceVector<double> d;
     for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
       permute_by(order, *field, d);
@@ -418,7 +452,7 @@ private:
   }
 
   // The open contacts' keys (the particles' global ids) in ascending order, and their states.
-  void stash_open_contacts(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) {
+  void stash_open_contacts(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) const {
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
     DeviceVector<std::uint32_t> open_pairs(pairs);
     const std::uint32_t n_open = static_cast<std::uint32_t>(
@@ -447,13 +481,15 @@ private:
     // energy booked as removed (Simulation::handle_escapes_here).
     remove_escaped();
 
-    // 2. Wrap, sort by cell (stable: equal cells keep their order), and find each cell's start.
-    resize(cell_, n_);
-    for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(cell_)});
+    // 2. Wrap, sort by (cell, global id), and find each cell's start.
+    DeviceVector<std::uint64_t> key(n_);
+    for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(key)});
     resize(order_, n_);
     thrust::sequence(thrust::device, raw(order_), last(order_));
-    thrust::stable_sort_by_key(thrust::device, raw(cell_), last(cell_), raw(order_));
+    thrust::sort_by_key(thrust::device, raw(key), last(key), raw(order_));
     permute_particles(order_);
+    resize(cell_, n_);
+    for_each_index(n_, CellOfKey{raw(key), raw(cell_)});
     resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
         thrust::device, raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
@@ -546,6 +582,7 @@ private:
 
   std::uint32_t n_ = 0, n_materials_ = 1;
   DeviceVector<Vec3> x_, v_, w_, f_, torque_, x_build_;
+  DeviceVector<Vec3> x_now_; // while the start's list is made again: where the particles stand
   DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
   DeviceVector<GlobalId> gid_;
   DeviceVector<Kind> kind_;
@@ -588,7 +625,7 @@ private:
 #endif
 
 template <class Model>
-std::unique_ptr<DeviceEngine>
+std::unique_ptr<LawEngine<Model>>
 YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
                     const std::vector<KeyedState<typename Model::State>>& contacts) {
 #if defined(__CUDACC__)
@@ -600,7 +637,7 @@ YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::
 }
 
 #define YUXI_INSTANTIATE_ENGINE(Model)                                                             \
-  template std::unique_ptr<DeviceEngine> YUXI_ENGINE_FACTORY<Model>(                               \
+  template std::unique_ptr<LawEngine<Model>> YUXI_ENGINE_FACTORY<Model>(                           \
       const DeviceScene&, const std::vector<Model::Coeffs>&,                                       \
       const std::vector<KeyedState<Model::State>>&);
 YUXI_INSTANTIATE_ENGINE(LinearSpringDashpot)

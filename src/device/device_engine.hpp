@@ -23,6 +23,10 @@ namespace yuxi::device {
 // The particles a device engine starts from, or that it gives back (in global-id order).
 struct HostParticles {
   std::vector<Vec3> x, v, w, f, torque, x_rest;
+  // Where each particle stood at the last list build (a run continued mid-way: the engine makes
+  // that build's list again, as a checkpoint's is made, and goes on bit for bit); empty: the
+  // list is built where the particles stand.
+  std::vector<Vec3> x_build;
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   std::vector<GlobalId> gid;
   std::vector<Kind> kind;
@@ -69,6 +73,13 @@ struct DeviceEnergies {
   std::int64_t escaped = 0; // grains removed on escape since the start
 };
 
+// An open contact: keyed by its particles' ids, smaller first, its state as seen from the
+// smaller.
+template <class State> struct KeyedState {
+  GlobalId first = 0, second = 0;
+  State state;
+};
+
 class DeviceEngine {
 public:
   virtual ~DeviceEngine() = default;
@@ -87,6 +98,13 @@ public:
   virtual std::string device_name() const = 0;
 };
 
+// The engine of one contact law, whose contacts' states the host can read.
+template <class Model> class LawEngine : public DeviceEngine {
+public:
+  // The contacts open now (touching at the last force evaluation), in ascending key order.
+  virtual std::vector<KeyedState<typename Model::State>> open_contacts() const = 0;
+};
+
 // An engine for contact law `Model`, on the CPU through Thrust's CPP system (the host build,
 // library yuxi_device) or as CUDA on the GPU (library yuxi_device_cuda, built with
 // -DYUXI_CUDA=ON): the same source, device_engine.cpp. It builds the list and computes the forces
@@ -94,18 +112,14 @@ public:
 // std::invalid_argument naming what it cannot run (a periodic axis of fewer than 3 cells, ids
 // beyond 32 bits), and make_cuda_engine std::runtime_error where no GPU is found.
 //
-// `contacts` are the contacts open at the start (a run continued from another engine): each
-// keyed by its particles' ids, smaller first, its state as seen from the smaller.
-template <class State> struct KeyedState {
-  GlobalId first = 0, second = 0;
-  State state;
-};
+// `contacts` are the contacts open at the start (a run continued from another engine), as
+// open_contacts() gives them.
 template <class Model>
-std::unique_ptr<DeviceEngine>
+std::unique_ptr<LawEngine<Model>>
 make_host_engine(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
                  const std::vector<KeyedState<typename Model::State>>& contacts = {});
 template <class Model>
-std::unique_ptr<DeviceEngine>
+std::unique_ptr<LawEngine<Model>>
 make_cuda_engine(const DeviceScene& scene, const std::vector<typename Model::Coeffs>& coeffs,
                  const std::vector<KeyedState<typename Model::State>>& contacts = {});
 

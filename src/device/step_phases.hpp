@@ -90,16 +90,28 @@ struct PairList {
   const std::uint32_t *reverse_start, *reverse_pair;
 };
 
-// Cell of each particle (after wrapping it into the periodic box).
+// Each particle's sort key at a list build (after wrapping it into the periodic box): its cell,
+// then its global id. The order this gives depends on where the particles stand and nothing
+// else, so a run continued from a checkpoint sorts, lists and sums as the run that wrote it.
 struct CellOfParticle {
   Particles p;
   DeviceBox box;
   DeviceCells cells;
-  std::uint32_t* cell;
+  std::uint64_t* key;
   YUXI_HD void operator()(std::uint32_t i) const {
     p.x[i] = box.wrap(p.x[i]);
     p.x_build[i] = p.x[i];
-    cell[i] = cells.cell_of(p.x[i]);
+    key[i] = (static_cast<std::uint64_t>(cells.cell_of(p.x[i])) << 32) |
+             static_cast<std::uint64_t>(p.gid[i]);
+  }
+};
+
+// The cell of each sorted key.
+struct CellOfKey {
+  const std::uint64_t* key;
+  std::uint32_t* cell;
+  YUXI_HD void operator()(std::uint32_t k) const {
+    cell[k] = static_cast<std::uint32_t>(key[k] >> 32);
   }
 };
 

@@ -16,15 +16,25 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace yuxi {
+
+// The engine that steps a run (docs/gpu.md): the CPU engine; the device engine on a GPU; or the
+// device engine's code on the CPU (host), the reference the GPU is tested against.
+enum class RunDevice { cpu, gpu, host };
 
 struct RunSettings {
   std::string name = "yuxi";
   double t_end = 1.0;          // simulated time to reach [time]
   bool allow_large_dt = false; // accept dt > t_c / 10
+  RunDevice device = RunDevice::cpu;
 };
+
+// "cpu", "gpu" or "host"; and back (std::nullopt for another word).
+const char* run_device_name(RunDevice device);
+std::optional<RunDevice> run_device_named(std::string_view name);
 
 struct OutputSettings {
   double energy_interval = 0.01;  // time between rows of energies.csv [time]

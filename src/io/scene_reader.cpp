@@ -30,6 +30,24 @@ std::uint8_t material_of(const Scene& scene, TomlReader& t, std::string_view key
   return *k;
 }
 
+const char* run_device_name(RunDevice device) {
+  switch (device) {
+  case RunDevice::gpu:
+    return "gpu";
+  case RunDevice::host:
+    return "host";
+  case RunDevice::cpu:
+    break;
+  }
+  return "cpu";
+}
+
+std::optional<RunDevice> run_device_named(std::string_view name) {
+  for (const RunDevice d : {RunDevice::cpu, RunDevice::gpu, RunDevice::host})
+    if (name == run_device_name(d)) return d;
+  return std::nullopt;
+}
+
 namespace {
 
 Boundary to_boundary(const std::string& s) {
@@ -44,6 +62,7 @@ void read_run(Scene& scene, TomlReader& root) {
   scene.dt_location = run->where("dt");
   scene.run.t_end = run->positive("t_end");
   scene.run.allow_large_dt = run->boolean("allow_large_dt", false);
+  scene.run.device = *run_device_named(run->choice("device", {"cpu", "gpu", "host"}, "cpu"));
   run->finish();
 }
 

@@ -279,7 +279,8 @@ std::string resolved_scene_toml(const Scene& s) {
   doc.insert("run", toml::table{{"name", s.run.name},
                                 {"dt", s.sim.dt},
                                 {"t_end", s.run.t_end},
-                                {"allow_large_dt", s.run.allow_large_dt}});
+                                {"allow_large_dt", s.run.allow_large_dt},
+                                {"device", run_device_name(s.run.device)}});
   doc.insert("output", toml::table{{"energy_interval", s.output.energy_interval},
                                    {"snapshot_interval", s.output.snapshot_interval},
                                    {"vtk", s.output.vtk},

@@ -64,6 +64,7 @@ void replicate(device::DeviceScene& scene, const Replicas& r) {
             all.f.push_back(one.f[i]);
             all.torque.push_back(one.torque[i]);
           }
+          if (!one.x_build.empty()) all.x_build.push_back(one.x_build[i] + shift);
           all.motion.push_back(one.motion[i]);
         }
       }
@@ -95,6 +96,8 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
   if (scene.forces_given) {
     p.f.assign(s.f.begin(), s.f.begin() + n);
     p.torque.assign(s.torque.begin(), s.torque.begin() + n);
+    // ... and the list of the last build is made again from where the particles stood then.
+    p.x_build.assign(s.x_build.begin(), s.x_build.begin() + n);
   }
   p.motion.assign(s.motion.begin(), s.motion.begin() + n);
   for (const WallMotion& motion : sim.wall_motions()) {
@@ -142,18 +145,32 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
         open.push_back({open[k].first + copy * (largest + 1), open[k].second + copy * (largest + 1),
                         open[k].state});
   }
-  if (choice == DeviceChoice::cuda) {
+  check_device_choice(choice);
 #if defined(YUXI_HAVE_CUDA)
-    return device::make_cuda_engine<Model>(scene, table, open);
-#else
-    throw std::runtime_error("this build of yuxi has no CUDA: configure it with -DYUXI_CUDA=ON "
-                             "(docs/gpu.md) to run on a GPU");
+  if (choice == DeviceChoice::cuda) return device::make_cuda_engine<Model>(scene, table, open);
 #endif
-  }
   return device::make_host_engine<Model>(scene, table, open);
 }
 
 } // namespace
+
+bool build_has_cuda() {
+#if defined(YUXI_HAVE_CUDA)
+  return true;
+#else
+  return false;
+#endif
+}
+
+void check_device_choice(DeviceChoice choice) {
+#if !defined(YUXI_HAVE_CUDA)
+  if (choice == DeviceChoice::cuda)
+    throw std::runtime_error("this build of yuxi has no CUDA: configure it with -DYUXI_CUDA=ON "
+                             "(docs/gpu.md) to run on a GPU");
+#else
+  (void)choice;
+#endif
+}
 
 std::unique_ptr<device::DeviceEngine> make_device_engine(const Simulation& sim, DeviceChoice choice,
                                                          Replicas replicas) {

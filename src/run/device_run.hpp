@@ -24,6 +24,10 @@ enum class DeviceChoice {
 
 // What of `sim`'s scene the device engine does not run, one line each (empty: it runs all).
 std::vector<std::string> device_engine_refusals(const Simulation& sim);
+// Throws std::runtime_error where the choice is cuda and this build has no CUDA.
+void check_device_choice(DeviceChoice choice);
+// True where this build has the device engine for CUDA GPUs (-DYUXI_CUDA=ON).
+bool build_has_cuda();
 
 // Copies of the scene side by side along periodic axes (LAMMPS's `replicate`): a benchmark's
 // way to a large system from a settled small one.

@@ -4,6 +4,7 @@
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
 #include "run/bed_measurements.hpp"
+#include "run/device_stepper.hpp"
 #include "run/progress.hpp"
 #include "run/run_analysis.hpp"
 #include "run/simulation_checkpoint.hpp"
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 namespace yuxi {
 namespace {
@@ -39,6 +41,7 @@ struct RunDriver::Impl {
   std::unique_ptr<BedMeasurements> measures;
   std::unique_ptr<RunAnalysis> analysis;
   std::optional<CheckpointSet> checkpoints;
+  std::unique_ptr<DeviceStepper> stepper; // the device engine, where the run is on it
   std::chrono::steady_clock::time_point last_checkpoint, start;
   // Particles in the rate (grains and wall particles), counted again at each row of
   // energies.csv: grains may come and go.
@@ -53,6 +56,7 @@ struct RunDriver::Impl {
   void snapshot();
   bool stop_requested() const;
   bool checkpoint_due(std::int64_t next) const;
+  std::int64_t next_host_step(std::int64_t until, const StepHook& hook) const;
   std::filesystem::path write_checkpoint();
 };
 
@@ -73,6 +77,10 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
       last(std::llround(scene.run.t_end / dt)),
       energy_every(every(scene.output.energy_interval, dt)),
       snapshot_every(every(scene.output.snapshot_interval, dt)), root(sim.comm().root()) {
+  if (options.device) {
+    check_device_run(scene, sim, *options.device);
+    stepper = std::make_unique<DeviceStepper>(sim, *options.device);
+  }
   const auto& dir = options.output_dir;
   // energies.csv is written by rank 0, from energies reduced over ranks; every rank writes its
   // own particles into the snapshots and checkpoints (no rank gathers the others').
@@ -211,6 +219,22 @@ bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
   return sim.comm().any(policy.every_minutes > 0 && minutes >= policy.every_minutes);
 }
 
+// The next step after which the host needs the state (an output, a checkpoint, a hook, a poll
+// of the signal and the clock), at most `until`: the device engine runs to it in one go.
+std::int64_t RunDriver::Impl::next_host_step(std::int64_t until, const StepHook& hook) const {
+  const std::int64_t k = sim.step_count();
+  std::int64_t next = std::min(until, last);
+  const auto due = [&](std::int64_t period) {
+    if (period > 0) next = std::min(next, (k / period + 1) * period);
+  };
+  due(energy_every);
+  due(snapshot_every);
+  due(poll_steps);
+  due(scene.checkpoint.every_steps);
+  if (hook.call) due(hook.every);
+  return next;
+}
+
 std::filesystem::path RunDriver::Impl::write_checkpoint() {
   const auto t0 = std::chrono::steady_clock::now();
   const std::filesystem::path file = yuxi::write_checkpoint(*checkpoints, options.scene_text, sim);
@@ -260,11 +284,18 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
                     d.options.progress_sink);
   try {
     while (sim.step_count() < until) {
-      const bool checkpoint_now = d.checkpoint_due(sim.step_count() + 1);
-      if (d.analysis) d.analysis->before_step(sim);
-      sim.step();
-      if (d.analysis) d.analysis->after_step(sim);
-      d.particle_steps += d.n_particles;
+      // The CPU engine steps once; the device engine to the next step the host needs.
+      const std::int64_t next = d.stepper ? d.next_host_step(until, hook) : sim.step_count() + 1;
+      const bool checkpoint_now = d.checkpoint_due(next);
+      if (d.stepper) {
+        d.particle_steps += d.n_particles * static_cast<double>(next - sim.step_count());
+        d.stepper->advance(next - sim.step_count());
+      } else {
+        if (d.analysis) d.analysis->before_step(sim);
+        sim.step();
+        if (d.analysis) d.analysis->after_step(sim);
+        d.particle_steps += d.n_particles;
+      }
       const std::int64_t k = sim.step_count();
       if (k % d.energy_every == 0 || k == d.last) d.write_energies();
       if (d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last)) d.snapshot();
@@ -306,7 +337,42 @@ RunSummary RunDriver::finish() {
   d.summary.particle_steps_per_second =
       d.summary.wall_seconds > 0 ? d.particle_steps / d.summary.wall_seconds : 0.0;
   d.summary.final_energies = d.sim.energies();
+  if (d.stepper) {
+    d.summary.device = d.stepper->device_name();
+    d.summary.device_bytes_per_particle = d.stepper->device_bytes_per_particle();
+    d.summary.device_seconds = d.stepper->device_seconds();
+    d.summary.handover_seconds = d.stepper->handover_seconds();
+  }
   return d.summary;
+}
+
+std::optional<DeviceChoice> device_choice(RunDevice device) {
+  switch (device) {
+  case RunDevice::gpu:
+    return DeviceChoice::cuda;
+  case RunDevice::host:
+    return DeviceChoice::host;
+  case RunDevice::cpu:
+    break;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> device_run_refusals(const Scene& scene, const Simulation& sim) {
+  std::vector<std::string> no = device_engine_refusals(sim);
+  if (scene.analysis)
+    no.push_back("[analysis] table (its samples need every step's contacts: run it on the CPU)");
+  return no;
+}
+
+void check_device_run(const Scene& scene, const Simulation& sim, DeviceChoice choice) {
+  const std::vector<std::string> no = device_run_refusals(scene, sim);
+  if (!no.empty()) {
+    std::string what = "the device engine does not run this scene's";
+    for (const std::string& line : no) what += "\n  - " + line;
+    throw std::invalid_argument(what);
+  }
+  check_device_choice(choice);
 }
 
 RunSummary run_to_end(const Scene& scene, Simulation& sim, const RunOptions& options) {

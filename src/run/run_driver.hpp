@@ -13,6 +13,7 @@
 #pragma once
 
 #include "io/scene.hpp"
+#include "run/device_run.hpp"
 #include "sim/simulation.hpp"
 
 #include <csignal>
@@ -20,7 +21,9 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace yuxi {
 
@@ -34,7 +37,21 @@ struct RunOptions {
   std::function<bool()> stop_requested;
   // Where progress lines go (standard error when empty); `line` starts with '\r'.
   std::function<void(const std::string& line)> progress_sink;
+  // The device engine steps the run (docs/gpu.md); empty: the CPU engine. The state comes back
+  // to the simulation at each output, checkpoint and hook step.
+  std::optional<DeviceChoice> device;
 };
+
+// The engine that run.device names: empty for the CPU engine.
+std::optional<DeviceChoice> device_choice(RunDevice device);
+
+// What of a scene the device engine does not run, one line each (empty: it runs all):
+// device_engine_refusals, and the [analysis] table, whose samples need every step's contacts.
+std::vector<std::string> device_run_refusals(const Scene& scene, const Simulation& sim);
+// Throws std::invalid_argument listing device_run_refusals, or std::runtime_error where the
+// choice is cuda and this build has no CUDA: a run asked for the device is checked before its
+// folder is made.
+void check_device_run(const Scene& scene, const Simulation& sim, DeviceChoice choice);
 
 struct RunSummary {
   std::int64_t steps = 0;
@@ -42,6 +59,10 @@ struct RunSummary {
   double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
   double snapshot_seconds = 0.0;          // wall time writing VTK and LAMMPS dump frames
   double checkpoint_seconds = 0.0;        // wall time writing checkpoints
+  // On the device engine: its name, its memory per particle, and the wall time stepping there
+  // and handing the state back to the host.
+  std::string device;
+  double device_bytes_per_particle = 0.0, device_seconds = 0.0, handover_seconds = 0.0;
   EnergyBooks final_energies;
   bool failed = false;
   bool interrupted = false; // stopped by a signal after writing a checkpoint

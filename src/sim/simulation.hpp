@@ -32,6 +32,7 @@
 #include "scene/wall_motion.hpp"
 #include "sim/contact_compute.hpp"
 #include "sim/energy_ledger.hpp"
+#include "sim/engine_state.hpp"
 #include "sim/exchange.hpp"
 #include "sim/neighbor_search.hpp"
 #include "sim/phase_times.hpp"
@@ -200,6 +201,13 @@ public:
   // not load or does not fit the scene throws std::invalid_argument on every rank.
   void load(const SavedState& saved);
 
+  // Continues from the state of a run that another engine advanced from this one's (the device
+  // engine: run/device_stepper.hpp). The particles, contacts and books become `state`'s, and the
+  // list of that engine's last build is made again, as a checkpoint's is: outputs and
+  // checkpoints then see that state, and a checkpoint saved now continues it on either engine.
+  // Only in one process; a particle of `state` that is not here throws std::invalid_argument.
+  void take_engine_state(const EngineState& state);
+
   // Sources and sinks of grains while the run goes on ([[insert]], [[outlet]]; the scene
   // builder sets them before the first step, and before a checkpoint is loaded). Insertions
   // happen at list builds (a batch due forces one); grains that an outlet holds leave at the
@@ -221,6 +229,10 @@ public:
   // Collective.
   void add_insert(InsertSpec insert);
   const std::vector<InsertSpec>& inserts() const { return sources_.inserts(); }
+
+  // Counts the changes made from outside the equations of motion (the edits below, and load()):
+  // another engine that runs this simulation's state starts again from it where they changed.
+  std::uint64_t edits() const { return edits_; }
 
   // Changes from outside the equations of motion between steps (the Python API:
   // simulation_edits.cpp). Each books the change of mechanical energy it makes as `inserted`
@@ -369,6 +381,7 @@ private:
   Exchange exchange_;
   NeighborSearch search_;
   ContactCompute contacts_;
+  std::uint64_t edits_ = 0; // edits(): changes from outside the equations of motion
   Walls walls_;
   Sources sources_;
   EnergyLedger ledger_;

@@ -45,6 +45,7 @@ void Simulation::set_velocities(std::span<const GlobalId> ids, std::span<const V
   for (std::size_t k = 0; k < ids.size(); ++k)
     if (!is_finite(v[k]))
       throw std::invalid_argument(fmt::format("velocity of particle id {} is not finite", ids[k]));
+  ++edits_;
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const std::size_t i = at[k];
     ledger_.books().inserted += 0.5 * store_.mass[i] * (norm2(v[k]) - norm2(store_.v[i]));
@@ -59,6 +60,7 @@ void Simulation::set_angular_velocities(std::span<const GlobalId> ids, std::span
     if (!is_finite(w[k]))
       throw std::invalid_argument(
           fmt::format("angular velocity of particle id {} is not finite", ids[k]));
+  ++edits_;
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const std::size_t i = at[k];
     const double before = rotational_energy(i);
@@ -78,6 +80,7 @@ void Simulation::edit_particles(const std::function<void()>& check,
   }
   error = comm().first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
+  ++edits_;
   const EnergyBooks before = energies(); // collective
   // (the change is made in the list build, once the history is stashed)
   build_lists({ListBuildPlan::After::edit, &change});
@@ -240,6 +243,7 @@ std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
 
 void Simulation::add_insert(InsertSpec insert) {
   sources_.check_new_name(insert.name);
+  ++edits_;
   const double cell_edge = exchange_.cell_edge();
   const double r = insert.grains.size.largest();
   if (2 * r + config_.skin > cell_edge)

@@ -1,7 +1,8 @@
 // A simulation's saved state: saving this rank's section (save_state), and continuing from a
 // checkpoint's sections on as many ranks as wrote it or on another number, or under another
-// scene (a branch), in a simulation built straight from them or in place (load); gathering the
-// particles onto one rank.
+// scene (a branch), in a simulation built straight from them or in place (load); taking the
+// state of another engine that advanced the run (take_engine_state); gathering the particles
+// onto one rank.
 //
 // A section, in order: time, step, the cumulative books, the count of list builds, the initial
 // balance, the last tally; the walls' section (Walls::save); the sources' (Sources::save); the
@@ -17,6 +18,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numeric>
+#include <stdexcept>
 #include <utility>
 
 namespace yuxi {
@@ -115,6 +118,7 @@ Simulation::Simulation(SimulationFrame frame, const SavedState& saved, Comm comm
 }
 
 void Simulation::load(const SavedState& saved) {
+  ++edits_;
   continue_from(saved, nullptr);
 }
 
@@ -349,6 +353,57 @@ void Simulation::build_lists_after_load(bool as_saved) {
     exchange_.forward(store_);
   }
   list_builds_ = counted;
+}
+
+void Simulation::take_engine_state(const EngineState& state) {
+  if (comm().size() != 1)
+    throw std::logic_error("take_engine_state: another engine's state is taken in one process");
+  const std::size_t n = state.gid.size();
+  const auto sizes_agree = [n](const auto&... field) { return ((field.size() == n) && ...); };
+  if (!sizes_agree(state.x, state.x_build, state.v, state.w, state.f, state.torque) ||
+      !std::is_sorted(state.gid.begin(), state.gid.end()))
+    throw std::invalid_argument("take_engine_state: the state's fields are not one per particle "
+                                "in ascending global id");
+  // The particles that left (removed on escape) go; the others stand in global-id order.
+  store_.clear_ghosts();
+  std::vector<std::size_t> gone;
+  for (std::size_t i = 0; i < store_.n_owned(); ++i)
+    if (!std::binary_search(state.gid.begin(), state.gid.end(), store_.gid[i])) gone.push_back(i);
+  store_.remove_owned(gone);
+  std::vector<std::uint32_t> order(store_.n_owned());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return store_.gid[a] < store_.gid[b]; });
+  store_.permute_owned(order);
+  if (store_.n_owned() != n || !std::equal(state.gid.begin(), state.gid.end(), store_.gid.begin()))
+    throw std::invalid_argument("take_engine_state: the state holds a particle that this "
+                                "simulation does not");
+  store_.x = state.x;
+  store_.x_build = state.x_build;
+  store_.v = state.v;
+  store_.w = state.w;
+  store_.f = state.f;
+  store_.torque = state.torque;
+  time_ = state.time;
+  step_ = state.step;
+  list_builds_ = state.list_builds;
+  EnergyBooks& books = ledger_.books();
+  books.dissipated = state.books.dissipated;
+  books.wall_work = state.books.wall_work;
+  books.removed = state.books.removed;
+  books.gravity_work = state.books.gravity_work;
+  books.inserted = state.books.inserted;
+  books.escaped = state.books.escaped;
+  ContactTally& tally = contacts_.tally();
+  tally = ContactTally{};
+  tally.elastic = state.elastic;
+  tally.relaxation = state.relaxation;
+  tally.touching = state.touching;
+  contacts_.history().forget();
+  contacts_.history().give(state.contact_stash);
+  // (the other engine records no contacts' forces: none is kept that would not match the list)
+  contacts_.record_contacts(false);
+  build_lists_after_load(true);
 }
 
 ParticleStore Simulation::gather_particles() const {

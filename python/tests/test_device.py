@@ -1,0 +1,96 @@
+"""A run on the device engine from Python (``device=``), in its host build: the same books as
+the CPU engine, edits between steps reaching the engine, and misuse refused by name."""
+import copy
+import os
+
+import numpy as np
+import pytest
+
+import yuxi
+
+
+@pytest.fixture
+def gas_scene(box_scene):
+    """The box's 343 grains in a box periodic along every axis, without gravity: a granular gas
+    once the test gives it velocities, colliding and cooling."""
+    s = copy.deepcopy(box_scene)
+    s["domain"]["boundary"] = ["periodic", "periodic", "periodic"]
+    s["domain"]["gravity"] = [0.0, 0.0, 0.0]
+    del s["domain"]["wall_material"]
+    s["run"]["t_end"] = 0.06
+    return s
+
+
+def _stir(sim, seed):
+    # (by id: the engines keep their particles in different orders)
+    ids = np.sort(np.asarray(sim.particles.id)[np.asarray(sim.particles.grains)])
+    v = np.random.default_rng(seed).normal(0.0, 3.0, (len(ids), 3))
+    sim.set_velocities(ids, v)
+
+
+def _books(scene, folder, device, stir_again):
+    sim = yuxi.Simulation(scene, output=folder, progress=False, device=device)
+    _stir(sim, 1)
+    sim.run(steps=150)
+    if stir_again:
+        _stir(sim, 2)  # between steps: the device engine must start again from it
+    sim.run()
+    e = sim.energies()
+    return e, sim.close()
+
+
+@pytest.mark.parametrize("stir_again", [False, True])
+def test_host_build_keeps_the_cpu_engines_books(gas_scene, tmp_path, stir_again):
+    cpu, _ = _books(gas_scene, tmp_path / "cpu", None, stir_again)
+    dev, summary = _books(gas_scene, tmp_path / "host", "host", stir_again)
+    assert summary["device"] == "host (Thrust CPP)"
+    assert cpu["contacts"] > 50 and cpu["dissipated"] > 0
+    assert dev["step"] == cpu["step"] == 300
+    for book in ("translational", "rotational", "elastic", "dissipated", "inserted", "balance"):
+        assert dev[book] == pytest.approx(cpu[book], rel=1e-9, abs=1e-12), book
+    assert dev["contacts"] == cpu["contacts"]
+    rows = np.genfromtxt(tmp_path / "host" / "energies.csv", delimiter=",", names=True)
+    assert len(rows) == 7 and rows["step"][-1] == 300
+
+
+def test_device_names_are_checked(gas_scene, tmp_path):
+    with pytest.raises(ValueError, match="'tpu' is none of"):
+        yuxi.Simulation(gas_scene, output=tmp_path / "a", progress=False, device="tpu")
+    with pytest.raises(TypeError, match="device"):
+        yuxi.Simulation(gas_scene, output=tmp_path / "b", progress=False, device=1)
+    gas_scene["run"]["device"] = "tpu"
+    with pytest.raises(ValueError, match="device"):
+        yuxi.Simulation(gas_scene, output=tmp_path / "c", progress=False)
+
+
+@pytest.mark.skipif(yuxi.has_cuda, reason="this build has CUDA")
+def test_gpu_in_a_build_without_cuda_says_how_to_get_it(gas_scene, tmp_path):
+    with pytest.raises(RuntimeError, match="YUXI_CUDA=ON"):
+        yuxi.Simulation(gas_scene, output=tmp_path / "gpu", progress=False, device="gpu")
+    assert not os.path.exists(tmp_path / "gpu"), "a refused run made its folder"
+
+
+def test_walls_are_refused_by_name_not_run_on_the_cpu(box_scene, tmp_path):
+    with pytest.raises(ValueError, match="plane"):
+        yuxi.Simulation(box_scene, output=tmp_path / "walls", progress=False, device="host")
+    assert not os.path.exists(tmp_path / "walls")
+
+
+def test_contacts_are_not_recorded_on_the_device(gas_scene, tmp_path):
+    sim = yuxi.Simulation(gas_scene, output=tmp_path / "rec", progress=False, device="host")
+    with pytest.raises(RuntimeError, match="CPU engine only"):
+        sim.record_contacts(True)
+    sim.close()
+
+
+def test_a_device_run_resumes_on_the_cpu(gas_scene, tmp_path):
+    sim = yuxi.Simulation(gas_scene, output=tmp_path / "run", progress=False, device="host")
+    _stir(sim, 1)
+    sim.run(steps=150)
+    sim.checkpoint()
+    sim.close()
+    again = yuxi.Simulation.resume(tmp_path / "run", progress=False, device="cpu")
+    assert again.step_count == 150
+    again.run()
+    assert again.step_count == 300
+    again.close()

@@ -1,0 +1,100 @@
+#include "run/device_stepper.hpp"
+
+#include "contact/contact_history.hpp"
+#include "sim/simulation.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <variant>
+
+namespace yuxi {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The engine's open contacts as the CPU engine's history stashes them.
+template <class Model>
+std::string contact_stash(const ContactLaw<Model>&, const device::DeviceEngine& engine,
+                          std::size_t& touching) {
+  using State = typename Model::State;
+  const auto& typed = dynamic_cast<const device::LawEngine<Model>&>(engine);
+  const auto open = typed.open_contacts();
+  touching = open.size();
+  std::vector<typename ContactHistory<State>::Entry> entries(open.size());
+  for (std::size_t k = 0; k < open.size(); ++k)
+    entries[k] = {{open[k].first, open[k].second}, open[k].state};
+  return ContactHistory<State>::pack_entries(entries);
+}
+
+} // namespace
+
+DeviceStepper::DeviceStepper(Simulation& sim, DeviceChoice choice) : sim_(sim), choice_(choice) {
+  start();
+}
+
+void DeviceStepper::start() {
+  engine_.reset(); // (its memory first: the new engine's may not fit beside it)
+  engine_ = make_device_engine(sim_, choice_);
+  start_ = sim_.energies();
+  start_step_ = sim_.step_count();
+  start_builds_ = sim_.list_builds();
+  edits_seen_ = sim_.edits();
+}
+
+DeviceStepper::~DeviceStepper() = default;
+
+EngineState DeviceStepper::engine_state() const {
+  EngineState s;
+  device::HostParticles p = engine_->particles();
+  s.gid = std::move(p.gid);
+  s.x = std::move(p.x);
+  s.x_build = std::move(p.x_build);
+  s.v = std::move(p.v);
+  s.w = std::move(p.w);
+  s.f = std::move(p.f);
+  s.torque = std::move(p.torque);
+  s.time = engine_->time();
+  s.step = start_step_ + engine_->step();
+  // (the engine's first build made the list of the simulation's last one again)
+  s.list_builds = start_builds_ + engine_->list_builds() - 1;
+  s.contact_stash =
+      std::visit([&](const auto& law) { return contact_stash(law, *engine_, s.touching); },
+                 sim_.contact_law());
+  const device::DeviceEnergies e = engine_->energies();
+  s.elastic = e.elastic;
+  s.relaxation = e.relaxation;
+  s.books = start_;
+  s.books.dissipated += e.dissipated;
+  s.books.gravity_work += e.gravity_work;
+  s.books.wall_work += e.wall_work;
+  s.books.removed += e.removed;
+  s.books.escaped += static_cast<std::size_t>(e.escaped);
+  return s;
+}
+
+void DeviceStepper::advance(std::int64_t steps) {
+  auto t0 = std::chrono::steady_clock::now();
+  if (sim_.edits() != edits_seen_) start();
+  try {
+    engine_->run(steps);
+  } catch (const std::runtime_error& e) { // a grain out of the box (on_escape = "stop")
+    throw SimulationError(e.what());
+  }
+  device_seconds_ += seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  sim_.take_engine_state(engine_state());
+  handover_seconds_ += seconds_since(t0);
+}
+
+std::string DeviceStepper::device_name() const {
+  return engine_->device_name();
+}
+
+double DeviceStepper::device_bytes_per_particle() const {
+  const double n = static_cast<double>(sim_.particles().n_owned());
+  return static_cast<double>(engine_->device_bytes()) / std::max(n, 1.0);
+}
+
+} // namespace yuxi

@@ -1,0 +1,54 @@
+// Advances a simulation on the device engine (run/device_run.hpp): the engine holds the state
+// between the steps at which the host needs it (outputs, checkpoints, hooks), and hands it back
+// to the Simulation there (Simulation::take_engine_state), so that every output and checkpoint
+// is written as on the CPU engine. A checkpoint so written resumes on either engine, and on the
+// device engine bit for bit.
+#pragma once
+
+#include "run/device_run.hpp"
+#include "sim/engine_state.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace yuxi {
+
+class Simulation;
+
+class DeviceStepper {
+public:
+  // Starts the engine from `sim`'s state. Throws as make_device_engine does.
+  DeviceStepper(Simulation& sim, DeviceChoice choice);
+  ~DeviceStepper();
+  DeviceStepper(const DeviceStepper&) = delete;
+  DeviceStepper& operator=(const DeviceStepper&) = delete;
+
+  // Advances `steps` steps on the device, then gives the state to the simulation. Where the
+  // simulation was edited since (Simulation::edits: the Python API's changes between steps), the
+  // engine starts again from it first, and throws as the constructor does. A run that cannot go
+  // on (a grain out of the box with on_escape = "stop") throws SimulationError, and the
+  // simulation keeps the state of the last call.
+  void advance(std::int64_t steps);
+  // The device's name, and the bytes it holds now per particle.
+  std::string device_name() const;
+  double device_bytes_per_particle() const;
+  // Wall time spent stepping on the device, and handing the state to the host [s].
+  double device_seconds() const { return device_seconds_; }
+  double handover_seconds() const { return handover_seconds_; }
+
+private:
+  void start();
+  EngineState engine_state() const;
+
+  Simulation& sim_;
+  DeviceChoice choice_;
+  std::uint64_t edits_seen_ = 0;
+  std::unique_ptr<device::DeviceEngine> engine_;
+  EnergyBooks start_; // the simulation's cumulative books when the engine started
+  std::int64_t start_step_ = 0, start_builds_ = 0;
+  double device_seconds_ = 0, handover_seconds_ = 0;
+};
+
+} // namespace yuxi
