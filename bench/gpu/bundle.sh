@@ -7,7 +7,7 @@
 #   bench/gpu/bundle.sh BUNDLE [BUILD] [CUDA_BUILD]
 #
 # BUILD is the release build (default build/release), CUDA_BUILD one configured with
-# -DYUXI_CUDA=ON (default build/cuda; `cmake --build CUDA_BUILD --target device_chute`).
+# -DYUXI_CUDA=ON (default build/cuda; `cmake --build CUDA_BUILD --target device_chute yuxi`).
 #
 # Then on the GPU machine: bench/gpu/device_check.sh OUTDIR BUNDLE.
 set -euo pipefail
@@ -27,6 +27,7 @@ mkdir -p "$bundle/bin" "$bundle/lib" "$bundle/mpi/usr/bin" "$bundle/mpi/usr/lib/
   -arch=sm_90 -Isrc bench/gpu/law_bits.cu -o "$bundle/bin/law_bits"
 cp "$build/apps/yuxi/yuxi" "$build/bench/device_chute" "$bundle/bin/"
 cp "$cuda_build/bench/device_chute" "$bundle/bin/device_chute_cuda"
+cp "$cuda_build/apps/yuxi/yuxi" "$bundle/bin/yuxi_cuda"
 
 cp /usr/bin/orterun /usr/bin/orted "$bundle/mpi/usr/bin/"
 ln -s orterun "$bundle/mpi/usr/bin/mpirun"
@@ -39,7 +40,8 @@ if [[ -d $pmix_lib ]]; then
 fi
 
 {
-  ldd "$bundle/bin/yuxi" "$bundle/bin/device_chute_cuda" /usr/bin/orterun /usr/bin/orted
+  ldd "$bundle/bin/yuxi" "$bundle/bin/yuxi_cuda" "$bundle/bin/device_chute_cuda" /usr/bin/orterun \
+    /usr/bin/orted
   find "$mpi_lib" "$pmix_lib" -name '*.so*' -exec ldd {} \;
 } 2>/dev/null | awk '$3 ~ /^\// {print $3}' | sort -u |
   grep -v -E '/(libc|libm|libstdc\+\+|libgcc_s|libpthread|libdl|librt|ld-linux-x86-64)\.so' |

@@ -17,6 +17,9 @@
 #                  the GPU, and the chute under each other contact law (scenes/chute-laws/) on
 #                  both sides, digests compared;
 #   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
+#   run.txt        `yuxi run --device gpu` on the chute: its run folder against `--device host`
+#                  on this machine's CPU (energies.csv byte for byte), and a run resumed on the
+#                  GPU from its checkpoint against the run straight through;
 #   cpu_chute.txt  yuxi's CPU engine on this machine's cores, the 32k chute on 1 rank and on one
 #                  rank per core: the baseline that the device engine is measured against.
 # Each part has a time limit, so the whole stays under 9 minutes (about 6 as measured); a part that fails is logged and
@@ -83,6 +86,27 @@ done >> "$out/engine.txt"
   echo "== racecheck, 5 steps"
   timeout 90 compute-sanitizer --tool racecheck device_chute_cuda scenes/chute-lammps.toml 5 --cuda 2>&1 | tail -3
 } > "$out/engine_sanitizer.txt"
+
+# yuxi run on the GPU: 1,000 steps of the chute into a run folder, the same on this CPU through
+# the host build, and the GPU run again in two halves through a checkpoint.
+run_chute() { # DEVICE PROGRAM FOLDER T_END [--resume]
+  timeout 120 "$2" run scenes/chute-lammps.toml --device "$1" --t-end "$4" -o "$3" --no-progress \
+    --no-plots > "$3.log" 2>&1
+  echo "== yuxi run --device $1 to t = $4: exit $?"
+  grep -E 'particle-steps/s|device engine' "$3.log" || tail -5 "$3.log"
+}
+{
+  rm -rf /tmp/yuxi-run-*
+  run_chute gpu yuxi_cuda /tmp/yuxi-run-gpu 0.1
+  run_chute host yuxi /tmp/yuxi-run-host 0.1
+  run_chute gpu yuxi_cuda /tmp/yuxi-run-half 0.05
+  timeout 60 yuxi_cuda run --resume /tmp/yuxi-run-half --t-end 0.1 --no-progress --no-plots \
+    > /tmp/yuxi-run-half.resume.log 2>&1
+  echo "== resumed on the GPU to t = 0.1: exit $?"
+  same() { cmp -s "$1" "$2" && echo "the same bytes" || echo DIFFER; }
+  echo "GPU and host build, energies.csv: $(same /tmp/yuxi-run-gpu/energies.csv /tmp/yuxi-run-host/energies.csv)"
+  echo "GPU resumed and straight, energies.csv: $(same /tmp/yuxi-run-half/energies.csv /tmp/yuxi-run-gpu/energies.csv)"
+} > "$out/run.txt" 2>&1
 
 chute() {
   local np=$1 steps=$2

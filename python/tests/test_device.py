@@ -94,3 +94,16 @@ def test_a_device_run_resumes_on_the_cpu(gas_scene, tmp_path):
     again.run()
     assert again.step_count == 300
     again.close()
+
+
+def test_a_device_run_that_blows_up_stops_with_a_diagnosis(gas_scene, tmp_path):
+    gas_scene["run"]["dt"] = 2.0e-2  # a hundred times the scene's: unstable
+    gas_scene["run"]["t_end"] = 6.0
+    sim = yuxi.Simulation(gas_scene, output=tmp_path / "blow", progress=False, force_dt=True,
+                          device="host")
+    _stir(sim, 1)
+    with pytest.raises(RuntimeError, match="energy books gained .* time step is too large"):
+        sim.run()
+    assert (tmp_path / "blow" / "failure.txt").exists()
+    assert (tmp_path / "blow" / "failure.vtu").exists()
+    sim.close()

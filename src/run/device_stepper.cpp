@@ -56,7 +56,7 @@ EngineState DeviceStepper::engine_state() const {
   s.f = std::move(p.f);
   s.torque = std::move(p.torque);
   s.time = engine_->time();
-  s.step = start_step_ + engine_->step();
+  s.step = step();
   // (the engine's first build made the list of the simulation's last one again)
   s.list_builds = start_builds_ + engine_->list_builds() - 1;
   s.contact_stash =
@@ -75,17 +75,32 @@ EngineState DeviceStepper::engine_state() const {
 }
 
 void DeviceStepper::advance(std::int64_t steps) {
-  auto t0 = std::chrono::steady_clock::now();
-  if (sim_.edits() != edits_seen_) start();
+  if (handed_over_ && sim_.edits() != edits_seen_) start();
+  const auto t0 = std::chrono::steady_clock::now();
   try {
     engine_->run(steps);
   } catch (const std::runtime_error& e) { // a grain out of the box (on_escape = "stop")
     throw SimulationError(e.what());
   }
+  handed_over_ = steps == 0 && handed_over_;
   device_seconds_ += seconds_since(t0);
-  t0 = std::chrono::steady_clock::now();
+}
+
+void DeviceStepper::hand_over() {
+  if (handed_over_) return;
+  const auto t0 = std::chrono::steady_clock::now();
   sim_.take_engine_state(engine_state());
+  handed_over_ = true;
+  edits_seen_ = sim_.edits();
   handover_seconds_ += seconds_since(t0);
+}
+
+std::int64_t DeviceStepper::step() const {
+  return start_step_ + engine_->step();
+}
+
+double DeviceStepper::time() const {
+  return engine_->time();
 }
 
 std::string DeviceStepper::device_name() const {

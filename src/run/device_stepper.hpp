@@ -25,12 +25,17 @@ public:
   DeviceStepper(const DeviceStepper&) = delete;
   DeviceStepper& operator=(const DeviceStepper&) = delete;
 
-  // Advances `steps` steps on the device, then gives the state to the simulation. Where the
-  // simulation was edited since (Simulation::edits: the Python API's changes between steps), the
-  // engine starts again from it first, and throws as the constructor does. A run that cannot go
-  // on (a grain out of the box with on_escape = "stop") throws SimulationError, and the
-  // simulation keeps the state of the last call.
+  // Advances `steps` steps on the device. Where the simulation was edited since the engine took
+  // its state (Simulation::edits: the Python API's changes between steps), the engine starts
+  // again from it first, and throws as the constructor does. A run that cannot go on (a grain
+  // out of the box with on_escape = "stop") throws SimulationError, and the simulation keeps the
+  // state last handed over.
   void advance(std::int64_t steps);
+  // Gives the engine's state to the simulation (nothing where it has it already).
+  void hand_over();
+  // The engine's step count and time.
+  std::int64_t step() const;
+  double time() const;
   // The device's name, and the bytes it holds now per particle.
   std::string device_name() const;
   double device_bytes_per_particle() const;
@@ -45,6 +50,7 @@ private:
   Simulation& sim_;
   DeviceChoice choice_;
   std::uint64_t edits_seen_ = 0;
+  bool handed_over_ = true; // the simulation holds the engine's state
   std::unique_ptr<device::DeviceEngine> engine_;
   EnergyBooks start_; // the simulation's cumulative books when the engine started
   std::int64_t start_step_ = 0, start_builds_ = 0;

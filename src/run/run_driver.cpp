@@ -222,7 +222,7 @@ bool RunDriver::Impl::checkpoint_due(std::int64_t next) const {
 // The next step after which the host needs the state (an output, a checkpoint, a hook, a poll
 // of the signal and the clock), at most `until`: the device engine runs to it in one go.
 std::int64_t RunDriver::Impl::next_host_step(std::int64_t until, const StepHook& hook) const {
-  const std::int64_t k = sim.step_count();
+  const std::int64_t k = stepper ? stepper->step() : sim.step_count();
   std::int64_t next = std::min(until, last);
   const auto due = [&](std::int64_t period) {
     if (period > 0) next = std::min(next, (k / period + 1) * period);
@@ -283,26 +283,35 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
   Progress progress(sim.step_count(), until, d.options.show_progress && sim.comm().root(),
                     d.options.progress_sink);
   try {
-    while (sim.step_count() < until) {
+    // The step reached: the simulation's, or the device engine's, which hands its state to the
+    // simulation only where the host needs it (a poll of the signal and the clock does not).
+    const auto reached = [&] { return d.stepper ? d.stepper->step() : sim.step_count(); };
+    while (reached() < until) {
       // The CPU engine steps once; the device engine to the next step the host needs.
-      const std::int64_t next = d.stepper ? d.next_host_step(until, hook) : sim.step_count() + 1;
+      const std::int64_t now = reached();
+      const std::int64_t next = d.stepper ? d.next_host_step(until, hook) : now + 1;
       const bool checkpoint_now = d.checkpoint_due(next);
       if (d.stepper) {
-        d.particle_steps += d.n_particles * static_cast<double>(next - sim.step_count());
-        d.stepper->advance(next - sim.step_count());
+        d.particle_steps += d.n_particles * static_cast<double>(next - now);
+        d.stepper->advance(next - now);
       } else {
         if (d.analysis) d.analysis->before_step(sim);
         sim.step();
         if (d.analysis) d.analysis->after_step(sim);
         d.particle_steps += d.n_particles;
       }
-      const std::int64_t k = sim.step_count();
-      if (k % d.energy_every == 0 || k == d.last) d.write_energies();
-      if (d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last)) d.snapshot();
+      const std::int64_t k = reached();
+      const bool energy_row = k % d.energy_every == 0 || k == d.last;
+      const bool frame = d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last);
+      const bool hook_due = hook.every > 0 && k % hook.every == 0 && hook.call;
+      if (d.stepper && (energy_row || frame || hook_due || checkpoint_now || k == until))
+        d.stepper->hand_over();
+      if (energy_row) d.write_energies();
+      if (frame) d.snapshot();
       // Every rank calls the hook at the same step, and any one that says stop stops them all
       // there (a decision from this rank's particles alone would leave the others waiting).
       bool go_on = true;
-      if (hook.every > 0 && k % hook.every == 0 && hook.call) go_on = !sim.comm().any(!hook.call());
+      if (hook_due) go_on = !sim.comm().any(!hook.call());
       if (checkpoint_now) {
         d.write_checkpoint();
         if (d.stop_requested()) {
@@ -310,7 +319,7 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
           break;
         }
       }
-      progress.update(k, sim.time());
+      progress.update(k, d.stepper ? d.stepper->time() : sim.time());
       if (!go_on) {
         d.summary.stopped = true;
         break;

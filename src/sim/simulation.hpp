@@ -206,6 +206,8 @@ public:
   // list of that engine's last build is made again, as a checkpoint's is: outputs and
   // checkpoints then see that state, and a checkpoint saved now continues it on either engine.
   // Only in one process; a particle of `state` that is not here throws std::invalid_argument.
+  // Books that gained energy nothing put in throw SimulationError with the diagnosis, as the CPU
+  // engine's own check does.
   void take_engine_state(const EngineState& state);
 
   // Sources and sinks of grains while the run goes on ([[insert]], [[outlet]]; the scene

@@ -404,6 +404,9 @@ void Simulation::take_engine_state(const EngineState& state) {
   // (the other engine records no contacts' forces: none is kept that would not match the list)
   contacts_.record_contacts(false);
   build_lists_after_load(true);
+  // The books' check that the CPU engine makes after its list builds: a run that gains energy
+  // that nothing put in (a time step too large, non-finite values) stops with its diagnosis.
+  check_energy_books(energies());
 }
 
 ParticleStore Simulation::gather_particles() const {
