@@ -233,13 +233,17 @@ int run_command(const RunCommandOptions& o) {
                                              "{:.3f} in listed pairs, {:.3f} in compute time",
                                              imbalance, pair_imbalance, busy_imbalance)
                                : std::string());
-  if (!s.device.empty())
-    spdlog::info("device engine on {}: {:.0f} bytes of device memory per particle; time: stepping "
-                 "on the device {:.1f}%, handing the state to the host {:.1f}%, snapshots {:.1f}%, "
-                 "checkpoints {:.1f}%  ({} list builds)",
-                 s.device, s.device_bytes_per_particle, 100 * s.device_seconds / wall,
+  if (!s.device.empty()) {
+    const auto& p = s.device_phases;
+    spdlog::info("device engine on {}: {:.0f} bytes of device memory per particle; time: list "
+                 "build {:.1f}%  forces {:.1f}%  integrate {:.1f}%  energy books {:.1f}% on the "
+                 "device, handing the state to the host {:.1f}%, snapshots {:.1f}%, checkpoints "
+                 "{:.1f}%  ({} list builds)",
+                 s.device, s.device_bytes_per_particle, 100 * p.list_build / wall,
+                 100 * p.forces / wall, 100 * p.integration / wall, 100 * p.books / wall,
                  100 * s.handover_seconds / wall, 100 * s.snapshot_seconds / wall,
                  100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before);
+  }
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "
                "ghosts ({:.1f} per 100 particles: {:.0f} periodic images, {:.0f} copies of other "

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -119,6 +120,19 @@ struct Escaped {
         out ? mechanical_energy(p.mass[i], p.x[i], p.v[i], p.w[i], p.inv_inertia[i], g_potential)
             : 0.0;
   }
+};
+
+// Wall time since the last add_to(), added to a phase's total.
+class PhaseClock {
+public:
+  void add_to(double& total) {
+    const auto now = std::chrono::steady_clock::now();
+    total += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+
+private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
 struct IsZero {
@@ -331,6 +345,7 @@ public:
   std::int64_t step() const override { return step_; }
   double time() const override { return time_; }
   std::int64_t list_builds() const override { return builds_; }
+  DevicePhaseSeconds phase_seconds() const override { return phases_; }
   std::size_t listed_pairs() const override { return partner_.size(); }
 
   std::size_t device_bytes() const override {
@@ -549,19 +564,26 @@ private:
   }
 
   void step_once() {
+    PhaseClock clock;
     for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, g_periodic_, raw(gravity_work_),
                                  raw(moved_far_)});
-    gravity_work_total_ += ordered_sum(gravity_work_);
     time_ += dt_;
     ++step_;
     place_walls();
     const bool build = thrust::reduce(thrust::device, raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
+    clock.add_to(phases_.integration);
+    gravity_work_total_ += ordered_sum(gravity_work_);
+    clock.add_to(phases_.books);
     if (build) build_list();
+    clock.add_to(phases_.list_build);
     compute_forces(dt_);
+    clock.add_to(phases_.forces);
     for_each_index(n_, FinalKick{view(), dt_});
+    clock.add_to(phases_.integration);
     dissipated_total_ += ordered_sum(dissipated_);
     wall_work_total_ += ordered_sum(wall_work_);
+    clock.add_to(phases_.books);
   }
 
   // The wall particles of each started motion at time_ (RadialCosineMotion::at_time, on the
@@ -612,6 +634,7 @@ private:
   DeviceVector<double> wall_work_;
   std::vector<DeviceMotion> motions_;
   std::int64_t step_ = 0, builds_ = 0;
+  DevicePhaseSeconds phases_;
 };
 
 } // namespace

@@ -80,6 +80,15 @@ template <class State> struct KeyedState {
   State state;
 };
 
+// Wall time of each phase of the steps run so far [s]. Thrust's algorithms return once the
+// device has finished, so each phase's time is its own.
+struct DevicePhaseSeconds {
+  double list_build = 0;  // escapes, the cell sort, the list and the contacts' states carried over
+  double forces = 0;      // the contact law on each pair and each particle's sum
+  double integration = 0; // the two half kicks and the drift, the walls' motion
+  double books = 0;       // the energy books' fixed-order sums
+};
+
 class DeviceEngine {
 public:
   virtual ~DeviceEngine() = default;
@@ -91,6 +100,7 @@ public:
   virtual std::int64_t step() const = 0;
   virtual double time() const = 0;
   virtual std::int64_t list_builds() const = 0;
+  virtual DevicePhaseSeconds phase_seconds() const = 0;
   virtual std::size_t listed_pairs() const = 0;
   // Bytes held on the device now (particles, cells, list, contact states, per-pair results).
   virtual std::size_t device_bytes() const = 0;

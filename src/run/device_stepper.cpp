@@ -35,6 +35,7 @@ DeviceStepper::DeviceStepper(Simulation& sim, DeviceChoice choice) : sim_(sim), 
 }
 
 void DeviceStepper::start() {
+  earlier_ = phase_seconds();
   engine_.reset(); // (its memory first: the new engine's may not fit beside it)
   engine_ = make_device_engine(sim_, choice_);
   start_ = sim_.energies();
@@ -101,6 +102,18 @@ std::int64_t DeviceStepper::step() const {
 
 double DeviceStepper::time() const {
   return engine_->time();
+}
+
+device::DevicePhaseSeconds DeviceStepper::phase_seconds() const {
+  device::DevicePhaseSeconds t = earlier_;
+  if (engine_) {
+    const device::DevicePhaseSeconds now = engine_->phase_seconds();
+    t.list_build += now.list_build;
+    t.forces += now.forces;
+    t.integration += now.integration;
+    t.books += now.books;
+  }
+  return t;
 }
 
 std::string DeviceStepper::device_name() const {

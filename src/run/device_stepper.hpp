@@ -39,6 +39,8 @@ public:
   // The device's name, and the bytes it holds now per particle.
   std::string device_name() const;
   double device_bytes_per_particle() const;
+  // Each phase's wall time on the device, over every engine this stepper started [s].
+  device::DevicePhaseSeconds phase_seconds() const;
   // Wall time spent stepping on the device, and handing the state to the host [s].
   double device_seconds() const { return device_seconds_; }
   double handover_seconds() const { return handover_seconds_; }
@@ -50,7 +52,8 @@ private:
   Simulation& sim_;
   DeviceChoice choice_;
   std::uint64_t edits_seen_ = 0;
-  bool handed_over_ = true; // the simulation holds the engine's state
+  bool handed_over_ = true;            // the simulation holds the engine's state
+  device::DevicePhaseSeconds earlier_; // of the engines before this one
   std::unique_ptr<device::DeviceEngine> engine_;
   EnergyBooks start_; // the simulation's cumulative books when the engine started
   std::int64_t start_step_ = 0, start_builds_ = 0;

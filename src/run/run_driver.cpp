@@ -351,6 +351,7 @@ RunSummary RunDriver::finish() {
     d.summary.device_bytes_per_particle = d.stepper->device_bytes_per_particle();
     d.summary.device_seconds = d.stepper->device_seconds();
     d.summary.handover_seconds = d.stepper->handover_seconds();
+    d.summary.device_phases = d.stepper->phase_seconds();
   }
   return d.summary;
 }
