@@ -47,7 +47,7 @@ bool device_run_possible(const Scene& scene, const Simulation& sim) {
   const std::optional<DeviceChoice> choice = device_choice(scene.run.device);
   if (!choice) return true;
   try {
-    check_device_run(scene, sim, *choice);
+    check_device_run(sim, *choice);
     return true;
   } catch (const std::exception& e) {
     print_error(fmt::format("{}\n(run.device = \"{}\"; pass --device cpu to run on the CPU "

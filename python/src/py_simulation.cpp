@@ -213,8 +213,7 @@ bool set_device(Scene& scene, const std::optional<std::string>& device) {
 
 // A run asked for the device engine that cannot run there is refused before its folder is made.
 void check_device(const OpenedRun& run) {
-  if (const auto choice = device_choice(run.scene.run.device))
-    check_device_run(run.scene, *run.sim, *choice);
+  if (const auto choice = device_choice(run.scene.run.device)) check_device_run(*run.sim, *choice);
 }
 
 } // namespace

@@ -31,6 +31,7 @@
 #include <thrust/scan.h>
 #include <thrust/sequence.h>
 #include <thrust/sort.h>
+#include <type_traits>
 #include <vector>
 
 #if defined(__CUDACC__)
@@ -311,10 +312,18 @@ public:
 
   DeviceEnergies energies() const override {
     DeviceEnergies e;
-    DeviceVector<double> translation(n_), rotation(n_);
-    for_each_index(n_, KineticEnergy{view(), raw(translation), raw(rotation)});
+    DeviceVector<double> translation(n_), rotation(n_), gravitational(n_);
+    DeviceVector<std::uint32_t> grain(n_);
+    for_each_index(n_, GrainEnergies{view(), g_potential_, raw(translation), raw(rotation),
+                                     raw(gravitational), raw(grain)});
     e.translational = ordered_sum(translation);
     e.rotational = ordered_sum(rotation);
+    e.gravitational = ordered_sum(gravitational);
+    e.grains =
+        n_ == 0 ? 0 : thrust::reduce(thrust::device, raw(grain), last(grain), std::uint32_t{0});
+    e.contacts = partner_.empty()
+                     ? 0
+                     : thrust::count(thrust::device, raw(open_), last(open_), std::uint8_t{1});
     e.elastic = ordered_sum(elastic_);
     e.relaxation = ordered_sum(relaxation_);
     e.dissipated = dissipated_total_;
@@ -346,6 +355,21 @@ public:
   double time() const override { return time_; }
   std::int64_t list_builds() const override { return builds_; }
   DevicePhaseSeconds phase_seconds() const override { return phases_; }
+
+  std::vector<PairEnergy> pair_energies() const override {
+    const auto host = [](const auto& from) {
+      std::vector<typename std::decay_t<decltype(from)>::value_type> to(from.size());
+      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
+      return to;
+    };
+    const std::vector<double> elastic = host(elastic_);
+    const std::vector<std::uint32_t> row = host(pair_row_), partner = host(partner_);
+    const std::vector<GlobalId> gid = host(gid_);
+    std::vector<PairEnergy> out;
+    for (std::size_t k = 0; k < elastic.size(); ++k)
+      if (elastic[k] != 0.0) out.push_back({gid[row[k]], gid[partner[k]], elastic[k]});
+    return out;
+  }
   std::size_t listed_pairs() const override { return partner_.size(); }
 
   std::size_t device_bytes() const override {

@@ -64,6 +64,8 @@ struct DeviceScene {
 // The energy books, each summed in a fixed order [energy].
 struct DeviceEnergies {
   double translational = 0, rotational = 0; // now
+  double gravitational = 0;                 // -m g . x over grains, g's potential part, now
+  std::int64_t grains = 0, contacts = 0;    // now (contacts: touching at the last evaluation)
   double elastic = 0;                       // held in the contacts' springs now
   double relaxation = 0;    // held in the contacts' relaxation buffers now (thermodynamic law)
   double dissipated = 0;    // since the start, releases included
@@ -78,6 +80,12 @@ struct DeviceEnergies {
 template <class State> struct KeyedState {
   GlobalId first = 0, second = 0;
   State state;
+};
+
+// A contact's elastic energy at the last force evaluation, by its particles' ids.
+struct PairEnergy {
+  GlobalId first = 0, second = 0;
+  double elastic = 0;
 };
 
 // Wall time of each phase of the steps run so far [s]. Thrust's algorithms return once the
@@ -101,6 +109,9 @@ public:
   virtual double time() const = 0;
   virtual std::int64_t list_builds() const = 0;
   virtual DevicePhaseSeconds phase_seconds() const = 0;
+  // The contacts that held elastic energy at the last force evaluation (per-grain energies of an
+  // analysis; copied to the host, so for samples, not every step).
+  virtual std::vector<PairEnergy> pair_energies() const = 0;
   virtual std::size_t listed_pairs() const = 0;
   // Bytes held on the device now (particles, cells, list, contact states, per-pair results).
   virtual std::size_t device_bytes() const = 0;

@@ -390,15 +390,22 @@ struct FinalKick {
   }
 };
 
-// Kinetic energy of translation and of rotation of each grain [energy].
-struct KineticEnergy {
+// Each grain's energies: of translation, of rotation, and gravitational under gravity's
+// potential part, -m g_potential . x (sim/energy_ledger.cpp, EnergyLedger::parts); 1 per grain in
+// `grain` [energy]. Zeros for wall particles.
+struct GrainEnergies {
   Particles p;
+  Vec3 g_potential;
   double* translation;
   double* rotation;
+  double* gravitational;
+  std::uint32_t* grain;
   YUXI_HD void operator()(std::uint32_t i) const {
-    const bool grain = p.kind[i] == Kind::grain;
-    translation[i] = grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
-    rotation[i] = grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
+    const bool is_grain = p.kind[i] == Kind::grain;
+    translation[i] = is_grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
+    rotation[i] = is_grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
+    gravitational[i] = is_grain ? -(p.mass[i] * dot(g_potential, p.x[i])) : 0.0;
+    grain[i] = is_grain ? 1 : 0;
   }
 };
 

@@ -1,10 +1,12 @@
 #include "run/device_stepper.hpp"
 
+#include "analysis/grain_energy.hpp"
 #include "contact/contact_history.hpp"
 #include "sim/simulation.hpp"
 
 #include <chrono>
 #include <stdexcept>
+#include <unordered_map>
 #include <variant>
 
 namespace yuxi {
@@ -63,16 +65,30 @@ EngineState DeviceStepper::engine_state() const {
   s.contact_stash =
       std::visit([&](const auto& law) { return contact_stash(law, *engine_, s.touching); },
                  sim_.contact_law());
-  const device::DeviceEnergies e = engine_->energies();
-  s.elastic = e.elastic;
-  s.relaxation = e.relaxation;
-  s.books = start_;
-  s.books.dissipated += e.dissipated;
-  s.books.gravity_work += e.gravity_work;
-  s.books.wall_work += e.wall_work;
-  s.books.removed += e.removed;
-  s.books.escaped += static_cast<std::size_t>(e.escaped);
+  s.books = books();
+  s.elastic = s.books.elastic;
+  s.relaxation = s.books.relaxation;
   return s;
+}
+
+EnergyBooks DeviceStepper::books() const {
+  const device::DeviceEnergies e = engine_->energies();
+  EnergyBooks b = start_; // (inserted, and the cumulative books, as the engine started)
+  b.step = step();
+  b.time = time();
+  b.translational = e.translational;
+  b.rotational = e.rotational;
+  b.gravitational = e.gravitational;
+  b.elastic = e.elastic;
+  b.relaxation = e.relaxation;
+  b.grains = static_cast<std::size_t>(e.grains);
+  b.contacts = static_cast<std::size_t>(e.contacts);
+  b.dissipated += e.dissipated;
+  b.gravity_work += e.gravity_work;
+  b.wall_work += e.wall_work;
+  b.removed += e.removed;
+  b.escaped += static_cast<std::size_t>(e.escaped);
+  return b;
 }
 
 void DeviceStepper::advance(std::int64_t steps) {
@@ -94,6 +110,19 @@ void DeviceStepper::hand_over() {
   handed_over_ = true;
   edits_seen_ = sim_.edits();
   handover_seconds_ += seconds_since(t0);
+}
+
+std::vector<double> DeviceStepper::particle_elastic_energy() const {
+  if (!handed_over_)
+    throw std::logic_error("particle_elastic_energy: the state was not handed over");
+  const ParticleStore& s = sim_.particles();
+  std::unordered_map<GlobalId, std::size_t> index;
+  index.reserve(s.n_owned());
+  for (std::size_t i = 0; i < s.n_owned(); ++i) index.emplace(s.gid[i], i);
+  std::vector<analysis::ContactEnergy> contacts;
+  for (const device::PairEnergy& e : engine_->pair_energies())
+    contacts.push_back({index.at(e.first), index.at(e.second), e.elastic});
+  return analysis::grain_elastic_energy(s.n_owned(), contacts);
 }
 
 std::int64_t DeviceStepper::step() const {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace yuxi {
 
@@ -33,6 +34,14 @@ public:
   void advance(std::int64_t steps);
   // Gives the engine's state to the simulation (nothing where it has it already).
   void hand_over();
+  // The energy books now, from the device alone (no hand-over): a row of energies.csv. Summed
+  // in the engine's fixed order, so within round-off of the simulation's books of the same
+  // state, and the same bits on the GPU and the host build.
+  EnergyBooks books() const;
+  // Each owned particle's elastic energy at the last force evaluation, half of each of its
+  // contacts', in the simulation's order (an analysis's per-grain energies;
+  // run/particle_elastic_energy.hpp on the CPU engine). After hand_over().
+  std::vector<double> particle_elastic_energy() const;
   // The engine's step count and time.
   std::int64_t step() const;
   double time() const;

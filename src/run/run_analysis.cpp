@@ -9,6 +9,7 @@
 #include "io/npy_records.hpp"
 #include "run/particle_elastic_energy.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <fmt/format.h>
@@ -79,6 +80,27 @@ bool RunAnalysis::needs_energies(std::int64_t step) const {
          sample_.due(step);
 }
 
+std::int64_t RunAnalysis::Every::next_after(std::int64_t step) const {
+  constexpr std::int64_t none = std::numeric_limits<std::int64_t>::max();
+  if (every <= 0) return none;
+  const std::int64_t next = step < first ? first : first + ((step - first) / every + 1) * every;
+  return next <= last ? next : none;
+}
+
+std::int64_t RunAnalysis::next_step_after(std::int64_t step) const {
+  std::int64_t next = std::numeric_limits<std::int64_t>::max();
+  for (const std::set<std::int64_t>* steps : {&surface_steps_, &velocity_steps_, &elastic_steps_})
+    if (const auto it = steps->upper_bound(step); it != steps->end()) next = std::min(next, *it);
+  const Every period{period_first_, period_last_, period_every_};
+  for (const Every& e : {period, track_, wave_, sample_}) next = std::min(next, e.next_after(step));
+  if (step < period_last_) next = std::min(next, period_last_);
+  return next;
+}
+
+void RunAnalysis::set_elastic_energy(std::function<std::vector<double>(Simulation&)> source) {
+  elastic_energy_ = std::move(source);
+}
+
 void RunAnalysis::before_step(Simulation& sim) const {
   sim.record_contacts(needs_energies(sim.step_count() + 1));
 }
@@ -87,7 +109,8 @@ RunAnalysis::Grains RunAnalysis::grains(Simulation& sim, bool energies) const {
   const auto& p = sim.particles();
   Grains g;
   std::vector<double> elastic;
-  if (energies) elastic = particle_elastic_energy(sim); // collective
+  if (energies) // collective
+    elastic = elastic_energy_ ? elastic_energy_(sim) : particle_elastic_energy(sim);
   for (std::size_t i = 0; i < p.n_owned(); ++i) {
     if (!p.is_grain(i)) continue;
     g.x.push_back(p.x[i]);
@@ -192,20 +215,29 @@ void RunAnalysis::write_grain_sample(Simulation& sim, const Grains& g) const {
 void RunAnalysis::write_velocity_section(Simulation& sim, const Grains& g) const {
   const auto mine = analysis::velocity_section(g.x, g.v, axis_, settings_.section_azimuth,
                                                settings_.section_half_thickness);
-  ArchiveWriter out; // the few grains in the plane travel to rank 0
+  ArchiveWriter out; // the few grains in the plane travel to rank 0, with their ids
   std::vector<double> packed;
-  for (const auto& p : mine.points) packed.insert(packed.end(), {p.s, p.z, p.vs, p.vz, p.vn});
+  for (const auto& p : mine.points)
+    packed.insert(packed.end(), {static_cast<double>(g.id[p.index]), p.s, p.z, p.vs, p.vz, p.vn});
   out.vector(packed);
   const auto parts = sim.comm().gather(out.data());
   if (!sim.comm().root()) return;
-  analysis::VelocitySection all = mine;
-  all.points.clear();
+  // In ascending grain id: the same rows whatever the ranks, or the engine, kept them in.
+  std::vector<std::pair<double, analysis::SectionPoint>> by_id;
   for (const auto& part : parts) {
     ArchiveReader in(part);
     std::vector<double> v;
     in.vector(v);
-    for (std::size_t k = 0; k + 4 < v.size(); k += 5)
-      all.points.push_back({all.points.size(), v[k], v[k + 1], v[k + 2], v[k + 3], v[k + 4]});
+    for (std::size_t k = 0; k + 5 < v.size(); k += 6)
+      by_id.push_back({v[k], {0, v[k + 1], v[k + 2], v[k + 3], v[k + 4], v[k + 5]}});
+  }
+  std::sort(by_id.begin(), by_id.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  analysis::VelocitySection all = mine;
+  all.points.clear();
+  for (auto& [id, point] : by_id) {
+    point.index = all.points.size();
+    all.points.push_back(point);
   }
   analysis::write_velocity_section_csv(
       dir_ / "analysis" / analysis::timed_file_name("velocity", sim.time()), all);

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -39,6 +40,12 @@ public:
   void before_step(Simulation& sim) const;
   // After a step: computes and writes what is due at the simulation's step. Collective.
   void after_step(Simulation& sim);
+  // The first step after `step` at which after_step has something to do (the largest step when
+  // none): an engine that runs many steps in one go (the device engine) stops there.
+  std::int64_t next_step_after(std::int64_t step) const;
+  // Where the per-grain elastic energies come from (by default particle_elastic_energy, from
+  // the contact record that before_step asks for): the owned particles', in their order.
+  void set_elastic_energy(std::function<std::vector<double>(Simulation&)> source);
   // Writes the period averages, densities and fits (if the window was sampled). Collective.
   void finish(Simulation& sim);
 
@@ -54,6 +61,8 @@ private:
     bool due(std::int64_t step) const {
       return every > 0 && step >= first && step <= last && (step - first) % every == 0;
     }
+    // The first due step after `step` (the largest step when none).
+    std::int64_t next_after(std::int64_t step) const;
   };
   Grains grains(Simulation& sim, bool energies) const;
   // The free surface, and the column-summed elastic energy, of every rank's grains (reduced
@@ -75,6 +84,7 @@ private:
   bool period_sample(std::int64_t step) const; // a sample step of the averaging window
   bool needs_energies(std::int64_t step) const;
 
+  std::function<std::vector<double>(Simulation&)> elastic_energy_;
   AnalysisSettings settings_;
   std::filesystem::path dir_;
   analysis::XYGrid grid_;

@@ -52,7 +52,9 @@ struct RunDriver::Impl {
   std::optional<std::int64_t> resume_after(std::int64_t interval) const;
   void write_measurements();
   void write_flows();
-  void write_energies();
+  // A row of energies.csv (and walls.csv, inflow.csv, outflow.csv, measurements.csv): of the
+  // books `given` (the device engine's), or the simulation's.
+  void write_energies(const EnergyBooks* given = nullptr);
   void snapshot();
   bool stop_requested() const;
   bool checkpoint_due(std::int64_t next) const;
@@ -78,7 +80,7 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
       energy_every(every(scene.output.energy_interval, dt)),
       snapshot_every(every(scene.output.snapshot_interval, dt)), root(sim.comm().root()) {
   if (options.device) {
-    check_device_run(scene, sim, *options.device);
+    check_device_run(sim, *options.device);
     stepper = std::make_unique<DeviceStepper>(sim, *options.device);
   }
   const auto& dir = options.output_dir;
@@ -121,6 +123,10 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
   if (scene.analysis)
     analysis = std::make_unique<RunAnalysis>(scene, dir, dt,
                                              options.resumed ? std::optional(first) : std::nullopt);
+  // On the device engine the per-grain elastic energies come from its contacts, at the samples.
+  if (analysis && stepper)
+    analysis->set_elastic_energy(
+        [this](Simulation&) { return stepper->particle_elastic_energy(); });
   n_particles =
       static_cast<double>(sim.comm().sum(static_cast<std::int64_t>(sim.particles().n_owned())));
   n_walls = n_particles - static_cast<double>(sim.energies().grains);
@@ -162,8 +168,8 @@ void RunDriver::Impl::write_flows() {
   }
 }
 
-void RunDriver::Impl::write_energies() {
-  const EnergyBooks e = sim.energies(); // collective
+void RunDriver::Impl::write_energies(const EnergyBooks* given) {
+  const EnergyBooks e = given ? *given : sim.energies(); // collective
   n_particles = n_walls + static_cast<double>(e.grains);
   if (energies) energies->write(e);
   write_flows();
@@ -232,6 +238,7 @@ std::int64_t RunDriver::Impl::next_host_step(std::int64_t until, const StepHook&
   due(poll_steps);
   due(scene.checkpoint.every_steps);
   if (hook.call) due(hook.every);
+  if (analysis) next = std::min(next, analysis->next_step_after(k));
   return next;
 }
 
@@ -304,9 +311,20 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
       const bool energy_row = k % d.energy_every == 0 || k == d.last;
       const bool frame = d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last);
       const bool hook_due = hook.every > 0 && k % hook.every == 0 && hook.call;
-      if (d.stepper && (energy_row || frame || hook_due || checkpoint_now || k == until))
-        d.stepper->hand_over();
-      if (energy_row) d.write_energies();
+      const bool analysis_due = d.stepper && d.analysis && d.analysis->next_step_after(k - 1) == k;
+      const bool host_needs_state =
+          frame || hook_due || checkpoint_now || analysis_due || k == until || d.measures;
+      if (d.stepper && energy_row && !host_needs_state) {
+        // A row of the device's own books; a gain that nothing put in brings the state back,
+        // whose check stops the run with the diagnosis.
+        const EnergyBooks books = d.stepper->books();
+        if (sim.books_unstable(books)) d.stepper->hand_over();
+        d.write_energies(&books);
+      } else {
+        if (d.stepper && (energy_row || host_needs_state)) d.stepper->hand_over();
+        if (energy_row) d.write_energies();
+      }
+      if (analysis_due) d.analysis->after_step(sim);
       if (frame) d.snapshot();
       // Every rank calls the hook at the same step, and any one that says stop stops them all
       // there (a decision from this rank's particles alone would leave the others waiting).
@@ -368,15 +386,8 @@ std::optional<DeviceChoice> device_choice(RunDevice device) {
   return std::nullopt;
 }
 
-std::vector<std::string> device_run_refusals(const Scene& scene, const Simulation& sim) {
-  std::vector<std::string> no = device_engine_refusals(sim);
-  if (scene.analysis)
-    no.push_back("[analysis] table (its samples need every step's contacts: run it on the CPU)");
-  return no;
-}
-
-void check_device_run(const Scene& scene, const Simulation& sim, DeviceChoice choice) {
-  const std::vector<std::string> no = device_run_refusals(scene, sim);
+void check_device_run(const Simulation& sim, DeviceChoice choice) {
+  const std::vector<std::string> no = device_engine_refusals(sim);
   if (!no.empty()) {
     std::string what = "the device engine does not run this scene's";
     for (const std::string& line : no) what += "\n  - " + line;

@@ -45,13 +45,10 @@ struct RunOptions {
 // The engine that run.device names: empty for the CPU engine.
 std::optional<DeviceChoice> device_choice(RunDevice device);
 
-// What of a scene the device engine does not run, one line each (empty: it runs all):
-// device_engine_refusals, and the [analysis] table, whose samples need every step's contacts.
-std::vector<std::string> device_run_refusals(const Scene& scene, const Simulation& sim);
-// Throws std::invalid_argument listing device_run_refusals, or std::runtime_error where the
+// Throws std::invalid_argument listing device_engine_refusals, or std::runtime_error where the
 // choice is cuda and this build has no CUDA: a run asked for the device is checked before its
 // folder is made.
-void check_device_run(const Scene& scene, const Simulation& sim, DeviceChoice choice);
+void check_device_run(const Simulation& sim, DeviceChoice choice);
 
 struct RunSummary {
   std::int64_t steps = 0;

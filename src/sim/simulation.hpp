@@ -161,6 +161,9 @@ public:
   // The energy books, summed over the ranks. Collective.
   EnergyBooks energies() const;
   const ContactTally& last_tally() const { return contacts_.tally(); }
+  // True where books `e` (of this run: this simulation's or another engine's running it) gained
+  // energy that nothing put in: the check that stops an unstable run.
+  bool books_unstable(const EnergyBooks& e) const { return ledger_.unstable_gain(e).has_value(); }
   // Records every contact's force and stored energy at each force evaluation (costs memory
   // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
   void record_contacts(bool on) { contacts_.record_contacts(on); }

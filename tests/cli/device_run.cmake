@@ -2,7 +2,7 @@
 # and logs its device; a scene it does not run, and the GPU in a build without CUDA, are refused
 # by name before any folder is made (never run on the CPU engine in silence).
 set(chute ${SCENES}/chute-lammps.toml)
-file(REMOVE_RECURSE ${WORK}/device_host ${WORK}/device_gpu ${WORK}/device_basin)
+file(REMOVE_RECURSE ${WORK}/device_host ${WORK}/device_gpu ${WORK}/device_drum)
 execute_process(COMMAND ${YUXI} run ${chute} -o ${WORK}/device_host --t-end 0.005 --device host
                         --no-plots --no-progress
   RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
@@ -33,13 +33,13 @@ if(NOT CUDA)
   endif()
 endif()
 
-execute_process(COMMAND ${YUXI} run ${SCENES}/basin-small.toml -o ${WORK}/device_basin
+execute_process(COMMAND ${YUXI} run ${SCENES}/drum/drum-cylinder.toml -o ${WORK}/device_drum
                         --device host
   RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "\\[analysis\\]")
-  message(FATAL_ERROR "the basin's analysis was not refused: ${rc} ${err}")
+if(NOT rc EQUAL 2 OR NOT err MATCHES "\\[\\[cylinder\\]\\]")
+  message(FATAL_ERROR "the drum's cylinder was not refused: ${rc} ${err}")
 endif()
-if(EXISTS ${WORK}/device_basin)
+if(EXISTS ${WORK}/device_drum)
   message(FATAL_ERROR "a refused run made its folder")
 endif()
 message(STATUS "ok")

@@ -1,18 +1,22 @@
 // A whole run on the device engine (RunOptions::device, `yuxi run --device`), in its host build,
 // on LAMMPS's chute cut to 300 steps: the run folder holds what the CPU engine's holds, with the
 // same books to 1e-9; a checkpoint written on the device resumes on the device bit for bit, and on
-// the CPU engine (and the CPU engine's on the device) as a correct continuation. Label "device".
+// the CPU engine (and the CPU engine's on the device) as a correct continuation. And the small
+// basin's [analysis] on the device against the CPU engine's. Label "device".
 #include "io/scene_reader.hpp"
 #include "run/run_driver.hpp"
 #include "run/run_opening.hpp"
+#include "small_basin.hpp"
 #include "temp_folder.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -176,18 +180,94 @@ TEST_F(DeviceRun, CheckpointsCarryOnAcrossEngines) {
                     1e-9);
 }
 
-TEST(DeviceRunRefusal, NamesTheAnalysisAndNeverFallsBack) {
-  const std::string path = YUXI_SCENES_DIR "/basin-small.toml";
-  OpenedRun basin = open_scene(read_scene_file(path), false);
-  try {
-    check_device_run(basin.scene, *basin.sim, DeviceChoice::host);
-    FAIL() << "the basin's [analysis] was not refused";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("[analysis]"), std::string::npos) << e.what();
+// The tokens of a CSV file, line by line.
+std::vector<std::vector<std::string>> csv_tokens(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::vector<std::string>> lines;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    std::string cell;
+    while (std::getline(row, cell, ',')) cells.push_back(cell);
+    lines.push_back(cells);
   }
-  // Without the analysis, the same basin runs there.
-  basin.scene.analysis.reset();
-  EXPECT_NO_THROW(check_device_run(basin.scene, *basin.sim, DeviceChoice::host));
+  return lines;
+}
+
+// Every CSV file the CPU engine's analysis wrote, written by the device engine too, line for
+// line: words equal, numbers within `relative` of the largest of their column.
+void expect_same_analysis(const fs::path& cpu, const fs::path& device, double relative) {
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(cpu)) {
+    if (entry.path().extension() != ".csv") continue;
+    ++files;
+    const fs::path other = device / entry.path().filename();
+    ASSERT_TRUE(fs::exists(other)) << other;
+    const auto a = csv_tokens(entry.path()), b = csv_tokens(other);
+    ASSERT_EQ(a.size(), b.size()) << other;
+    std::vector<double> scale;
+    for (const auto& row : a)
+      for (std::size_t c = 0; c < row.size(); ++c) {
+        scale.resize(std::max(scale.size(), row.size()), 0.0);
+        char* end = nullptr;
+        const double x = std::strtod(row[c].c_str(), &end);
+        if (end != row[c].c_str()) scale[c] = std::max(scale[c], std::abs(x));
+      }
+    for (std::size_t r = 0; r < a.size(); ++r) {
+      ASSERT_EQ(a[r].size(), b[r].size()) << other << " line " << r;
+      for (std::size_t c = 0; c < a[r].size(); ++c) {
+        char *end_a = nullptr, *end_b = nullptr;
+        const double x = std::strtod(a[r][c].c_str(), &end_a);
+        const double y = std::strtod(b[r][c].c_str(), &end_b);
+        if (end_a == a[r][c].c_str() || end_b == b[r][c].c_str() || std::isnan(x) || std::isnan(y))
+          EXPECT_EQ(a[r][c], b[r][c]) << other << " line " << r;
+        else
+          EXPECT_LE(std::abs(x - y), relative * scale[c])
+              << other << " line " << r << " column " << c;
+      }
+    }
+  }
+  EXPECT_GE(files, 5u) << "the analysis wrote few files: " << cpu;
+}
+
+// The small basin of tests/small_basin.hpp with its [analysis] moved to its shaking (from
+// t = 3.2): surfaces, a velocity section, elastic maps and the first period's averages, to
+// t = 3.24.
+Scene shaken_small_basin() {
+  const std::string path = YUXI_SCENES_DIR "/basin-small.toml";
+  std::ifstream in(path);
+  std::string text = test::small_basin(std::string{std::istreambuf_iterator<char>(in), {}});
+  const std::pair<const char*, const char*> edits[] = {
+      {R"(t_end = 11\.0 )", "t_end = 3.24 "},
+      {R"(surface_times = \[[^\]]*\])", "surface_times = [3.21, 3.23]"},
+      {R"(velocity_times = \[[^\]]*\])", "velocity_times = [3.22]"},
+      {R"(elastic_map_times = \[[^\]]*\])", "elastic_map_times = [3.202, 3.21]"},
+  };
+  for (const auto& [pattern, replacement] : edits) {
+    const std::regex re(pattern);
+    if (!std::regex_search(text, re)) throw std::runtime_error(std::string("no ") + pattern);
+    text = std::regex_replace(text, re, replacement);
+  }
+  return read_scene_text(text, path);
+}
+
+// The fish-basin analysis on the device engine: its samples are where the CPU engine's are, and
+// the per-grain elastic energies come from the device's contacts. Both engines start from the
+// same bed, settled by the CPU engine to t = 3.19; the files agree to 1e-6.
+TEST(DeviceRunAnalysis, WritesTheCpuEnginesAnalysis) {
+  const fs::path dir = test::temp_dir("device_analysis");
+  std::vector<fs::path> analysis;
+  for (const bool on_device : {false, true}) {
+    OpenedRun basin = open_scene(shaken_small_basin(), false);
+    basin.sim->run(31900);
+    const fs::path out = dir / (on_device ? "device" : "cpu");
+    const Finished f = run_into(std::move(basin), out, on_device);
+    ASSERT_FALSE(f.summary.failed) << f.summary.failure;
+    analysis.push_back(out / "analysis");
+  }
+  expect_same_analysis(analysis[0], analysis[1], 1e-6);
+  fs::remove_all(dir);
 }
 
 } // namespace
