@@ -7,7 +7,9 @@
 #   bench/gpu/bundle.sh BUNDLE [BUILD] [CUDA_BUILD]
 #
 # BUILD is the release build (default build/release), CUDA_BUILD one configured with
-# -DYUXI_CUDA=ON (default build/cuda; `cmake --build CUDA_BUILD --target device_chute yuxi`).
+# -DYUXI_CUDA=ON (default build/cuda; `cmake --build CUDA_BUILD --target device_chute yuxi
+# yuxi_gpu_tests`), for the GPU's architecture alone (-DCMAKE_CUDA_ARCHITECTURES=90 for an H100
+# or H200): the bundle travels with the working tree, which may carry 64 MiB in all.
 #
 # Then on the GPU machine: bench/gpu/device_check.sh OUTDIR BUNDLE.
 set -euo pipefail
@@ -25,9 +27,10 @@ mkdir -p "$bundle/bin" "$bundle/lib" "$bundle/mpi/usr/bin" "$bundle/mpi/usr/lib/
 
 "$nvcc" -std=c++20 --expt-relaxed-constexpr --fmad=false -Xcompiler -ffp-contract=off -O3 \
   -arch=sm_90 -Isrc bench/gpu/law_bits.cu -o "$bundle/bin/law_bits"
-cp "$build/apps/yuxi/yuxi" "$build/bench/device_chute" "$bundle/bin/"
+cp "$build/apps/yuxi/yuxi" "$bundle/bin/"
 cp "$cuda_build/bench/device_chute" "$bundle/bin/device_chute_cuda"
 cp "$cuda_build/apps/yuxi/yuxi" "$bundle/bin/yuxi_cuda"
+cp "$cuda_build/tests/yuxi_gpu_tests" "$bundle/bin/"
 
 cp /usr/bin/orterun /usr/bin/orted "$bundle/mpi/usr/bin/"
 ln -s orterun "$bundle/mpi/usr/bin/mpirun"
@@ -40,11 +43,13 @@ if [[ -d $pmix_lib ]]; then
 fi
 
 {
-  ldd "$bundle/bin/yuxi" "$bundle/bin/yuxi_cuda" "$bundle/bin/device_chute_cuda" /usr/bin/orterun \
-    /usr/bin/orted
+  ldd "$bundle/bin/yuxi" "$bundle/bin/yuxi_cuda" "$bundle/bin/yuxi_gpu_tests" \
+    "$bundle/bin/device_chute_cuda" /usr/bin/orterun /usr/bin/orted
   find "$mpi_lib" "$pmix_lib" -name '*.so*' -exec ldd {} \;
 } 2>/dev/null | awk '$3 ~ /^\// {print $3}' | sort -u |
   grep -v -E '/(libc|libm|libstdc\+\+|libgcc_s|libpthread|libdl|librt|ld-linux-x86-64)\.so' |
   xargs cp -L -t "$bundle/lib/"
+# (without their symbols: the bundle travels with the working tree, in a limited size)
+strip --strip-unneeded "$bundle"/bin/* "$bundle"/lib/*.so* 2>/dev/null || true
 git rev-parse HEAD >"$bundle/commit"
 du -sh "$bundle"

@@ -11,11 +11,11 @@
 #                  and where the device's sqrt, division, exp, log, pow, sin, cos, cbrt differ
 #                  from the host's libm (bench/gpu/law_bits.cu);
 #   sanitizer.txt  compute-sanitizer memcheck and racecheck on a short law_bits run;
-#   engine.txt     the device engine on LAMMPS's chute: 32k grains on the GPU and in the host
-#                  build on this machine's CPU, with their digests (the same bits or not), the
-#                  chute replicated to 960k grains on the GPU, the paper basin to 10.5 tau on
-#                  the GPU, and the chute under each other contact law (scenes/chute-laws/) on
-#                  both sides, digests compared;
+#   gpu_tests.txt  the ctest label `gpu` (tests/gpu/, yuxi_gpu_tests): the chute under every
+#                  contact law, the shaken small basin and a whole run folder, on the GPU and in
+#                  the host build on this machine's CPU, bit for bit;
+#   engine.txt     the device engine's speed: LAMMPS's 32k chute, the chute replicated to 960k
+#                  grains, and the paper basin to 10.5 tau, on the GPU;
 #   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
 #   run.txt        `yuxi run --device gpu` on the chute: its run folder against `--device host`
 #                  on this machine's CPU (energies.csv byte for byte), and a run resumed on the
@@ -60,26 +60,17 @@ echo "exit $status" >> "$out/law_bits.txt"
   timeout 60 compute-sanitizer --tool racecheck law_bits 4096 1 2>&1 | tail -3
 } > "$out/sanitizer.txt"
 
+YUXI_SCENES_DIR=$PWD/scenes timeout 180 yuxi_gpu_tests > "$out/gpu_tests.txt" 2>&1
+echo "exit $?" >> "$out/gpu_tests.txt"
+
 {
   echo "== GPU, 32k chute, 1000 steps"
-  timeout 120 device_chute_cuda scenes/chute-lammps.toml 1000 --cuda --cpu-too
-  echo "== host build on this CPU, the same run"
-  timeout 120 device_chute scenes/chute-lammps.toml 1000
+  timeout 120 device_chute_cuda scenes/chute-lammps.toml 1000 --cuda
   echo "== GPU, chute replicated 5 x 6 (960k grains), 2000 steps"
   timeout 120 device_chute_cuda scenes/chute-lammps.toml 2000 --cuda --replicate 5 6 1
   echo "== GPU, the paper basin (scenes/basin-paper.toml), 105,000 steps: t = 0 to 10.5 tau"
   timeout 200 device_chute_cuda scenes/basin-paper.toml 105000 --cuda
 } > "$out/engine.txt" 2>&1
-gpu=$(grep -A8 '^== GPU, 32k' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
-host=$(grep -A8 '^== host build' "$out/engine.txt" | grep -oP 'digest \K\w+' | head -1)
-echo "GPU and host build bit for bit after 1000 steps: $([[ -n $gpu && $gpu == "$host" ]] && echo yes || echo "NO ($gpu, $host)")" >> "$out/engine.txt"
-# Every other contact law (scenes/chute-laws/): 300 steps on the GPU and in the host build.
-for law in hooke hertz luding thermo; do
-  scene=scenes/chute-laws/chute-$law.toml
-  gpu=$(timeout 60 device_chute_cuda "$scene" 300 --cuda 2>&1 | grep -oP 'digest \K\w+')
-  host=$(timeout 60 device_chute "$scene" 300 2>&1 | grep -oP 'digest \K\w+')
-  echo "$law: GPU $gpu, host build $host: $([[ -n $gpu && $gpu == "$host" ]] && echo "the same bits" || echo DIFFER)"
-done >> "$out/engine.txt"
 {
   echo "== memcheck, 20 steps"
   timeout 120 compute-sanitizer --tool memcheck device_chute_cuda scenes/chute-lammps.toml 20 --cuda 2>&1 | tail -4

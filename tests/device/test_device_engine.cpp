@@ -227,6 +227,66 @@ TEST(DeviceEngine, EscapedGrainsLeaveAsOnTheCpuEngine) {
 }
 
 #if !defined(YUXI_HAVE_CUDA)
+// Two grains meeting obliquely (impact parameter b/d = 0.5) under the thermodynamic law, without
+// gravity: after they part, the device engine's velocities and spins are the CPU engine's, so
+// the law's speed-dependent restitution, its relaxation and its tangential history run the same.
+TEST(DeviceEngine, ThermodynamicObliqueCollisionMatchesTheCpuEngine) {
+  const std::string text = R"(
+materials = ["grain"]
+[run]
+dt = 1.0e-4
+t_end = 1.0
+[domain]
+lo = [-5.0, -5.0, -5.0]
+hi = [5.0, 5.0, 5.0]
+gravity = [0.0, 0.0, 0.0]
+[material.grain]
+youngs_modulus = 5.0e6
+poisson_ratio = 0.3
+[contact]
+model = "thermodynamic"
+[[contact.pair]]
+materials = ["grain", "grain"]
+friction = 0.4
+eta_hat = 0.9
+[[particle]]
+position = [-0.55, 0.25, 0.0]
+velocity = [1.0, 0.0, 0.0]
+radius = 0.5
+density = 1.0
+material = "grain"
+[[particle]]
+position = [0.55, -0.25, 0.0]
+velocity = [-1.0, 0.0, 0.0]
+radius = 0.5
+density = 1.0
+material = "grain"
+)";
+  Scene scene = read_scene_text(text, "oblique.toml");
+  const auto sim = build_simulation(scene, false);
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  sim->run(2000);
+  engine->run(2000);
+  const device::HostParticles got = engine->particles();
+  const ParticleStore expected = by_id(*sim);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(sim->last_tally().touching, 0u) << "the grains have parted";
+  const double speed = norm(expected.v[0]);
+  EXPECT_LT(speed, 0.99) << "the collision dissipated";
+  EXPECT_GT(std::abs(expected.v[0].y), 0.01) << "an oblique collision deflects";
+  EXPECT_GT(norm(expected.w[0]), 0.01) << "friction spun the grains";
+  EXPECT_LE(
+      relative_difference(got.v, std::vector<Vec3>(expected.v.begin(), expected.v.begin() + 2)),
+      1e-12);
+  EXPECT_LE(
+      relative_difference(got.w, std::vector<Vec3>(expected.w.begin(), expected.w.begin() + 2)),
+      1e-12);
+  const device::DeviceEnergies dev = engine->energies();
+  const EnergyBooks cpu = sim->energies();
+  EXPECT_GT(cpu.dissipated, 0.0);
+  EXPECT_NEAR(dev.dissipated, cpu.dissipated, 1e-12 * cpu.dissipated);
+}
+
 TEST(DeviceEngine, AskingForAGpuWithoutCudaSaysHowToGetOne) {
   const auto sim = scene_simulation("chute-lammps.toml");
   try {
