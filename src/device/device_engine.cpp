@@ -53,13 +53,24 @@ template <class T> std::size_t bytes(const DeviceVector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
-// Thrust 1.17's CPP system grows an empty vector by copying its no elements from a null pointer
-// with memmove, which UBSan rejects: an empty vector is replaced by a new one instead.
+// v holds n elements afterwards, of unspecified values: every caller writes them all. Within
+// what v holds (down to half of it), nothing is allocated. Otherwise v is allocated afresh for
+// n and a sixteenth: Thrust's own resize doubles what a vector holds when it grows, so the
+// per-pair arrays would hold up to twice the pairs listed once a list build listed one more than
+// the last. (An empty vector is always replaced: Thrust 1.17's CPP system grows one by copying
+// its no elements from a null pointer with memmove, which UBSan rejects.)
 template <class T> void resize(DeviceVector<T>& v, std::size_t n) {
-  if (!v.empty())
+  const std::size_t held = v.capacity();
+  if (!v.empty() && n <= held && n >= held / 2) {
     v.resize(n);
-  else if (n > 0)
-    DeviceVector<T>(n).swap(v);
+    return;
+  }
+  DeviceVector<T> fresh;
+  if (n > 0) {
+    DeviceVector<T>(n + n / 16).swap(fresh);
+    fresh.resize(n);
+  }
+  fresh.swap(v);
 }
 
 // The end of a vector as a raw pointer: the algorithms that take thrust::device are given
