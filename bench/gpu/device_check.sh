@@ -14,6 +14,9 @@
 #   gpu_tests.txt  the ctest label `gpu` (tests/gpu/, yuxi_gpu_tests): the chute under every
 #                  contact law, the shaken small basin and a whole run folder, on the GPU and in
 #                  the host build on this machine's CPU, bit for bit;
+#   references.txt the GPU's run folders against the stored references of the host build
+#                  (tests/regression/references.sh, cases device-c1 and device-basin): the
+#                  chute and the small basin with its analysis, byte for byte;
 #   engine.txt     the device engine's speed: LAMMPS's 32k chute, the chute replicated to 960k
 #                  grains, and the paper basin to 10.5 tau, on the GPU;
 #   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
@@ -62,6 +65,11 @@ echo "exit $status" >> "$out/law_bits.txt"
 
 YUXI_SCENES_DIR=$PWD/scenes timeout 180 yuxi_gpu_tests > "$out/gpu_tests.txt" 2>&1
 echo "exit $?" >> "$out/gpu_tests.txt"
+for case in device-c1 device-basin; do
+  YUXI_DEVICE=gpu timeout 90 tests/regression/references.sh "$bundle/bin/yuxi_cuda" mpirun "$case" \
+    /tmp/yuxi-references
+  echo "$case: exit $?"
+done > "$out/references.txt" 2>&1
 
 {
   echo "== GPU, 32k chute, 1000 steps"

@@ -14,6 +14,11 @@
 #   drum-cylinder-np2     on 1 and 2 ranks
 #   basin-mesh-np1, -np2  scenes/basin-mesh.toml (the basin's side wall an STL mesh) to t = 10.3
 #                         tau on 1 and 2 ranks: energies.csv, walls.csv and the digest
+#   device-c1, device-basin  the chute to step 1,000 and scenes/basin-small.toml to t = 10.3
+#                         tau, with its analysis, on the device engine (--device host, or the
+#                         device YUXI_DEVICE names: the GPU must give the host build's bytes):
+#                         energies.csv, the digest of the last frame, and the basin's analysis
+#                         files of the shaking
 #   bulk-np1, bulk-np2    the small bulk cases of scenes/bulk/ (*-small.toml: the drum to t = 12,
 #                         Beverloo's silo to 12 with its refill and outlet, the heap to 20 with
 #                         its pour, the Janssen column to 15 while it fills) on 1 and 2 ranks:
@@ -43,6 +48,7 @@ compare() {
   mkdir -p "$refs/$name"
   for f in "$@"; do
     if ((update)); then
+      mkdir -p "$(dirname "$refs/$name/$f")"
       cp "$out/$f" "$refs/$name/$f"
       echo "$name: stored $f"
     elif cmp -s "$out/$f" "$refs/$name/$f"; then
@@ -115,6 +121,22 @@ run_bulk() { # NP
   done
 }
 
+run_device() { # NAME SCENE T_END FILE...
+  local name=$1 scene=$2 t_end=$3 out=$work/$1
+  shift 3
+  rm -rf "$out"
+  mkdir -p "$work"
+  # (a frame at the end, and the data file found from anywhere)
+  sed -e 's|^snapshot_interval = .*|snapshot_interval = 0.1|' \
+    -e "s|^file = .*|file = \"$repo/data/lammps/data.chute\"|" \
+    "$repo/scenes/$scene" > "$work/$name.toml"
+  "$yuxi" run "$work/$name.toml" --t-end "$t_end" --device "${YUXI_DEVICE:-host}" -o "$out" \
+    --no-progress --no-plots > "$work/$name.log" 2>&1 || { cat "$work/$name.log"; exit 1; }
+  local frames=("$out"/particles_*.vtu)
+  digest "${frames[-1]}" > "$out/state.sha256"
+  compare "$name" energies.csv state.sha256 "$@"
+}
+
 run_collide() {
   local out=$work/collide
   rm -rf "$out"
@@ -135,6 +157,10 @@ case $case_name in
   drum-cylinder-np2) run_drum drum-cylinder-np2 drum-cylinder 2 ;;
   basin-mesh-np1) run_scene basin-mesh-np1 basin-mesh.toml 10.3 1 energies.csv walls.csv ;;
   basin-mesh-np2) run_scene basin-mesh-np2 basin-mesh.toml 10.3 2 energies.csv walls.csv ;;
+  device-c1) run_device device-c1 chute-lammps.toml 0.1 ;;
+  device-basin)
+    run_device device-basin basin-small.toml 10.3 analysis/peaks.csv analysis/period_sections.csv \
+      analysis/surface_t10.25.csv ;;
   bulk-np1) run_bulk 1 ;;
   bulk-np2) run_bulk 2 ;;
   all)
@@ -144,6 +170,9 @@ case $case_name in
     run_scene basin-mesh-np1 basin-mesh.toml 10.3 1 energies.csv walls.csv
     run_scene basin-mesh-np2 basin-mesh.toml 10.3 2 energies.csv walls.csv
     run_bulk 1; run_bulk 2
+    run_device device-c1 chute-lammps.toml 0.1
+    run_device device-basin basin-small.toml 10.3 analysis/peaks.csv analysis/period_sections.csv \
+      analysis/surface_t10.25.csv
     ;;
   *) echo "unknown case $case_name" >&2; exit 2 ;;
 esac
