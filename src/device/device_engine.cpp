@@ -233,24 +233,40 @@ public:
                                   std::to_string(edge) + "; it indexes cells with 31 bits");
     resize(gravity_work_, n_);
     resize(moved_far_, n_);
+    if (scene.planes.size() > 255)
+      throw std::invalid_argument("device engine: " + std::to_string(scene.planes.size()) +
+                                  " planes; it runs at most 255");
+    n_planes_ = static_cast<std::uint32_t>(scene.planes.size());
+    if (n_planes_ > 0) {
+      std::vector<Vec3> point, normal;
+      std::vector<std::uint8_t> material;
+      for (const DevicePlane& plane : scene.planes) {
+        if (plane.material >= scene.n_materials)
+          throw std::invalid_argument("device engine: a plane of material " +
+                                      std::to_string(plane.material) + ", beyond the scene's " +
+                                      std::to_string(scene.n_materials));
+        point.push_back(plane.point);
+        normal.push_back(plane.normal);
+        material.push_back(plane.material);
+      }
+      plane_point_ = point;
+      plane_normal_ = normal;
+      plane_material_ = material;
+    }
     // The open contacts at the start, sorted by key: the first list build takes them back.
-    std::vector<std::pair<std::uint64_t, State>> open(contacts.size());
-    for (std::size_t k = 0; k < contacts.size(); ++k)
-      open[k] = {contact_key(contacts[k].first, contacts[k].second), contacts[k].state};
-    std::sort(open.begin(), open.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<std::uint64_t> keys(open.size());
-    std::vector<State> states(open.size());
-    for (std::size_t k = 0; k < open.size(); ++k) {
-      keys[k] = open[k].first;
-      states[k] = open[k].second;
+    std::vector<std::pair<std::uint64_t, State>> pairs, planes;
+    for (const KeyedState<State>& c : contacts) {
+      if (c.second >= 0) {
+        pairs.push_back({contact_key(c.first, c.second), c.state});
+        continue;
+      }
+      const GlobalId plane = -c.second - 1;
+      if (plane >= static_cast<GlobalId>(n_planes_))
+        throw std::invalid_argument("device engine: a contact with plane " + std::to_string(plane) +
+                                    ", beyond the scene's " + std::to_string(n_planes_));
+      planes.push_back({plane_key(c.first, static_cast<std::uint32_t>(plane)), c.state});
     }
-    DeviceVector<std::uint64_t> start_keys;
-    DeviceVector<State> start_states;
-    if (!keys.empty()) { // (assigned only when not empty: see resize())
-      start_keys = keys;
-      start_states = states;
-    }
+    Stash start_pairs = stash_of(std::move(pairs)), start_planes = stash_of(std::move(planes));
     // A run continued mid-way makes its last list build again, where the particles stood then
     // (Simulation::build_lists_after_load does the same): the same cells, order and pairs.
     const bool rebuild = hp.x_build.size() == hp.size() && n_ > 0;
@@ -258,7 +274,7 @@ public:
       x_now_ = hp.x;
       x_ = hp.x_build;
     }
-    build_list(start_keys, start_states);
+    build_list(start_pairs, start_planes);
     if (rebuild) {
       x_.swap(x_now_);
       DeviceVector<Vec3>().swap(x_now_);
@@ -332,11 +348,13 @@ public:
     e.gravitational = ordered_sum(gravitational);
     e.grains =
         n_ == 0 ? 0 : thrust::reduce(thrust::device, raw(grain), last(grain), std::uint32_t{0});
-    e.contacts = partner_.empty()
-                     ? 0
-                     : thrust::count(thrust::device, raw(open_), last(open_), std::uint8_t{1});
-    e.elastic = ordered_sum(elastic_);
-    e.relaxation = ordered_sum(relaxation_);
+    const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
+      return open.empty() ? 0
+                          : thrust::count(thrust::device, raw(open), last(open), std::uint8_t{1});
+    };
+    e.contacts = touching(open_) + touching(plane_open_);
+    e.elastic = ordered_sum(elastic_) + ordered_sum(plane_elastic_);
+    e.relaxation = ordered_sum(relaxation_) + ordered_sum(plane_relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
     e.wall_work = wall_work_total_;
@@ -359,7 +377,35 @@ public:
     for (std::size_t c = 0; c < k.size(); ++c)
       out[c] = {static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu),
                 st[c]};
+    // The grain-plane contacts, keyed as the CPU engine keys them: (grain, -(plane + 1)).
+    stash_open_planes(keys, states);
+    k.resize(keys.size());
+    st.resize(states.size());
+    if (!k.empty()) {
+      thrust::copy(keys.begin(), keys.end(), k.begin());
+      thrust::copy(states.begin(), states.end(), st.begin());
+    }
+    for (std::size_t c = 0; c < k.size(); ++c)
+      out.push_back(
+          {static_cast<GlobalId>(k[c] >> 8), -static_cast<GlobalId>(k[c] & 0xffu) - 1, st[c]});
     return out;
+  }
+
+  std::vector<PlaneLoad> plane_loads() const override {
+    std::vector<PlaneLoad> loads(n_planes_);
+    const auto host = [](const auto& from) {
+      std::vector<typename std::decay_t<decltype(from)>::value_type> to(from.size());
+      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
+      return to;
+    };
+    const std::vector<Vec3> force = host(plane_force_);
+    const std::vector<std::uint8_t> plane = host(plane_of_), open = host(plane_open_);
+    for (std::size_t c = 0; c < force.size(); ++c) {
+      if (!open[c]) continue;
+      loads[plane[c]].force -= force[c];
+      ++loads[plane[c]].contacts;
+    }
+    return loads;
   }
 
   std::int64_t step() const override { return step_; }
@@ -379,6 +425,12 @@ public:
     std::vector<PairEnergy> out;
     for (std::size_t k = 0; k < elastic.size(); ++k)
       if (elastic[k] != 0.0) out.push_back({gid[row[k]], gid[partner[k]], elastic[k]});
+    const std::vector<double> plane_elastic = host(plane_elastic_);
+    const std::vector<std::uint32_t> plane_row = host(plane_row_);
+    const std::vector<std::uint8_t> plane = host(plane_of_);
+    for (std::size_t c = 0; c < plane_elastic.size(); ++c)
+      if (plane_elastic[c] != 0.0)
+        out.push_back({gid[plane_row[c]], -static_cast<GlobalId>(plane[c]) - 1, plane_elastic[c]});
     return out;
   }
   std::size_t listed_pairs() const override { return partner_.size(); }
@@ -391,7 +443,10 @@ public:
            bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
            bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(force_) + bytes(torque_i_) +
            bytes(torque_j_) + bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) +
-           bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) + bytes(coeffs_);
+           bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) + bytes(coeffs_) +
+           bytes(plane_start_) + bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) +
+           bytes(plane_open_) + bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
+           bytes(plane_relaxation_) + bytes(plane_dissipated_);
   }
 
   std::string device_name() const override {
@@ -422,6 +477,13 @@ private:
   PairList pair_list() const {
     return PairList{raw(row_start_), raw(partner_),       raw(pair_row_),
                     raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
+  }
+  PlaneSet plane_set() const {
+    return PlaneSet{raw(plane_point_), raw(plane_normal_), raw(plane_material_), n_planes_};
+  }
+  PlaneOutput plane_output() {
+    return PlaneOutput{raw(plane_force_), raw(plane_torque_), raw(plane_elastic_),
+                       raw(plane_relaxation_), raw(plane_dissipated_)};
   }
   PairOutput pair_output() {
     return PairOutput{raw(force_),      raw(torque_i_),   raw(torque_j_), raw(elastic_),
@@ -493,39 +555,88 @@ private:
     permute_by(order, motion_, motion);
   }
 
+  // Open contacts' keys in ascending order, and their states: carried across a list build.
+  struct Stash {
+    DeviceVector<std::uint64_t> keys;
+    DeviceVector<State> states;
+  };
+  static Stash stash_of(std::vector<std::pair<std::uint64_t, State>> open) {
+    std::sort(open.begin(), open.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::uint64_t> keys(open.size());
+    std::vector<State> states(open.size());
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      keys[k] = open[k].first;
+      states[k] = open[k].second;
+    }
+    Stash stash;
+    if (!keys.empty()) { // (assigned only when not empty: see resize())
+      stash.keys = keys;
+      stash.states = states;
+    }
+    return stash;
+  }
+
   // A list build in a step: the open contacts' states stashed, then the list built afresh.
   void build_list() {
-    DeviceVector<std::uint64_t> keys;
-    DeviceVector<State> stashed;
-    stash_open_contacts(keys, stashed);
-    build_list(keys, stashed);
+    Stash pairs, planes;
+    stash_open_contacts(pairs.keys, pairs.states);
+    stash_open_planes(planes.keys, planes.states);
+    build_list(pairs, planes);
+  }
+
+  // The indices of the set flags of `open`, in order.
+  static DeviceVector<std::uint32_t> set_indices(const DeviceVector<std::uint8_t>& open) {
+    const std::uint32_t n = static_cast<std::uint32_t>(open.size());
+    DeviceVector<std::uint32_t> at(n);
+    const std::uint32_t n_set = static_cast<std::uint32_t>(
+        thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+                        thrust::counting_iterator<std::uint32_t>(n), raw(open), raw(at), IsSet{}) -
+        raw(at));
+    // (a copy of the first n_set: resize() keeps no values)
+    DeviceVector<std::uint32_t> set;
+    if (n_set > 0) DeviceVector<std::uint32_t>(at.begin(), at.begin() + n_set).swap(set);
+    return set;
+  }
+
+  // Sorts `keys` and carries `states` along (through an index: a state can be too large to ride
+  // in the sort itself, radix sort keeping its values in shared memory).
+  static void sort_stash(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& states) {
+    DeviceVector<std::uint32_t> by_key(keys.size());
+    thrust::sequence(thrust::device, raw(by_key), last(by_key));
+    thrust::sort_by_key(thrust::device, raw(keys), last(keys), raw(by_key));
+    DeviceVector<State> scratch;
+    permute_by(by_key, states, scratch);
+  }
+
+  // The open grain-plane contacts' keys in ascending order, and their states.
+  void stash_open_planes(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) const {
+    const DeviceVector<std::uint32_t> open = set_indices(plane_open_);
+    const std::uint32_t n_open = static_cast<std::uint32_t>(open.size());
+    resize(keys, n_open);
+    resize(stashed, n_open);
+    for_each_index(n_open,
+                   StashPlane<Model>{view(), raw(plane_row_), raw(plane_of_), raw(plane_state_),
+                                     raw(open), raw(keys), raw(stashed)});
+    sort_stash(keys, stashed);
   }
 
   // The open contacts' keys (the particles' global ids) in ascending order, and their states.
   void stash_open_contacts(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) const {
-    const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
-    DeviceVector<std::uint32_t> open_pairs(pairs);
-    const std::uint32_t n_open = static_cast<std::uint32_t>(
-        thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(pairs), raw(open_),
-                        raw(open_pairs), IsSet{}) -
-        raw(open_pairs));
+    const DeviceVector<std::uint32_t> open_pairs = set_indices(open_);
+    const std::uint32_t n_open = static_cast<std::uint32_t>(open_pairs.size());
     resize(keys, n_open);
     resize(stashed, n_open);
     for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(state_), raw(open_pairs),
                                                raw(keys), raw(stashed)});
-    // Sorted by key; the states follow through an index (a state can be too large to ride in
-    // the sort itself: radix sort keeps its values in shared memory).
-    DeviceVector<std::uint32_t> by_key(n_open);
-    thrust::sequence(thrust::device, raw(by_key), last(by_key));
-    thrust::sort_by_key(thrust::device, raw(keys), last(keys), raw(by_key));
-    DeviceVector<State> scratch;
-    permute_by(by_key, stashed, scratch);
+    sort_stash(keys, stashed);
   }
 
-  // Escapes, the cell sort and the list, with the open contacts (sorted `keys`, their `stashed`
-  // states) taken back by their new pairs.
-  void build_list(const DeviceVector<std::uint64_t>& keys, const DeviceVector<State>& stashed) {
+  // Escapes, the cell sort, the list and the grain-plane candidates, with the open contacts
+  // (`pairs`, `planes`) taken back by their new pairs and candidates.
+  void build_list(const Stash& pairs, const Stash& planes) {
+    const DeviceVector<std::uint64_t>& keys = pairs.keys;
+    const DeviceVector<State>& stashed = pairs.states;
     const std::uint32_t n_stashed = static_cast<std::uint32_t>(keys.size());
     // 1. Grains that left through an open face stop the run, or leave it with their mechanical
     // energy booked as removed (Simulation::handle_escapes_here).
@@ -588,6 +699,34 @@ private:
     resize(wall_work_, total);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
                                                 n_stashed, raw(state_), raw(open_)});
+
+    // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
+    DeviceVector<std::uint32_t> plane_count(n_);
+    FindPlanes find_planes{view(), plane_set(), skin_, raw(plane_count), nullptr, nullptr, nullptr};
+    for_each_index(n_, find_planes);
+    resize(plane_start_, n_ + 1);
+    thrust::exclusive_scan(thrust::device, raw(plane_count), last(plane_count), raw(plane_start_));
+    const std::uint32_t candidates =
+        n_ == 0 ? 0 : read_one(plane_start_, n_ - 1) + read_one(plane_count, n_ - 1);
+    write_one(plane_start_, n_, candidates);
+    resize(plane_row_, candidates);
+    resize(plane_of_, candidates);
+    find_planes.count = nullptr;
+    find_planes.start = raw(plane_start_);
+    find_planes.row = raw(plane_row_);
+    find_planes.plane = raw(plane_of_);
+    for_each_index(n_, find_planes);
+    resize(plane_state_, candidates);
+    resize(plane_open_, candidates);
+    resize(plane_force_, candidates);
+    resize(plane_torque_, candidates);
+    resize(plane_elastic_, candidates);
+    resize(plane_relaxation_, candidates);
+    resize(plane_dissipated_, candidates);
+    for_each_index(candidates, RestorePlane<Model>{view(), raw(plane_row_), raw(plane_of_),
+                                                   raw(planes.keys), raw(planes.states),
+                                                   static_cast<std::uint32_t>(planes.keys.size()),
+                                                   raw(plane_state_), raw(plane_open_)});
     ++builds_;
   }
 
@@ -595,7 +734,12 @@ private:
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
     for_each_index(pairs, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
                                             dt, raw(state_), raw(open_), pair_output()});
-    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), gravity_});
+    for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
+                   PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
+                                      raw(coeffs_), n_materials_, dt, raw(plane_state_),
+                                      raw(plane_open_), plane_output()});
+    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(plane_start_),
+                                 plane_output(), gravity_});
   }
 
   void step_once() {
@@ -617,6 +761,7 @@ private:
     for_each_index(n_, FinalKick{view(), dt_});
     clock.add_to(phases_.integration);
     dissipated_total_ += ordered_sum(dissipated_);
+    dissipated_total_ += ordered_sum(plane_dissipated_);
     wall_work_total_ += ordered_sum(wall_work_);
     clock.add_to(phases_.books);
   }
@@ -640,6 +785,16 @@ private:
   std::uint32_t n_ = 0, n_materials_ = 1;
   DeviceVector<Vec3> x_, v_, w_, f_, torque_, x_build_;
   DeviceVector<Vec3> x_now_; // while the start's list is made again: where the particles stand
+  // The still planes, and the grain-plane candidates of the last list build (per candidate: its
+  // grain, its plane, the contact's state, whether it is open, and what it gave this step).
+  std::uint32_t n_planes_ = 0;
+  DeviceVector<Vec3> plane_point_, plane_normal_;
+  DeviceVector<std::uint8_t> plane_material_;
+  DeviceVector<std::uint32_t> plane_start_, plane_row_;
+  DeviceVector<std::uint8_t> plane_of_, plane_open_;
+  DeviceVector<State> plane_state_;
+  DeviceVector<Vec3> plane_force_, plane_torque_;
+  DeviceVector<double> plane_elastic_, plane_relaxation_, plane_dissipated_;
   DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
   DeviceVector<GlobalId> gid_;
   DeviceVector<Kind> kind_;

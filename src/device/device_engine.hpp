@@ -44,6 +44,20 @@ struct DeviceMotion {
   double amplitude = 0, omega = 0, t0 = 0;
 };
 
+// A still plane wall (scene/plane_wall.hpp without an oscillation; the box's walls are such
+// planes): a point, the unit normal into the grains' side, the material.
+struct DevicePlane {
+  Vec3 point, normal;
+  std::uint8_t material = 0;
+};
+
+// What the grains did to a plane at the last force evaluation: the force on it, and how many
+// grains touch it.
+struct PlaneLoad {
+  Vec3 force;
+  std::size_t contacts = 0;
+};
+
 // What the device engine runs: particles in a box that is periodic or open along each axis,
 // gravity, one contact law with its coefficients per material pair (Model::Coeffs, row-major,
 // n_materials^2 of them), wall particles standing or moving by one of `motions` (at most 8).
@@ -55,7 +69,8 @@ struct DeviceScene {
   double dt = 0, skin = 0, cell_size = 0, time = 0;
   std::size_t n_materials = 1;
   std::vector<DeviceMotion> motions;
-  bool remove_escaped = false; // a grain out of the box leaves (else it stops the run)
+  std::vector<DevicePlane> planes; // at most 255
+  bool remove_escaped = false;     // a grain out of the box leaves (else it stops the run)
   // The particles' f and torque are those of the last step (a run continued mid-way): kept, not
   // computed again at the start.
   bool forces_given = false;
@@ -76,13 +91,15 @@ struct DeviceEnergies {
 };
 
 // An open contact: keyed by its particles' ids, smaller first, its state as seen from the
-// smaller.
+// smaller; a grain-plane contact by the grain's id and -(plane index + 1), as the CPU engine's
+// history keys it (contact/contact_history.hpp).
 template <class State> struct KeyedState {
   GlobalId first = 0, second = 0;
   State state;
 };
 
-// A contact's elastic energy at the last force evaluation, by its particles' ids.
+// A contact's elastic energy at the last force evaluation, by its particles' ids (a plane's as
+// -(plane index + 1)).
 struct PairEnergy {
   GlobalId first = 0, second = 0;
   double elastic = 0;
@@ -112,6 +129,8 @@ public:
   // The contacts that held elastic energy at the last force evaluation (per-grain energies of an
   // analysis; copied to the host, so for samples, not every step).
   virtual std::vector<PairEnergy> pair_energies() const = 0;
+  // Each plane's load at the last force evaluation, summed in a fixed order.
+  virtual std::vector<PlaneLoad> plane_loads() const = 0;
   virtual std::size_t listed_pairs() const = 0;
   // Bytes held on the device now (particles, cells, list, contact states, per-pair results).
   virtual std::size_t device_bytes() const = 0;

@@ -282,12 +282,145 @@ template <class Model> struct PairForces {
   }
 };
 
+// The still planes of a scene (scene/plane_wall.hpp), as arrays: a point, the unit normal into
+// the grains' side, the material.
+struct PlaneSet {
+  const Vec3* point;
+  const Vec3* normal;
+  const std::uint8_t* material;
+  std::uint32_t count;
+};
+
+// The grain-plane candidates: for each particle, its planes (grains only) closer than its radius
+// and the skin (NeighborSearch::build). Counts them (count != nullptr) or writes them from
+// start[i]: the particle of each candidate (`row`) and its plane.
+struct FindPlanes {
+  Particles p;
+  PlaneSet planes;
+  double skin;
+  std::uint32_t* count;
+  const std::uint32_t* start;
+  std::uint32_t* row;
+  std::uint8_t* plane;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    std::uint32_t found = 0, at = count ? 0 : start[i];
+    if (p.kind[i] == Kind::grain)
+      for (std::uint32_t k = 0; k < planes.count; ++k) {
+        if (!(dot(p.x[i] - planes.point[k], planes.normal[k]) < p.radius[i] + skin)) continue;
+        if (count) {
+          ++found;
+        } else {
+          row[at] = i;
+          plane[at] = static_cast<std::uint8_t>(k);
+          ++at;
+        }
+      }
+    if (count) count[i] = found;
+  }
+};
+
+// A grain-plane contact's key: the grain's global id, then the plane.
+YUXI_HD inline std::uint64_t plane_key(GlobalId grain, std::uint32_t plane) {
+  return (static_cast<std::uint64_t>(grain) << 8) | plane;
+}
+
+// Before a list build: the key and the state of each open grain-plane contact.
+template <class Model> struct StashPlane {
+  Particles p;
+  const std::uint32_t* row;
+  const std::uint8_t* plane;
+  const typename Model::State* state;
+  const std::uint32_t* open_candidates;
+  std::uint64_t* key;
+  typename Model::State* stashed;
+  YUXI_HD void operator()(std::uint32_t k) const {
+    const std::uint32_t c = open_candidates[k];
+    key[k] = plane_key(p.gid[row[c]], plane[c]);
+    stashed[k] = state[c];
+  }
+};
+
+// After a list build: each candidate takes its stashed state back (binary search on the keys).
+template <class Model> struct RestorePlane {
+  Particles p;
+  const std::uint32_t* row;
+  const std::uint8_t* plane;
+  const std::uint64_t* key;
+  const typename Model::State* stashed;
+  std::uint32_t n_stashed;
+  typename Model::State* state;
+  std::uint8_t* open;
+  YUXI_HD void operator()(std::uint32_t c) const {
+    const std::uint64_t k = plane_key(p.gid[row[c]], plane[c]);
+    std::uint32_t lo = 0, hi = n_stashed;
+    while (lo < hi) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (key[mid] < k)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    const bool found = lo < n_stashed && key[lo] == k;
+    open[c] = found ? 1 : 0;
+    state[c] = found ? stashed[lo] : typename Model::State{};
+  }
+};
+
+// What a grain-plane contact gave this step.
+struct PlaneOutput {
+  Vec3* force;  // on the grain
+  Vec3* torque; // on the grain
+  double* elastic;
+  double* relaxation;
+  double* dissipated; // this step, releases of parted contacts included
+};
+
+// The contact law on each grain-plane candidate (ContactForces::compute_planes for a still
+// plane): one that overlaps is evaluated, one that has come apart releases what it held.
+template <class Model> struct PlaneForces {
+  Particles p;
+  PlaneSet planes;
+  const std::uint32_t* row;
+  const std::uint8_t* plane;
+  const typename Model::Coeffs* coeffs; // per material pair, n_materials^2
+  std::uint32_t n_materials;
+  double dt;
+  typename Model::State* state;
+  std::uint8_t* open;
+  PlaneOutput out;
+  YUXI_HD void operator()(std::uint32_t c) const {
+    const std::uint32_t i = row[c], k = plane[c];
+    const double dist = dot(p.x[i] - planes.point[k], planes.normal[k]);
+    const typename Model::Coeffs& co = coeffs[p.material[i] * n_materials + planes.material[k]];
+    ContactResult r;
+    double released = 0.0;
+    if (dist < p.radius[i]) {
+      open[c] = 1;
+      const ContactGeometry g = wall_geometry(planes.normal[k], dist, p.radius[i], p.v[i], Vec3{},
+                                              p.w[i], p.inv_mass[i], dt);
+      r = Model::evaluate(g, co, state[c]);
+    } else if (open[c]) {
+      released = Model::release(co, state[c]);
+      state[c] = typename Model::State{};
+      open[c] = 0;
+    }
+    out.force[c] = r.force;
+    out.torque[c] = r.torque_i;
+    out.elastic[c] = r.elastic;
+    out.relaxation[c] = r.relaxation;
+    out.dissipated[c] = r.dissipated + released;
+  }
+};
+
 // Each grain's force and torque: gravity, then its pairs as the row particle, then its pairs as
-// the partner, each in pair order. Wall particles keep none.
+// the partner, each in pair order, then its plane contacts in candidate order. Wall particles
+// keep none.
 struct SumForces {
   Particles p;
   PairList list;
   PairOutput out;
+  const std::uint32_t* plane_start; // each particle's first grain-plane candidate
+  PlaneOutput planes;
   Vec3 gravity;
   YUXI_HD void operator()(std::uint32_t i) const {
     if (p.kind[i] != Kind::grain) {
@@ -304,6 +437,10 @@ struct SumForces {
       const std::uint32_t pair = list.reverse_pair[k];
       f -= out.force[pair];
       t += out.torque_j[pair];
+    }
+    for (std::uint32_t c = plane_start[i]; c < plane_start[i + 1]; ++c) {
+      f += planes.force[c];
+      t += planes.torque[c];
     }
     p.f[i] = f;
     p.torque[i] = t;

@@ -16,7 +16,11 @@ std::vector<std::string> device_engine_refusals(const Simulation& sim) {
   if (sim.comm().size() > 1)
     no.push_back(
         fmt::format("{} MPI ranks (the device engine runs in one process)", sim.comm().size()));
-  if (!sim.planes().empty()) no.push_back("[[plane]] walls, or [domain] boundary = \"wall\"");
+  for (const PlaneWall& plane : sim.planes())
+    if (plane.amplitude != 0.0) {
+      no.push_back("an oscillating [[plane]] (amplitude)");
+      break;
+    }
   for (const ShapedWall& wall : sim.shaped_walls())
     no.push_back(std::holds_alternative<CylinderWall>(wall) ? "a [[cylinder]] wall"
                                                             : "a [[mesh]] wall");
@@ -111,6 +115,8 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
       m.t0 = wave->t0;
     }
   }
+  for (const PlaneWall& plane : sim.planes())
+    scene.planes.push_back({plane.point, plane.normal, plane.material});
   const SimulationConfig& c = sim.config();
   scene.lo = c.box.lo;
   scene.hi = c.box.hi;

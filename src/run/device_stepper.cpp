@@ -65,6 +65,11 @@ EngineState DeviceStepper::engine_state() const {
   s.contact_stash =
       std::visit([&](const auto& law) { return contact_stash(law, *engine_, s.touching); },
                  sim_.contact_law());
+  for (const device::PlaneLoad& load : engine_->plane_loads()) {
+    WallLoad& l = s.plane_loads.emplace_back();
+    l.force = load.force;
+    l.contacts = load.contacts;
+  }
   s.books = books();
   s.elastic = s.books.elastic;
   s.relaxation = s.books.relaxation;
@@ -120,8 +125,10 @@ std::vector<double> DeviceStepper::particle_elastic_energy() const {
   index.reserve(s.n_owned());
   for (std::size_t i = 0; i < s.n_owned(); ++i) index.emplace(s.gid[i], i);
   std::vector<analysis::ContactEnergy> contacts;
+  // (a plane's half goes to no grain: run/particle_elastic_energy.cpp)
   for (const device::PairEnergy& e : engine_->pair_energies())
-    contacts.push_back({index.at(e.first), index.at(e.second), e.elastic});
+    contacts.push_back(
+        {index.at(e.first), e.second < 0 ? analysis::wall_partner : index.at(e.second), e.elastic});
   return analysis::grain_elastic_energy(s.n_owned(), contacts);
 }
 

@@ -312,8 +312,8 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
       const bool frame = d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last);
       const bool hook_due = hook.every > 0 && k % hook.every == 0 && hook.call;
       const bool analysis_due = d.stepper && d.analysis && d.analysis->next_step_after(k - 1) == k;
-      const bool host_needs_state =
-          frame || hook_due || checkpoint_now || analysis_due || k == until || d.measures;
+      const bool host_needs_state = frame || hook_due || checkpoint_now || analysis_due ||
+                                    k == until || d.measures || d.walls;
       if (d.stepper && energy_row && !host_needs_state) {
         // A row of the device's own books; a gain that nothing put in brings the state back,
         // whose check stops the run with the diagnosis.

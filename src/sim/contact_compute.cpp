@@ -20,6 +20,10 @@ const std::vector<WallLoad>& ContactCompute::plane_loads() const {
                     forces_);
 }
 
+void ContactCompute::set_plane_loads(std::vector<WallLoad> loads) {
+  std::visit([&](auto& f) { f.plane_loads = std::move(loads); }, forces_);
+}
+
 const DeepStarts& ContactCompute::deep_starts() const {
   return std::visit([](const auto& f) -> const DeepStarts& { return f.deep_starts; }, forces_);
 }

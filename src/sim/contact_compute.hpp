@@ -46,6 +46,8 @@ public:
   // This rank's loads of the planes at the last evaluation, and its contacts with shaped walls
   // that began already deep.
   const std::vector<WallLoad>& plane_loads() const;
+  // The loads another engine's last evaluation gave (Simulation::take_engine_state).
+  void set_plane_loads(std::vector<WallLoad> loads);
   const DeepStarts& deep_starts() const;
 
   // The contacts of listed pairs (PairSet) and, but for PairSet::ghost, of grains with planes

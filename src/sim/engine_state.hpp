@@ -4,6 +4,7 @@
 
 #include "core/particle_fields.hpp"
 #include "core/vec3.hpp"
+#include "sim/contact_tally.hpp"
 #include "sim/energy_books.hpp"
 
 #include <cstddef>
@@ -27,6 +28,9 @@ struct EngineState {
   // The contacts' stored energies at the last evaluation, and how many touch.
   double elastic = 0.0, relaxation = 0.0;
   std::size_t touching = 0;
+  // What the grains did to each plane at the last evaluation (force and contacts; still planes
+  // do no work).
+  std::vector<WallLoad> plane_loads;
   // The cumulative books: dissipated, wall_work, removed, gravity_work, inserted and escaped are
   // taken; the others follow from the particles and the contacts.
   EnergyBooks books;

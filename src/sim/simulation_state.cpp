@@ -399,6 +399,7 @@ void Simulation::take_engine_state(const EngineState& state) {
   tally.elastic = state.elastic;
   tally.relaxation = state.relaxation;
   tally.touching = state.touching;
+  contacts_.set_plane_loads(state.plane_loads);
   contacts_.history().forget();
   contacts_.history().give(state.contact_stash);
   // (the other engine records no contacts' forces: none is kept that would not match the list)
