@@ -83,6 +83,13 @@ template <class T> const T* last(const DeviceVector<T>& v) {
   return raw(v) + v.size();
 }
 
+// A copy of v on the host.
+template <class T> std::vector<T> to_host(const DeviceVector<T>& v) {
+  std::vector<T> out(v.size());
+  if (!v.empty()) thrust::copy(v.begin(), v.end(), out.begin());
+  return out;
+}
+
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
 template <class F> void for_each_index(std::uint32_t n, const F& f) {
   if (n == 0) return;
@@ -291,10 +298,7 @@ public:
 
   HostParticles particles() const override {
     HostParticles h;
-    const auto get = [&](const auto& from, auto& to) {
-      to.resize(from.size());
-      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
-    };
+    const auto get = [](const auto& from, auto& to) { to = to_host(from); };
     HostParticles sorted;
     get(x_, sorted.x);
     get(v_, sorted.v);
@@ -393,13 +397,8 @@ public:
 
   std::vector<PlaneLoad> plane_loads() const override {
     std::vector<PlaneLoad> loads(n_planes_);
-    const auto host = [](const auto& from) {
-      std::vector<typename std::decay_t<decltype(from)>::value_type> to(from.size());
-      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
-      return to;
-    };
-    const std::vector<Vec3> force = host(plane_force_);
-    const std::vector<std::uint8_t> plane = host(plane_of_), open = host(plane_open_);
+    const std::vector<Vec3> force = to_host(plane_force_);
+    const std::vector<std::uint8_t> plane = to_host(plane_of_), open = to_host(plane_open_);
     for (std::size_t c = 0; c < force.size(); ++c) {
       if (!open[c]) continue;
       loads[plane[c]].force -= force[c];
@@ -414,20 +413,15 @@ public:
   DevicePhaseSeconds phase_seconds() const override { return phases_; }
 
   std::vector<PairEnergy> pair_energies() const override {
-    const auto host = [](const auto& from) {
-      std::vector<typename std::decay_t<decltype(from)>::value_type> to(from.size());
-      if (!from.empty()) thrust::copy(from.begin(), from.end(), to.begin());
-      return to;
-    };
-    const std::vector<double> elastic = host(elastic_);
-    const std::vector<std::uint32_t> row = host(pair_row_), partner = host(partner_);
-    const std::vector<GlobalId> gid = host(gid_);
+    const std::vector<double> elastic = to_host(elastic_);
+    const std::vector<std::uint32_t> row = to_host(pair_row_), partner = to_host(partner_);
+    const std::vector<GlobalId> gid = to_host(gid_);
     std::vector<PairEnergy> out;
     for (std::size_t k = 0; k < elastic.size(); ++k)
       if (elastic[k] != 0.0) out.push_back({gid[row[k]], gid[partner[k]], elastic[k]});
-    const std::vector<double> plane_elastic = host(plane_elastic_);
-    const std::vector<std::uint32_t> plane_row = host(plane_row_);
-    const std::vector<std::uint8_t> plane = host(plane_of_);
+    const std::vector<double> plane_elastic = to_host(plane_elastic_);
+    const std::vector<std::uint32_t> plane_row = to_host(plane_row_);
+    const std::vector<std::uint8_t> plane = to_host(plane_of_);
     for (std::size_t c = 0; c < plane_elastic.size(); ++c)
       if (plane_elastic[c] != 0.0)
         out.push_back({gid[plane_row[c]], -static_cast<GlobalId>(plane[c]) - 1, plane_elastic[c]});

@@ -184,6 +184,19 @@ YUXI_HD inline std::uint64_t contact_key(GlobalId a, GlobalId b) {
   return (lo << 32) | hi;
 }
 
+// Where key k stands in the ascending keys[0, n), or n where it is not there.
+YUXI_HD inline std::uint32_t find_key(const std::uint64_t* keys, std::uint32_t n, std::uint64_t k) {
+  std::uint32_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::uint32_t mid = lo + (hi - lo) / 2;
+    if (keys[mid] < k)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < n && keys[lo] == k ? lo : n;
+}
+
 // Before a list build: the key and the state (as seen from the smaller id) of each open contact.
 template <class Model> struct StashContact {
   Particles p;
@@ -211,19 +224,11 @@ template <class Model> struct RestoreContact {
   std::uint8_t* open;
   YUXI_HD void operator()(std::uint32_t pair) const {
     const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
-    const std::uint64_t k = contact_key(gi, gj);
-    std::uint32_t lo = 0, hi = n_stashed;
-    while (lo < hi) {
-      const std::uint32_t mid = lo + (hi - lo) / 2;
-      if (key[mid] < k)
-        lo = mid + 1;
-      else
-        hi = mid;
-    }
-    const bool found = lo < n_stashed && key[lo] == k;
+    const std::uint32_t at = find_key(key, n_stashed, contact_key(gi, gj));
+    const bool found = at < n_stashed;
     open[pair] = found ? 1 : 0;
     state[pair] =
-        !found ? typename Model::State{} : (gi < gj ? stashed[lo] : stashed[lo].mirrored());
+        !found ? typename Model::State{} : (gi < gj ? stashed[at] : stashed[at].mirrored());
   }
 };
 
@@ -351,18 +356,10 @@ template <class Model> struct RestorePlane {
   typename Model::State* state;
   std::uint8_t* open;
   YUXI_HD void operator()(std::uint32_t c) const {
-    const std::uint64_t k = plane_key(p.gid[row[c]], plane[c]);
-    std::uint32_t lo = 0, hi = n_stashed;
-    while (lo < hi) {
-      const std::uint32_t mid = lo + (hi - lo) / 2;
-      if (key[mid] < k)
-        lo = mid + 1;
-      else
-        hi = mid;
-    }
-    const bool found = lo < n_stashed && key[lo] == k;
+    const std::uint32_t at = find_key(key, n_stashed, plane_key(p.gid[row[c]], plane[c]));
+    const bool found = at < n_stashed;
     open[c] = found ? 1 : 0;
-    state[c] = found ? stashed[lo] : typename Model::State{};
+    state[c] = found ? stashed[at] : typename Model::State{};
   }
 };
 
