@@ -93,12 +93,24 @@ def test_box_walls_run_as_on_the_cpu_engine(box_scene, tmp_path):
     assert len(walls) > 6 * 10
 
 
-def test_oscillating_planes_are_refused_by_name_not_run_on_the_cpu(box_scene, tmp_path):
-    box_scene["plane"] = [{"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0],
-                           "material": "wall", "amplitude": 0.1, "omega": 10.0}]
-    with pytest.raises(ValueError, match="oscillating \\[\\[plane\\]\\]"):
-        yuxi.Simulation(box_scene, output=tmp_path / "walls", progress=False, device="host")
-    assert not os.path.exists(tmp_path / "walls")
+def test_an_oscillating_plane_works_on_the_grains_as_on_the_cpu_engine(box_scene, tmp_path):
+    """The box's grains landed on a plane that starts to shake at t = 0.25 and throws them up:
+    its work, in the books and in its own load, and the books agree with the CPU engine."""
+    box_scene["run"]["t_end"] = 0.4
+    box_scene["plane"] = [{"name": "shaker", "point": [0.0, 0.0, 0.3], "normal": [0.0, 0.0, 1.0],
+                           "material": "wall", "amplitude": 0.05, "omega": 60.0, "t0": 0.25}]
+    runs = []
+    for device in (None, "host"):
+        sim = yuxi.Simulation(box_scene, output=tmp_path / str(device), progress=False,
+                              device=device)
+        sim.run()
+        runs.append((sim.energies(), sim.wall_loads()["shaker"]["work"]))
+        sim.close()
+    (cpu, cpu_work), (dev, dev_work) = runs
+    assert cpu["wall_work"] > 100.0 and cpu_work == pytest.approx(cpu["wall_work"])
+    for book in ("translational", "elastic", "dissipated", "wall_work", "balance"):
+        assert dev[book] == pytest.approx(cpu[book], rel=1e-9), book
+    assert dev_work == pytest.approx(cpu_work, rel=1e-9)
 
 
 def test_contacts_are_not_recorded_on_the_device(gas_scene, tmp_path):

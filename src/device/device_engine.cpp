@@ -247,7 +247,10 @@ public:
     if (n_planes_ > 0) {
       std::vector<Vec3> point, normal;
       std::vector<std::uint8_t> material;
+      std::vector<double> excursion;
       for (const DevicePlane& plane : scene.planes) {
+        excursion.push_back(std::abs(plane.amplitude));
+        if (plane.amplitude != 0.0) any_oscillating_ = true;
         if (plane.material >= scene.n_materials)
           throw std::invalid_argument("device engine: a plane of material " +
                                       std::to_string(plane.material) + ", beyond the scene's " +
@@ -259,6 +262,11 @@ public:
       plane_point_ = point;
       plane_normal_ = normal;
       plane_material_ = material;
+      plane_excursion_ = excursion;
+      planes_ = scene.planes;
+      plane_work_total_.assign(n_planes_, 0.0);
+      resize(plane_offset_, n_planes_);
+      resize(plane_velocity_, n_planes_);
     }
     // The open contacts at the start, sorted by key: the first list build takes them back.
     std::vector<std::pair<std::uint64_t, State>> pairs, planes;
@@ -289,6 +297,7 @@ public:
     // The forces of the start, without advancing the history, unless they came with the state:
     // a run continued mid-way keeps the forces its last step computed, at the half-step
     // velocities, as a resumed checkpoint does.
+    place_planes();
     if (!scene.forces_given) compute_forces(0.0);
   }
 
@@ -397,6 +406,7 @@ public:
 
   std::vector<PlaneLoad> plane_loads() const override {
     std::vector<PlaneLoad> loads(n_planes_);
+    for (std::uint32_t k = 0; k < n_planes_; ++k) loads[k].work = plane_work_total_[k];
     const std::vector<Vec3> force = to_host(plane_force_);
     const std::vector<std::uint8_t> plane = to_host(plane_of_), open = to_host(plane_open_);
     for (std::size_t c = 0; c < force.size(); ++c) {
@@ -440,7 +450,7 @@ public:
            bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) + bytes(coeffs_) +
            bytes(plane_start_) + bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) +
            bytes(plane_open_) + bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
-           bytes(plane_relaxation_) + bytes(plane_dissipated_);
+           bytes(plane_relaxation_) + bytes(plane_dissipated_) + bytes(plane_work_);
   }
 
   std::string device_name() const override {
@@ -473,11 +483,17 @@ private:
                     raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
   }
   PlaneSet plane_set() const {
-    return PlaneSet{raw(plane_point_), raw(plane_normal_), raw(plane_material_), n_planes_};
+    return PlaneSet{raw(plane_point_),
+                    raw(plane_normal_),
+                    raw(plane_material_),
+                    raw(plane_excursion_),
+                    raw(plane_offset_),
+                    raw(plane_velocity_),
+                    n_planes_};
   }
   PlaneOutput plane_output() {
-    return PlaneOutput{raw(plane_force_), raw(plane_torque_), raw(plane_elastic_),
-                       raw(plane_relaxation_), raw(plane_dissipated_)};
+    return PlaneOutput{raw(plane_force_),      raw(plane_torque_),     raw(plane_elastic_),
+                       raw(plane_relaxation_), raw(plane_dissipated_), raw(plane_work_)};
   }
   PairOutput pair_output() {
     return PairOutput{raw(force_),      raw(torque_i_),   raw(torque_j_), raw(elastic_),
@@ -717,6 +733,7 @@ private:
     resize(plane_elastic_, candidates);
     resize(plane_relaxation_, candidates);
     resize(plane_dissipated_, candidates);
+    resize(plane_work_, candidates);
     for_each_index(candidates, RestorePlane<Model>{view(), raw(plane_row_), raw(plane_of_),
                                                    raw(planes.keys), raw(planes.states),
                                                    static_cast<std::uint32_t>(planes.keys.size()),
@@ -743,6 +760,7 @@ private:
     time_ += dt_;
     ++step_;
     place_walls();
+    place_planes();
     const bool build = thrust::reduce(thrust::device, raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
@@ -757,7 +775,33 @@ private:
     dissipated_total_ += ordered_sum(dissipated_);
     dissipated_total_ += ordered_sum(plane_dissipated_);
     wall_work_total_ += ordered_sum(wall_work_);
+    if (any_oscillating_) book_plane_work();
     clock.add_to(phases_.books);
+  }
+
+  // Each plane's offset and velocity at time_ (on the host: DevicePlane::offset, velocity).
+  void place_planes() {
+    if (n_planes_ == 0) return;
+    std::vector<double> offset(n_planes_);
+    std::vector<Vec3> velocity(n_planes_);
+    for (std::uint32_t k = 0; k < n_planes_; ++k) {
+      offset[k] = planes_[k].offset(time_);
+      velocity[k] = planes_[k].velocity(time_);
+    }
+    thrust::copy(offset.begin(), offset.end(), plane_offset_.begin());
+    thrust::copy(velocity.begin(), velocity.end(), plane_velocity_.begin());
+  }
+
+  // The oscillating planes' work this step: in all (the books) and per plane (walls.csv).
+  void book_plane_work() {
+    wall_work_total_ += ordered_sum(plane_work_);
+    const std::uint32_t candidates = static_cast<std::uint32_t>(plane_work_.size());
+    DeviceVector<double> share(candidates);
+    for (std::uint32_t k = 0; k < n_planes_; ++k) {
+      if (planes_[k].amplitude == 0.0) continue;
+      for_each_index(candidates, OfPlane{raw(plane_work_), raw(plane_of_), k, raw(share)});
+      plane_work_total_[k] += ordered_sum(share);
+    }
   }
 
   // The wall particles of each started motion at time_ (RadialCosineMotion::at_time, on the
@@ -788,7 +832,14 @@ private:
   DeviceVector<std::uint8_t> plane_of_, plane_open_;
   DeviceVector<State> plane_state_;
   DeviceVector<Vec3> plane_force_, plane_torque_;
-  DeviceVector<double> plane_elastic_, plane_relaxation_, plane_dissipated_;
+  DeviceVector<double> plane_elastic_, plane_relaxation_, plane_dissipated_, plane_work_;
+  // Each plane's largest excursion, its offset and velocity now, and (host) its description and
+  // cumulative work.
+  DeviceVector<double> plane_excursion_, plane_offset_;
+  DeviceVector<Vec3> plane_velocity_;
+  std::vector<DevicePlane> planes_;
+  std::vector<double> plane_work_total_;
+  bool any_oscillating_ = false;
   DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
   DeviceVector<GlobalId> gid_;
   DeviceVector<Kind> kind_;

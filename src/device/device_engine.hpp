@@ -12,6 +12,7 @@
 #include "core/particle_fields.hpp"
 #include "core/vec3.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -44,18 +45,30 @@ struct DeviceMotion {
   double amplitude = 0, omega = 0, t0 = 0;
 };
 
-// A still plane wall (scene/plane_wall.hpp without an oscillation; the box's walls are such
-// planes): a point, the unit normal into the grains' side, the material.
+// A plane wall (scene/plane_wall.hpp; the box's walls are such planes): a point, the unit normal
+// into the grains' side, the material, and its oscillation along the normal,
+// A sin(omega (t - t0)) from t0 on.
 struct DevicePlane {
   Vec3 point, normal;
   std::uint8_t material = 0;
+  double amplitude = 0, omega = 0, t0 = 0;
+  // Where the oscillation has it at time t, and how fast it moves: PlaneWall::offset and
+  // velocity, operation for operation (computed on the host, for every backend).
+  double offset(double t) const {
+    return (amplitude == 0.0 || t < t0) ? 0.0 : amplitude * std::sin(omega * (t - t0));
+  }
+  Vec3 velocity(double t) const {
+    if (amplitude == 0.0 || t < t0) return {};
+    return (amplitude * omega * std::cos(omega * (t - t0))) * normal;
+  }
 };
 
 // What the grains did to a plane at the last force evaluation: the force on it, and how many
-// grains touch it.
+// grains touch it; and the plane's work on the grains since the engine started.
 struct PlaneLoad {
   Vec3 force;
   std::size_t contacts = 0;
+  double work = 0;
 };
 
 // What the device engine runs: particles in a box that is periodic or open along each axis,

@@ -287,12 +287,17 @@ template <class Model> struct PairForces {
   }
 };
 
-// The still planes of a scene (scene/plane_wall.hpp), as arrays: a point, the unit normal into
-// the grains' side, the material.
+// The planes of a scene (scene/plane_wall.hpp), as arrays: a point, the unit normal into the
+// grains' side, the material, the largest excursion of its oscillation, and where the
+// oscillation has it now (offset along the normal, velocity; PlaneWall::offset and velocity, on
+// the host: the same sine and cosine for every backend).
 struct PlaneSet {
   const Vec3* point;
   const Vec3* normal;
   const std::uint8_t* material;
+  const double* excursion;
+  const double* offset;
+  const Vec3* velocity;
   std::uint32_t count;
 };
 
@@ -311,7 +316,9 @@ struct FindPlanes {
     std::uint32_t found = 0, at = count ? 0 : start[i];
     if (p.kind[i] == Kind::grain)
       for (std::uint32_t k = 0; k < planes.count; ++k) {
-        if (!(dot(p.x[i] - planes.point[k], planes.normal[k]) < p.radius[i] + skin)) continue;
+        if (!(dot(p.x[i] - planes.point[k], planes.normal[k]) <
+              p.radius[i] + skin + planes.excursion[k]))
+          continue;
         if (count) {
           ++found;
         } else {
@@ -370,10 +377,11 @@ struct PlaneOutput {
   double* elastic;
   double* relaxation;
   double* dissipated; // this step, releases of parted contacts included
+  double* work;       // this step, of the plane's motion on the grain: F . v_plane dt
 };
 
-// The contact law on each grain-plane candidate (ContactForces::compute_planes for a still
-// plane): one that overlaps is evaluated, one that has come apart releases what it held.
+// The contact law on each grain-plane candidate (ContactForces::compute_planes): one that
+// overlaps is evaluated, one that has come apart releases what it held.
 template <class Model> struct PlaneForces {
   Particles p;
   PlaneSet planes;
@@ -387,15 +395,17 @@ template <class Model> struct PlaneForces {
   PlaneOutput out;
   YUXI_HD void operator()(std::uint32_t c) const {
     const std::uint32_t i = row[c], k = plane[c];
-    const double dist = dot(p.x[i] - planes.point[k], planes.normal[k]);
+    const double dist = dot(p.x[i] - planes.point[k], planes.normal[k]) - planes.offset[k];
     const typename Model::Coeffs& co = coeffs[p.material[i] * n_materials + planes.material[k]];
     ContactResult r;
-    double released = 0.0;
+    double released = 0.0, work = 0.0;
     if (dist < p.radius[i]) {
       open[c] = 1;
-      const ContactGeometry g = wall_geometry(planes.normal[k], dist, p.radius[i], p.v[i], Vec3{},
+      const Vec3 v_plane = planes.velocity[k];
+      const ContactGeometry g = wall_geometry(planes.normal[k], dist, p.radius[i], p.v[i], v_plane,
                                               p.w[i], p.inv_mass[i], dt);
       r = Model::evaluate(g, co, state[c]);
+      work = dot(r.force, v_plane) * dt;
     } else if (open[c]) {
       released = Model::release(co, state[c]);
       state[c] = typename Model::State{};
@@ -406,6 +416,18 @@ template <class Model> struct PlaneForces {
     out.elastic[c] = r.elastic;
     out.relaxation[c] = r.relaxation;
     out.dissipated[c] = r.dissipated + released;
+    out.work[c] = work;
+  }
+};
+
+// `values` where the candidate's plane is `plane`, zero elsewhere (one plane's share of a sum).
+struct OfPlane {
+  const double* values;
+  const std::uint8_t* plane_of;
+  std::uint32_t plane;
+  double* out;
+  YUXI_HD void operator()(std::uint32_t c) const {
+    out[c] = plane_of[c] == plane ? values[c] : 0.0;
   }
 };
 

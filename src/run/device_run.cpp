@@ -16,11 +16,6 @@ std::vector<std::string> device_engine_refusals(const Simulation& sim) {
   if (sim.comm().size() > 1)
     no.push_back(
         fmt::format("{} MPI ranks (the device engine runs in one process)", sim.comm().size()));
-  for (const PlaneWall& plane : sim.planes())
-    if (plane.amplitude != 0.0) {
-      no.push_back("an oscillating [[plane]] (amplitude)");
-      break;
-    }
   for (const ShapedWall& wall : sim.shaped_walls())
     no.push_back(std::holds_alternative<CylinderWall>(wall) ? "a [[cylinder]] wall"
                                                             : "a [[mesh]] wall");
@@ -116,7 +111,8 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
     }
   }
   for (const PlaneWall& plane : sim.planes())
-    scene.planes.push_back({plane.point, plane.normal, plane.material});
+    scene.planes.push_back(
+        {plane.point, plane.normal, plane.material, plane.amplitude, plane.omega, plane.t0});
   const SimulationConfig& c = sim.config();
   scene.lo = c.box.lo;
   scene.hi = c.box.hi;

@@ -1,10 +1,10 @@
 // A device engine (device/device_engine.hpp) for a simulation's scene, or a clear refusal.
 //
-// The device engine runs grains, wall particles (still or moving by the basin's wave) and still
-// planes (the box's walls among them) in a box that is periodic or open along each axis, under
-// gravity, with any contact law. A scene with more (oscillating planes, meshes, cylinders, wall
-// particles in rigid motion, inserts, outlets, several MPI ranks) is refused with an error that
-// names each table it does not run: it never falls back to the CPU in silence.
+// The device engine runs grains, wall particles (still or moving by the basin's wave) and planes
+// (still or oscillating; the box's walls among them) in a box that is periodic or open along each
+// axis, under gravity, with any contact law. A scene with more (meshes, cylinders, wall particles
+// in rigid motion, inserts, outlets, several MPI ranks) is refused with an error that names each
+// table it does not run: it never falls back to the CPU in silence.
 #pragma once
 
 #include "device/device_engine.hpp"

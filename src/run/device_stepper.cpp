@@ -43,6 +43,8 @@ void DeviceStepper::start() {
   start_ = sim_.energies();
   start_step_ = sim_.step_count();
   start_builds_ = sim_.list_builds();
+  start_plane_work_.clear();
+  for (const WallLoad& load : sim_.plane_loads()) start_plane_work_.push_back(load.work);
   edits_seen_ = sim_.edits();
 }
 
@@ -65,10 +67,13 @@ EngineState DeviceStepper::engine_state() const {
   s.contact_stash =
       std::visit([&](const auto& law) { return contact_stash(law, *engine_, s.touching); },
                  sim_.contact_law());
-  for (const device::PlaneLoad& load : engine_->plane_loads()) {
+  const std::vector<device::PlaneLoad> loads = engine_->plane_loads();
+  for (std::size_t k = 0; k < loads.size(); ++k) {
     WallLoad& l = s.plane_loads.emplace_back();
-    l.force = load.force;
-    l.contacts = load.contacts;
+    l.force = loads[k].force;
+    l.contacts = loads[k].contacts;
+    s.plane_work.push_back((k < start_plane_work_.size() ? start_plane_work_[k] : 0.0) +
+                           loads[k].work);
   }
   s.books = books();
   s.elastic = s.books.elastic;

@@ -66,6 +66,7 @@ private:
   std::unique_ptr<device::DeviceEngine> engine_;
   EnergyBooks start_; // the simulation's cumulative books when the engine started
   std::int64_t start_step_ = 0, start_builds_ = 0;
+  std::vector<double> start_plane_work_; // each plane's cumulative work when the engine started
   double device_seconds_ = 0, handover_seconds_ = 0;
 };
 

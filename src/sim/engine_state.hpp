@@ -28,9 +28,10 @@ struct EngineState {
   // The contacts' stored energies at the last evaluation, and how many touch.
   double elastic = 0.0, relaxation = 0.0;
   std::size_t touching = 0;
-  // What the grains did to each plane at the last evaluation (force and contacts; still planes
-  // do no work).
+  // What the grains did to each plane at the last evaluation (force and contacts), and each
+  // plane's cumulative work on the grains since the start of the run.
   std::vector<WallLoad> plane_loads;
+  std::vector<double> plane_work;
   // The cumulative books: dissipated, wall_work, removed, gravity_work, inserted and escaped are
   // taken; the others follow from the particles and the contacts.
   EnergyBooks books;

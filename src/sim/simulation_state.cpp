@@ -400,6 +400,11 @@ void Simulation::take_engine_state(const EngineState& state) {
   tally.relaxation = state.relaxation;
   tally.touching = state.touching;
   contacts_.set_plane_loads(state.plane_loads);
+  if (state.plane_work.size() == walls_.planes().size()) {
+    Walls::Work work = walls_.work();
+    work.planes = state.plane_work;
+    walls_.set_work(std::move(work));
+  }
   contacts_.history().forget();
   contacts_.history().give(state.contact_stash);
   // (the other engine records no contacts' forces: none is kept that would not match the list)
