@@ -83,6 +83,11 @@ template <class T> const T* last(const DeviceVector<T>& v) {
   return raw(v) + v.size();
 }
 
+// Each of `vectors` resized to n (resize()).
+template <class... Vectors> void resize_all(std::size_t n, Vectors&... vectors) {
+  (resize(vectors, n), ...);
+}
+
 // A copy of v on the host.
 template <class T> std::vector<T> to_host(const DeviceVector<T>& v) {
   std::vector<T> out(v.size());
@@ -377,27 +382,19 @@ public:
   }
 
   std::vector<KeyedState<State>> open_contacts() const override {
+    std::vector<KeyedState<State>> out;
     DeviceVector<std::uint64_t> keys;
     DeviceVector<State> states;
     stash_open_contacts(keys, states);
-    std::vector<std::uint64_t> k(keys.size());
-    std::vector<State> st(states.size());
-    if (!k.empty()) {
-      thrust::copy(keys.begin(), keys.end(), k.begin());
-      thrust::copy(states.begin(), states.end(), st.begin());
-    }
-    std::vector<KeyedState<State>> out(k.size());
+    std::vector<std::uint64_t> k = to_host(keys);
+    std::vector<State> st = to_host(states);
     for (std::size_t c = 0; c < k.size(); ++c)
-      out[c] = {static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu),
-                st[c]};
+      out.push_back(
+          {static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu), st[c]});
     // The grain-plane contacts, keyed as the CPU engine keys them: (grain, -(plane + 1)).
     stash_open_planes(keys, states);
-    k.resize(keys.size());
-    st.resize(states.size());
-    if (!k.empty()) {
-      thrust::copy(keys.begin(), keys.end(), k.begin());
-      thrust::copy(states.begin(), states.end(), st.begin());
-    }
+    k = to_host(keys);
+    st = to_host(states);
     for (std::size_t c = 0; c < k.size(); ++c)
       out.push_back(
           {static_cast<GlobalId>(k[c] >> 8), -static_cast<GlobalId>(k[c] & 0xffu) - 1, st[c]});
@@ -642,6 +639,18 @@ private:
     sort_stash(keys, stashed);
   }
 
+  // start[i] = count[0] + ... + count[i - 1] for i in [0, n], n = count's size; returns the
+  // total, start[n].
+  static std::uint32_t offsets_of(const DeviceVector<std::uint32_t>& count,
+                                  DeviceVector<std::uint32_t>& start) {
+    const std::uint32_t n = static_cast<std::uint32_t>(count.size());
+    resize(start, n + 1);
+    thrust::exclusive_scan(thrust::device, raw(count), last(count), raw(start));
+    const std::uint32_t total = n == 0 ? 0 : read_one(start, n - 1) + read_one(count, n - 1);
+    write_one(start, n, total);
+    return total;
+  }
+
   // Escapes, the cell sort, the list and the grain-plane candidates, with the open contacts
   // (`pairs`, `planes`) taken back by their new pairs and candidates.
   void build_list(const Stash& pairs, const Stash& planes) {
@@ -671,14 +680,8 @@ private:
     FindPartners find{view(),      box_,    cells_,  raw(cell_start_), skin_,
                       raw(count_), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
-    resize(row_start_, n_ + 1);
-    thrust::exclusive_scan(thrust::device, raw(count_), last(count_), raw(row_start_));
-    const std::uint32_t total =
-        n_ == 0 ? 0 : read_one(row_start_, n_ - 1) + read_one(count_, n_ - 1);
-    write_one(row_start_, n_, total);
-    resize(partner_, total);
-    resize(image_, total);
-    resize(pair_row_, total);
+    const std::uint32_t total = offsets_of(count_, row_start_);
+    resize_all(total, partner_, image_, pair_row_);
     find.count = nullptr;
     find.out_start = raw(row_start_);
     find.partner = raw(partner_);
@@ -698,15 +701,8 @@ private:
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
     // 5. Per-pair room, and the open contacts' states back in their new pairs.
-    resize(state_, total);
-    resize(open_, total);
-    resize(force_, total);
-    resize(torque_i_, total);
-    resize(torque_j_, total);
-    resize(elastic_, total);
-    resize(relaxation_, total);
-    resize(dissipated_, total);
-    resize(wall_work_, total);
+    resize_all(total, state_, open_, force_, torque_i_, torque_j_, elastic_, relaxation_,
+               dissipated_, wall_work_);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
                                                 n_stashed, raw(state_), raw(open_)});
 
@@ -714,26 +710,15 @@ private:
     DeviceVector<std::uint32_t> plane_count(n_);
     FindPlanes find_planes{view(), plane_set(), skin_, raw(plane_count), nullptr, nullptr, nullptr};
     for_each_index(n_, find_planes);
-    resize(plane_start_, n_ + 1);
-    thrust::exclusive_scan(thrust::device, raw(plane_count), last(plane_count), raw(plane_start_));
-    const std::uint32_t candidates =
-        n_ == 0 ? 0 : read_one(plane_start_, n_ - 1) + read_one(plane_count, n_ - 1);
-    write_one(plane_start_, n_, candidates);
-    resize(plane_row_, candidates);
-    resize(plane_of_, candidates);
+    const std::uint32_t candidates = offsets_of(plane_count, plane_start_);
+    resize_all(candidates, plane_row_, plane_of_);
     find_planes.count = nullptr;
     find_planes.start = raw(plane_start_);
     find_planes.row = raw(plane_row_);
     find_planes.plane = raw(plane_of_);
     for_each_index(n_, find_planes);
-    resize(plane_state_, candidates);
-    resize(plane_open_, candidates);
-    resize(plane_force_, candidates);
-    resize(plane_torque_, candidates);
-    resize(plane_elastic_, candidates);
-    resize(plane_relaxation_, candidates);
-    resize(plane_dissipated_, candidates);
-    resize(plane_work_, candidates);
+    resize_all(candidates, plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
+               plane_relaxation_, plane_dissipated_, plane_work_);
     for_each_index(candidates, RestorePlane<Model>{view(), raw(plane_row_), raw(plane_of_),
                                                    raw(planes.keys), raw(planes.states),
                                                    static_cast<std::uint32_t>(planes.keys.size()),
@@ -760,7 +745,7 @@ private:
     time_ += dt_;
     ++step_;
     place_walls();
-    place_planes();
+    if (any_oscillating_) place_planes(); // (still planes stay where the start put them)
     const bool build = thrust::reduce(thrust::device, raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
