@@ -3,8 +3,8 @@
 // gently. Shared by the backend and device-engine tests.
 #pragma once
 
-#include <regex>
-#include <stdexcept>
+#include "scene_edits.hpp"
+
 #include <string>
 #include <utility>
 
@@ -15,7 +15,7 @@ namespace yuxi::test {
 // their energy by 3 (the basin's 10 at g = 1), the side wall shaking from t = 3.2 at a ninth of
 // the basin's amplitude (40 sigma/tau at most).
 inline std::string small_basin(std::string text) {
-  const std::pair<const char*, const char*> edits[] = {
+  const SceneEdit edits[] = {
       {R"(hi = \[72\.0, 72\.0, 150\.0\])", "hi = [36.0, 36.0, 150.0]"},
       {R"(gravity = \[0\.0, 0\.0, -1\.0\])", "gravity = [0.0, 0.0, -10.0]"},
       {R"(cells = \[24, 24, 16\])", "cells = [12, 12, 12]"},
@@ -25,12 +25,7 @@ inline std::string small_basin(std::string text) {
       {R"(t0 = 10\.0 )", "t0 = 3.2 "},
       {R"(amplitude = 0\.9 )", "amplitude = 0.1 "},
   };
-  for (const auto& [pattern, replacement] : edits) {
-    const std::regex re(pattern);
-    if (!std::regex_search(text, re)) throw std::runtime_error(std::string("no ") + pattern);
-    text = std::regex_replace(text, re, replacement);
-  }
-  return text;
+  return edited_scene(std::move(text), edits);
 }
 
 } // namespace yuxi::test

@@ -16,7 +16,6 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -238,18 +237,13 @@ Scene shaken_small_basin() {
   const std::string path = YUXI_SCENES_DIR "/basin-small.toml";
   std::ifstream in(path);
   std::string text = test::small_basin(std::string{std::istreambuf_iterator<char>(in), {}});
-  const std::pair<const char*, const char*> edits[] = {
+  const test::SceneEdit edits[] = {
       {R"(t_end = 11\.0 )", "t_end = 3.24 "},
       {R"(surface_times = \[[^\]]*\])", "surface_times = [3.21, 3.23]"},
       {R"(velocity_times = \[[^\]]*\])", "velocity_times = [3.22]"},
       {R"(elastic_map_times = \[[^\]]*\])", "elastic_map_times = [3.202, 3.21]"},
   };
-  for (const auto& [pattern, replacement] : edits) {
-    const std::regex re(pattern);
-    if (!std::regex_search(text, re)) throw std::runtime_error(std::string("no ") + pattern);
-    text = std::regex_replace(text, re, replacement);
-  }
-  return read_scene_text(text, path);
+  return read_scene_text(test::edited_scene(std::move(text), edits), path);
 }
 
 // The fish-basin analysis on the device engine: its samples are where the CPU engine's are, and
