@@ -200,15 +200,20 @@ py::list tallies(const std::vector<Simulation::SourceTally>& flows) {
   return out;
 }
 
-// The scene's run.device set to `device`, where given; true where it was.
-bool set_device(Scene& scene, const std::optional<std::string>& device) {
-  if (!device) return false;
+// The engine `device` names, where given (a word that names none raises ValueError).
+std::optional<RunDevice> device_named(const std::optional<std::string>& device) {
+  if (!device) return std::nullopt;
   const std::optional<RunDevice> named = run_device_named(*device);
   if (!named)
     throw py::value_error(
         fmt::format("device: '{}' is none of \"cpu\", \"gpu\", \"host\"", *device));
-  scene.run.device = *named;
-  return true;
+  return named;
+}
+
+// The scene's run.device set to `device`, where given; true where it was.
+bool set_device(Scene& scene, std::optional<RunDevice> device) {
+  if (device) scene.run.device = *device;
+  return device.has_value();
 }
 
 // A run asked for the device engine that cannot run there is refused before its folder is made.
@@ -222,7 +227,7 @@ PySimulation::PySimulation(const PyScene& scene, const std::string& output, bool
                            bool progress, bool force_dt, const std::optional<std::string>& device)
     : progress_(progress) {
   Scene chosen = scene.scene;
-  set_device(chosen, device);
+  set_device(chosen, device_named(device));
   run_ = open_scene(std::move(chosen), force_dt);
   check_device(run_);
   folder_ = create_run_folder(run_.sim->comm(), output, run_.scene, overwrite, run_.scene_text);
@@ -234,13 +239,10 @@ std::unique_ptr<PySimulation> PySimulation::resume(const std::string& folder,
                                                    const std::optional<std::string>& device) {
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
-  if (device) { // (a bad name raises before the checkpoint is read)
-    Scene probe;
-    set_device(probe, device);
-  }
+  const std::optional<RunDevice> engine = device_named(device); // (before the file is read)
   s->run_ = open_resume(folder, [&](Scene& scene) {
     if (t_end) scene.run.t_end = *t_end;
-    return set_device(scene, device) || t_end.has_value();
+    return set_device(scene, engine) || t_end.has_value();
   });
   check_device(s->run_);
   s->folder_ = folder;
@@ -255,7 +257,7 @@ std::unique_ptr<PySimulation> PySimulation::branch(const std::string& from, cons
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
   Scene chosen = scene.scene;
-  set_device(chosen, device);
+  set_device(chosen, device_named(device));
   s->run_ = open_branch(std::move(chosen), from, force_dt);
   check_device(s->run_);
   s->folder_ =
