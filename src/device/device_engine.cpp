@@ -95,10 +95,26 @@ template <class T> std::vector<T> to_host(const DeviceVector<T>& v) {
   return out;
 }
 
+// The execution policy of every algorithm. On the GPU, Thrust would otherwise wait for each
+// algorithm to finish; the kernels of one stream run in order anyway, and every result the host
+// reads comes back through a copy, which waits. On the CPU, Thrust's device system.
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
+const auto& on_device = thrust::cuda::par_nosync;
+#else
+const auto& on_device = thrust::device;
+#endif
+
+// Waits for the device's work (the phase clocks): nothing to wait for on the CPU.
+void wait_for_device() {
+#if defined(__CUDACC__)
+  cudaDeviceSynchronize();
+#endif
+}
+
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
 template <class F> void for_each_index(std::uint32_t n, const F& f) {
   if (n == 0) return;
-  thrust::for_each_n(thrust::device, thrust::counting_iterator<std::uint32_t>(0), n, f);
+  thrust::for_each_n(on_device, thrust::counting_iterator<std::uint32_t>(0), n, f);
 }
 
 // One element to or from the device. Through copies, not v[k]: Thrust 1.17's element reference
@@ -147,9 +163,59 @@ struct Escaped {
 };
 
 // Wall time since the last add_to(), added to a phase's total.
+// Sums of device arrays in a fixed order, many with one copy to the host. Each array of n
+// values is added in two levels of StridedSum (step_phases.hpp): min(n, 65,536) threads, then
+// min(that, 256); the host adds the last partial sums in order. The order depends on n alone, so
+// the GPU and the host build give the same bits; every thread of the first level reads values
+// that its neighbours' reads sit beside, so the sum runs at the memory's speed.
+class OrderedSums {
+public:
+  static constexpr std::uint32_t first_width = 65536, second_width = 256;
+
+  OrderedSums() : first_(first_width), second_(16 * second_width) {}
+
+  // Queues the sum of v; collect() returns it, in the order of the calls to add.
+  void add(const DeviceVector<double>& v) {
+    const std::uint32_t n = static_cast<std::uint32_t>(v.size());
+    const std::uint32_t wide = std::min(n, first_width), narrow = std::min(wide, second_width);
+    if (used_ + narrow > second_.size()) second_.resize(2 * (used_ + narrow)); // keeps the sums
+    for_each_index(wide, StridedSum{raw(v), n, wide, raw(first_)});
+    for_each_index(narrow, StridedSum{raw(first_), wide, narrow, raw(second_) + used_});
+    widths_.push_back(narrow);
+    used_ += narrow;
+  }
+  // The queued sums, in order; the queue is empty afterwards.
+  std::vector<double> collect() {
+    std::vector<double> partial(used_), sums;
+    if (used_ > 0) thrust::copy_n(second_.begin(), used_, partial.begin());
+    std::size_t at = 0;
+    for (const std::uint32_t w : widths_) {
+      double s = 0.0;
+      for (std::uint32_t k = 0; k < w; ++k) s += partial[at + k];
+      sums.push_back(s);
+      at += w;
+    }
+    widths_.clear();
+    used_ = 0;
+    return sums;
+  }
+  // The sum of v alone.
+  double operator()(const DeviceVector<double>& v) {
+    add(v);
+    return collect()[0];
+  }
+  std::size_t device_bytes() const { return bytes(first_) + bytes(second_); }
+
+private:
+  DeviceVector<double> first_, second_;
+  std::vector<std::uint32_t> widths_;
+  std::size_t used_ = 0;
+};
+
 class PhaseClock {
 public:
   void add_to(double& total) {
+    wait_for_device();
     const auto now = std::chrono::steady_clock::now();
     total += std::chrono::duration<double>(now - last_).count();
     last_ = now;
@@ -361,18 +427,16 @@ public:
     DeviceVector<std::uint32_t> grain(n_);
     for_each_index(n_, GrainEnergies{view(), g_potential_, raw(translation), raw(rotation),
                                      raw(gravitational), raw(grain)});
-    e.translational = ordered_sum(translation);
-    e.rotational = ordered_sum(rotation);
-    e.gravitational = ordered_sum(gravitational);
-    e.grains =
-        n_ == 0 ? 0 : thrust::reduce(thrust::device, raw(grain), last(grain), std::uint32_t{0});
+    e.translational = sums_(translation);
+    e.rotational = sums_(rotation);
+    e.gravitational = sums_(gravitational);
+    e.grains = n_ == 0 ? 0 : thrust::reduce(on_device, raw(grain), last(grain), std::uint32_t{0});
     const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
-      return open.empty() ? 0
-                          : thrust::count(thrust::device, raw(open), last(open), std::uint8_t{1});
+      return open.empty() ? 0 : thrust::count(on_device, raw(open), last(open), std::uint8_t{1});
     };
     e.contacts = touching(open_) + touching(plane_open_);
-    e.elastic = ordered_sum(elastic_) + ordered_sum(plane_elastic_);
-    e.relaxation = ordered_sum(relaxation_) + ordered_sum(plane_relaxation_);
+    e.elastic = sums_(elastic_) + sums_(plane_elastic_);
+    e.relaxation = sums_(relaxation_) + sums_(plane_relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
     e.wall_work = wall_work_total_;
@@ -444,10 +508,11 @@ public:
            bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
            bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(force_) + bytes(torque_i_) +
            bytes(torque_j_) + bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) +
-           bytes(gravity_work_) + bytes(moved_far_) + bytes(partial_) + bytes(coeffs_) +
-           bytes(plane_start_) + bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) +
-           bytes(plane_open_) + bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
-           bytes(plane_relaxation_) + bytes(plane_dissipated_) + bytes(plane_work_);
+           bytes(gravity_work_) + bytes(moved_far_) + sums_.device_bytes() +
+           step_sums_.device_bytes() + bytes(coeffs_) + bytes(plane_start_) + bytes(plane_row_) +
+           bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) + bytes(plane_force_) +
+           bytes(plane_torque_) + bytes(plane_elastic_) + bytes(plane_relaxation_) +
+           bytes(plane_dissipated_) + bytes(plane_work_);
   }
 
   std::string device_name() const override {
@@ -497,27 +562,12 @@ private:
                       raw(relaxation_), raw(dissipated_), raw(wall_work_)};
   }
 
-  // Sum of v in a fixed order (BlockSum): the same bits on the GPU and on the CPU.
-  double ordered_sum(const DeviceVector<double>& v) const {
-    const std::uint32_t n = static_cast<std::uint32_t>(v.size()), block = 1024;
-    if (n == 0) return 0.0;
-    const std::uint32_t blocks = (n + block - 1) / block;
-    DeviceVector<double>& partial = const_cast<Engine&>(*this).partial_;
-    if (partial.size() < blocks) resize(partial, blocks);
-    for_each_index(blocks, BlockSum{raw(v), n, block, raw(partial)});
-    std::vector<double> host(blocks);
-    thrust::copy(partial.begin(), partial.begin() + blocks, host.begin());
-    double s = 0.0;
-    for (const double b : host) s += b;
-    return s;
-  }
-
   // field[k] = field[order[k]], through scratch.
   template <class T>
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
     resize(scratch, order.size());
-    thrust::gather(thrust::device, raw(order), last(order), raw(field), raw(scratch));
+    thrust::gather(on_device, raw(order), last(order), raw(field), raw(scratch));
     field.swap(scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
@@ -525,17 +575,16 @@ private:
     DeviceVector<std::uint32_t> gone(n_);
     DeviceVector<double> energy(n_);
     for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
-    const std::uint32_t n_gone =
-        thrust::reduce(thrust::device, raw(gone), last(gone), std::uint32_t{0});
+    const std::uint32_t n_gone = thrust::reduce(on_device, raw(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
     if (!remove_escaped_)
       throw std::runtime_error("device engine: " + std::to_string(n_gone) +
                                " grains left the box through an open face at step " +
                                std::to_string(step_) + " (on_escape = \"stop\")");
-    removed_total_ += ordered_sum(energy);
+    removed_total_ += sums_(energy);
     escaped_ += n_gone;
     DeviceVector<std::uint32_t> keep(n_ - n_gone);
-    thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+    thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
                     thrust::counting_iterator<std::uint32_t>(n_), raw(gone), raw(keep), IsZero{});
     permute_particles(keep);
     n_ -= n_gone;
@@ -597,7 +646,7 @@ private:
     const std::uint32_t n = static_cast<std::uint32_t>(open.size());
     DeviceVector<std::uint32_t> at(n);
     const std::uint32_t n_set = static_cast<std::uint32_t>(
-        thrust::copy_if(thrust::device, thrust::counting_iterator<std::uint32_t>(0),
+        thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n), raw(open), raw(at), IsSet{}) -
         raw(at));
     // (a copy of the first n_set: resize() keeps no values)
@@ -610,8 +659,8 @@ private:
   // in the sort itself, radix sort keeping its values in shared memory).
   static void sort_stash(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& states) {
     DeviceVector<std::uint32_t> by_key(keys.size());
-    thrust::sequence(thrust::device, raw(by_key), last(by_key));
-    thrust::sort_by_key(thrust::device, raw(keys), last(keys), raw(by_key));
+    thrust::sequence(on_device, raw(by_key), last(by_key));
+    thrust::sort_by_key(on_device, raw(keys), last(keys), raw(by_key));
     DeviceVector<State> scratch;
     permute_by(by_key, states, scratch);
   }
@@ -645,7 +694,7 @@ private:
                                   DeviceVector<std::uint32_t>& start) {
     const std::uint32_t n = static_cast<std::uint32_t>(count.size());
     resize(start, n + 1);
-    thrust::exclusive_scan(thrust::device, raw(count), last(count), raw(start));
+    thrust::exclusive_scan(on_device, raw(count), last(count), raw(start));
     const std::uint32_t total = n == 0 ? 0 : read_one(start, n - 1) + read_one(count, n - 1);
     write_one(start, n, total);
     return total;
@@ -665,14 +714,14 @@ private:
     DeviceVector<std::uint64_t> key(n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(key)});
     resize(order_, n_);
-    thrust::sequence(thrust::device, raw(order_), last(order_));
-    thrust::sort_by_key(thrust::device, raw(key), last(key), raw(order_));
+    thrust::sequence(on_device, raw(order_), last(order_));
+    thrust::sort_by_key(on_device, raw(key), last(key), raw(order_));
     permute_particles(order_);
     resize(cell_, n_);
     for_each_index(n_, CellOfKey{raw(key), raw(cell_)});
     resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
-        thrust::device, raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
+        on_device, raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
         thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
 
     // 3. The half list: count, offsets, fill.
@@ -692,11 +741,11 @@ private:
     // 4. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
     resize(reverse_pair_, total);
-    thrust::sequence(thrust::device, raw(reverse_pair_), last(reverse_pair_));
-    thrust::stable_sort_by_key(thrust::device, raw(partner_sorted), last(partner_sorted),
+    thrust::sequence(on_device, raw(reverse_pair_), last(reverse_pair_));
+    thrust::stable_sort_by_key(on_device, raw(partner_sorted), last(partner_sorted),
                                raw(reverse_pair_));
     resize(reverse_start_, n_ + 1);
-    thrust::lower_bound(thrust::device, raw(partner_sorted), last(partner_sorted),
+    thrust::lower_bound(on_device, raw(partner_sorted), last(partner_sorted),
                         thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
@@ -734,7 +783,7 @@ private:
                    PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
                                       raw(coeffs_), n_materials_, dt, raw(plane_state_),
                                       raw(plane_open_), plane_output()});
-    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(plane_start_),
+    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(open_), raw(plane_start_),
                                  plane_output(), gravity_});
   }
 
@@ -746,10 +795,10 @@ private:
     ++step_;
     place_walls();
     if (any_oscillating_) place_planes(); // (still planes stay where the start put them)
-    const bool build = thrust::reduce(thrust::device, raw(moved_far_), last(moved_far_),
+    const bool build = thrust::reduce(on_device, raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
-    gravity_work_total_ += ordered_sum(gravity_work_);
+    step_sums_.add(gravity_work_); // queued: collected with the contacts' books below
     clock.add_to(phases_.books);
     if (build) build_list();
     clock.add_to(phases_.list_build);
@@ -757,9 +806,14 @@ private:
     clock.add_to(phases_.forces);
     for_each_index(n_, FinalKick{view(), dt_});
     clock.add_to(phases_.integration);
-    dissipated_total_ += ordered_sum(dissipated_);
-    dissipated_total_ += ordered_sum(plane_dissipated_);
-    wall_work_total_ += ordered_sum(wall_work_);
+    step_sums_.add(dissipated_);
+    step_sums_.add(plane_dissipated_);
+    step_sums_.add(wall_work_);
+    const std::vector<double> booked = step_sums_.collect();
+    gravity_work_total_ += booked[0];
+    dissipated_total_ += booked[1];
+    dissipated_total_ += booked[2];
+    wall_work_total_ += booked[3];
     if (any_oscillating_) book_plane_work();
     clock.add_to(phases_.books);
   }
@@ -779,13 +833,13 @@ private:
 
   // The oscillating planes' work this step: in all (the books) and per plane (walls.csv).
   void book_plane_work() {
-    wall_work_total_ += ordered_sum(plane_work_);
+    wall_work_total_ += sums_(plane_work_);
     const std::uint32_t candidates = static_cast<std::uint32_t>(plane_work_.size());
     DeviceVector<double> share(candidates);
     for (std::uint32_t k = 0; k < n_planes_; ++k) {
       if (planes_[k].amplitude == 0.0) continue;
       for_each_index(candidates, OfPlane{raw(plane_work_), raw(plane_of_), k, raw(share)});
-      plane_work_total_[k] += ordered_sum(share);
+      plane_work_total_[k] += sums_(share);
     }
   }
 
@@ -838,7 +892,8 @@ private:
   DeviceVector<double> elastic_, relaxation_, dissipated_;
   DeviceVector<double> gravity_work_;
   DeviceVector<std::uint32_t> moved_far_;
-  DeviceVector<double> partial_;
+  mutable OrderedSums sums_; // one sum at a time
+  OrderedSums step_sums_;    // the books of a step, queued
   DeviceVector<Coeffs> coeffs_;
   DeviceBox box_;
   DeviceCells cells_;

@@ -234,9 +234,9 @@ template <class Model> struct RestoreContact {
 
 // What a pair's contact gave this step, for the sums over its particles and the energy books.
 struct PairOutput {
-  Vec3* force;    // on the row particle i (-force on the partner j)
-  Vec3* torque_i; // on i
-  Vec3* torque_j; // on j
+  Vec3* force;    // on the row particle i (-force on the partner j); touching pairs only
+  Vec3* torque_i; // on i; touching pairs only
+  Vec3* torque_j; // on j; touching pairs only
   double* elastic;
   double* relaxation; // held in the contact's relaxation buffer (the thermodynamic law)
   double* dissipated; // this step, releases of parted contacts included
@@ -272,14 +272,14 @@ template <class Model> struct PairForces {
       // Work of a wall particle's prescribed motion (contact_forces.hpp, book_wall_work).
       if (p.kind[j] == Kind::wall) work += dot(r.force, p.v[j]) * dt;
       if (p.kind[i] == Kind::wall) work -= dot(r.force, p.v[i]) * dt;
+      out.force[pair] = r.force;
+      out.torque_i[pair] = r.torque_i;
+      out.torque_j[pair] = r.torque_j;
     } else if (open[pair]) {
       released = Model::release(c, state[pair]);
       state[pair] = typename Model::State{};
       open[pair] = 0;
     }
-    out.force[pair] = r.force;
-    out.torque_i[pair] = r.torque_i;
-    out.torque_j[pair] = r.torque_j;
     out.elastic[pair] = r.elastic;
     out.relaxation[pair] = r.relaxation;
     out.dissipated[pair] = r.dissipated + released;
@@ -438,6 +438,7 @@ struct SumForces {
   Particles p;
   PairList list;
   PairOutput out;
+  const std::uint8_t* open;         // 1 for the pairs that touch this step (PairForces)
   const std::uint32_t* plane_start; // each particle's first grain-plane candidate
   PlaneOutput planes;
   Vec3 gravity;
@@ -449,11 +450,13 @@ struct SumForces {
     }
     Vec3 f = gravity * p.mass[i], t;
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
+      if (!open[k]) continue; // most listed pairs do not touch: their forces are not written
       f += out.force[k];
       t += out.torque_i[k];
     }
     for (std::uint32_t k = list.reverse_start[i]; k < list.reverse_start[i + 1]; ++k) {
       const std::uint32_t pair = list.reverse_pair[k];
+      if (!open[pair]) continue;
       f -= out.force[pair];
       t += out.torque_j[pair];
     }
@@ -565,17 +568,18 @@ struct GrainEnergies {
   }
 };
 
-// A sum in a fixed order: block b adds values [b B, (b + 1) B) one after the other; the host
-// then adds the blocks in order. The same bits on every backend.
-struct BlockSum {
+// One level of a sum in a fixed order: sums[t] = values[t] + values[t + stride] + values[t + 2
+// stride] + ..., added in that order, for t in [0, stride). Neighbouring threads read
+// neighbouring values (coalesced on the GPU, cache lines shared on the CPU). The order depends on
+// n and the stride only, so every backend gives the same bits (device_engine.cpp, OrderedSums).
+struct StridedSum {
   const double* values;
-  std::uint32_t n, block;
-  double* partial;
-  YUXI_HD void operator()(std::uint32_t b) const {
+  std::uint32_t n, stride;
+  double* sums;
+  YUXI_HD void operator()(std::uint32_t t) const {
     double s = 0.0;
-    const std::uint32_t end = (b + 1) * block < n ? (b + 1) * block : n;
-    for (std::uint32_t k = b * block; k < end; ++k) s += values[k];
-    partial[b] = s;
+    for (std::uint64_t k = t; k < n; k += stride) s += values[k];
+    sums[t] = s;
   }
 };
 
