@@ -129,7 +129,12 @@ template <class T> void write_one(DeviceVector<T>& v, std::size_t k, const T& va
   thrust::copy_n(one.begin(), 1, v.begin() + static_cast<std::ptrdiff_t>(k));
 }
 
-struct IsSet {
+// A contact that touches (a pair's or a grain-plane candidate's flag).
+struct IsOpen {
+  YUXI_HD bool operator()(std::uint8_t b) const { return b == 1; }
+};
+// A pair whose contact PairForces evaluates or releases this step (FindTouches).
+struct IsFlagged {
   YUXI_HD bool operator()(std::uint8_t b) const { return b != 0; }
 };
 
@@ -485,11 +490,12 @@ public:
 
   std::vector<PairEnergy> pair_energies() const override {
     const std::vector<double> elastic = to_host(elastic_);
-    const std::vector<std::uint32_t> row = to_host(pair_row_), partner = to_host(partner_);
+    const std::vector<std::uint32_t> row = to_host(pair_row_), partner = to_host(partner_),
+                                     pair = to_host(touch_pair_);
     const std::vector<GlobalId> gid = to_host(gid_);
     std::vector<PairEnergy> out;
-    for (std::size_t k = 0; k < elastic.size(); ++k)
-      if (elastic[k] != 0.0) out.push_back({gid[row[k]], gid[partner[k]], elastic[k]});
+    for (std::size_t c = 0; c < elastic.size(); ++c)
+      if (elastic[c] != 0.0) out.push_back({gid[row[pair[c]]], gid[partner[pair[c]]], elastic[c]});
     const std::vector<double> plane_elastic = to_host(plane_elastic_);
     const std::vector<std::uint32_t> plane_row = to_host(plane_row_);
     const std::vector<std::uint8_t> plane = to_host(plane_of_);
@@ -506,13 +512,13 @@ public:
            bytes(x_rest_) + bytes(motion_) + bytes(wall_work_) + bytes(kind_) + bytes(material_) +
            bytes(cell_) + bytes(order_) + bytes(cell_start_) + bytes(count_) + bytes(row_start_) +
            bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
-           bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(force_) + bytes(torque_i_) +
-           bytes(torque_j_) + bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) +
-           bytes(gravity_work_) + bytes(moved_far_) + sums_.device_bytes() +
-           step_sums_.device_bytes() + bytes(coeffs_) + bytes(plane_start_) + bytes(plane_row_) +
-           bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) + bytes(plane_force_) +
-           bytes(plane_torque_) + bytes(plane_elastic_) + bytes(plane_relaxation_) +
-           bytes(plane_dissipated_) + bytes(plane_work_);
+           bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(slot_) + bytes(touch_pair_) +
+           bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
+           bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
+           sums_.device_bytes() + step_sums_.device_bytes() + bytes(coeffs_) + bytes(plane_start_) +
+           bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) +
+           bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
+           bytes(plane_relaxation_) + bytes(plane_dissipated_) + bytes(plane_work_);
   }
 
   std::string device_name() const override {
@@ -641,13 +647,13 @@ private:
     build_list(pairs, planes);
   }
 
-  // The indices of the set flags of `open`, in order.
+  // The indices of the open contacts' flags in `open` (IsOpen), in order.
   static DeviceVector<std::uint32_t> set_indices(const DeviceVector<std::uint8_t>& open) {
     const std::uint32_t n = static_cast<std::uint32_t>(open.size());
     DeviceVector<std::uint32_t> at(n);
     const std::uint32_t n_set = static_cast<std::uint32_t>(
         thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(n), raw(open), raw(at), IsSet{}) -
+                        thrust::counting_iterator<std::uint32_t>(n), raw(open), raw(at), IsOpen{}) -
         raw(at));
     // (a copy of the first n_set: resize() keeps no values)
     DeviceVector<std::uint32_t> set;
@@ -750,8 +756,7 @@ private:
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
     // 5. Per-pair room, and the open contacts' states back in their new pairs.
-    resize_all(total, state_, open_, force_, torque_i_, torque_j_, elastic_, relaxation_,
-               dissipated_, wall_work_);
+    resize_all(total, state_, open_, slot_);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
                                                 n_stashed, raw(state_), raw(open_)});
 
@@ -776,15 +781,28 @@ private:
   }
 
   void compute_forces(double dt) {
+    // The pairs that touch or have just come apart, gathered (FindTouches), then their laws.
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
-    for_each_index(pairs, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
-                                            dt, raw(state_), raw(open_), pair_output()});
+    for_each_index(pairs, FindTouches{view(), pair_list(), box_, raw(open_)});
+    const std::uint32_t flagged =
+        pairs == 0 ? 0
+                   : static_cast<std::uint32_t>(
+                         thrust::count_if(on_device, raw(open_), last(open_), IsFlagged{}));
+    resize_all(flagged, touch_pair_, force_, torque_i_, torque_j_, elastic_, relaxation_,
+               dissipated_, wall_work_);
+    if (flagged > 0)
+      thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
+                      thrust::counting_iterator<std::uint32_t>(pairs), raw(open_), raw(touch_pair_),
+                      IsFlagged{});
+    for_each_index(flagged, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
+                                              dt, raw(state_), raw(open_), raw(touch_pair_),
+                                              raw(slot_), pair_output()});
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
                    PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
                                       raw(coeffs_), n_materials_, dt, raw(plane_state_),
                                       raw(plane_open_), plane_output()});
-    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(open_), raw(plane_start_),
-                                 plane_output(), gravity_});
+    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(open_), raw(slot_),
+                                 raw(plane_start_), plane_output(), gravity_});
   }
 
   void step_once() {
@@ -887,7 +905,9 @@ private:
   DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
   DeviceVector<std::uint8_t> image_;
   DeviceVector<State> state_;
-  DeviceVector<std::uint8_t> open_;
+  DeviceVector<std::uint8_t> open_;        // per pair: FindTouches's flag
+  DeviceVector<std::uint32_t> slot_;       // per pair: its slot among the flagged
+  DeviceVector<std::uint32_t> touch_pair_; // the flagged pairs, in order
   DeviceVector<Vec3> force_, torque_i_, torque_j_;
   DeviceVector<double> elastic_, relaxation_, dissipated_;
   DeviceVector<double> gravity_work_;

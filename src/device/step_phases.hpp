@@ -232,19 +232,38 @@ template <class Model> struct RestoreContact {
   }
 };
 
-// What a pair's contact gave this step, for the sums over its particles and the energy books.
+// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep): a pair's
+// flag becomes 1 where it overlaps, 2 where it touched until now and has come apart (PairForces
+// releases its springs), 0 otherwise. The flagged pairs are then gathered into one list, so that
+// the laws run on full warps: most listed pairs do not touch (83 % on the chute).
+struct FindTouches {
+  Particles p;
+  PairList list;
+  DeviceBox box;
+  std::uint8_t* open;
+  YUXI_HD void operator()(std::uint32_t pair) const {
+    const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
+    const double touch = p.radius[i] + p.radius[j];
+    const bool overlaps = norm2(separation(p.x[i], p.x[j], list.image[pair], box)) < touch * touch;
+    open[pair] = overlaps ? 1 : open[pair] == 1 ? 2 : 0;
+  }
+};
+
+// What the flagged pairs' contacts gave this step, one slot per flagged pair in pair order (the
+// list `touch_pair`), for the sums over their particles and the energy books.
 struct PairOutput {
-  Vec3* force;    // on the row particle i (-force on the partner j); touching pairs only
-  Vec3* torque_i; // on i; touching pairs only
-  Vec3* torque_j; // on j; touching pairs only
+  Vec3* force;    // on the row particle i (-force on the partner j)
+  Vec3* torque_i; // on i
+  Vec3* torque_j; // on j
   double* elastic;
   double* relaxation; // held in the contact's relaxation buffer (the thermodynamic law)
   double* dissipated; // this step, releases of parted contacts included
   double* wall_work;  // this step, by a moving wall particle on its partner
 };
 
-// The contact law on each listed pair (contact_forces.hpp's sweep and compute_pairs): a pair
-// that overlaps is evaluated, one that has come apart releases what its springs held.
+// The contact law on each flagged pair (contact_forces.hpp's sweep and compute_pairs): a pair
+// that overlaps is evaluated, one that has come apart releases what its springs held. Each pair
+// learns its slot (`slot`), where SumForces finds its force.
 template <class Model> struct PairForces {
   Particles p;
   PairList list;
@@ -253,37 +272,37 @@ template <class Model> struct PairForces {
   std::uint32_t n_materials;
   double dt;
   typename Model::State* state;
-  std::uint8_t* open;
+  const std::uint8_t* open;
+  const std::uint32_t* touch_pair;
+  std::uint32_t* slot;
   PairOutput out;
 
-  YUXI_HD void operator()(std::uint32_t pair) const {
+  YUXI_HD void operator()(std::uint32_t c) const {
+    const std::uint32_t pair = touch_pair[c];
     const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
-    const Vec3 d = separation(p.x[i], p.x[j], list.image[pair], box);
-    const double r2 = norm2(d);
-    const double touch = p.radius[i] + p.radius[j];
-    const typename Model::Coeffs& c = coeffs[p.material[i] * n_materials + p.material[j]];
+    slot[pair] = c;
+    const typename Model::Coeffs& k = coeffs[p.material[i] * n_materials + p.material[j]];
     ContactResult r;
     double released = 0.0, work = 0.0;
-    if (r2 < touch * touch) {
-      open[pair] = 1;
-      const ContactGeometry g = pair_geometry(d, r2, p.radius[i], p.radius[j], p.v[i], p.v[j],
+    if (open[pair] == 1) {
+      const Vec3 d = separation(p.x[i], p.x[j], list.image[pair], box);
+      const ContactGeometry g = pair_geometry(d, norm2(d), p.radius[i], p.radius[j], p.v[i], p.v[j],
                                               p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
-      r = Model::evaluate(g, c, state[pair]);
+      r = Model::evaluate(g, k, state[pair]);
       // Work of a wall particle's prescribed motion (contact_forces.hpp, book_wall_work).
       if (p.kind[j] == Kind::wall) work += dot(r.force, p.v[j]) * dt;
       if (p.kind[i] == Kind::wall) work -= dot(r.force, p.v[i]) * dt;
-      out.force[pair] = r.force;
-      out.torque_i[pair] = r.torque_i;
-      out.torque_j[pair] = r.torque_j;
-    } else if (open[pair]) {
-      released = Model::release(c, state[pair]);
+    } else {
+      released = Model::release(k, state[pair]);
       state[pair] = typename Model::State{};
-      open[pair] = 0;
     }
-    out.elastic[pair] = r.elastic;
-    out.relaxation[pair] = r.relaxation;
-    out.dissipated[pair] = r.dissipated + released;
-    out.wall_work[pair] = work;
+    out.force[c] = r.force;
+    out.torque_i[c] = r.torque_i;
+    out.torque_j[c] = r.torque_j;
+    out.elastic[c] = r.elastic;
+    out.relaxation[c] = r.relaxation;
+    out.dissipated[c] = r.dissipated + released;
+    out.wall_work[c] = work;
   }
 };
 
@@ -431,14 +450,15 @@ struct OfPlane {
   }
 };
 
-// Each grain's force and torque: gravity, then its pairs as the row particle, then its pairs as
+// Each grain's force and torque: gravity, then its touching pairs as the row particle, then as
 // the partner, each in pair order, then its plane contacts in candidate order. Wall particles
 // keep none.
 struct SumForces {
   Particles p;
   PairList list;
   PairOutput out;
-  const std::uint8_t* open;         // 1 for the pairs that touch this step (PairForces)
+  const std::uint8_t* open;         // 1 for the pairs that touch this step (FindTouches)
+  const std::uint32_t* slot;        // a flagged pair's slot in `out` (PairForces)
   const std::uint32_t* plane_start; // each particle's first grain-plane candidate
   PlaneOutput planes;
   Vec3 gravity;
@@ -450,15 +470,15 @@ struct SumForces {
     }
     Vec3 f = gravity * p.mass[i], t;
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
-      if (!open[k]) continue; // most listed pairs do not touch: their forces are not written
-      f += out.force[k];
-      t += out.torque_i[k];
+      if (open[k] != 1) continue;
+      f += out.force[slot[k]];
+      t += out.torque_i[slot[k]];
     }
     for (std::uint32_t k = list.reverse_start[i]; k < list.reverse_start[i + 1]; ++k) {
       const std::uint32_t pair = list.reverse_pair[k];
-      if (!open[pair]) continue;
-      f -= out.force[pair];
-      t += out.torque_j[pair];
+      if (open[pair] != 1) continue;
+      f -= out.force[slot[pair]];
+      t += out.torque_j[slot[pair]];
     }
     for (std::uint32_t c = plane_start[i]; c < plane_start[i + 1]; ++c) {
       f += planes.force[c];
