@@ -15,12 +15,15 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <thrust/binary_search.h>
 #include <thrust/copy.h>
 #include <thrust/count.h>
+#include <thrust/device_free.h>
+#include <thrust/device_malloc.h>
 #include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
 #include <thrust/for_each.h>
@@ -32,6 +35,7 @@
 #include <thrust/sequence.h>
 #include <thrust/sort.h>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__CUDACC__)
@@ -83,9 +87,22 @@ template <class T> const T* last(const DeviceVector<T>& v) {
   return raw(v) + v.size();
 }
 
+// v holds at least n elements afterwards, of unspecified values: n and a sixteenth where it had
+// to grow, or where n is below a quarter of it. For arrays of a count that changes every step,
+// kept apart from the size: they are not resized each step (a resize that grows, even within
+// what is held, fills the new elements).
+template <class T> void make_room(DeviceVector<T>& v, std::size_t n) {
+  if (n <= v.size() && n >= v.size() / 4) return;
+  resize(v, n + n / 16);
+}
+
 // Each of `vectors` resized to n (resize()).
 template <class... Vectors> void resize_all(std::size_t n, Vectors&... vectors) {
   (resize(vectors, n), ...);
+}
+// Room for n in each of `vectors` (make_room()).
+template <class... Vectors> void make_room_all(std::size_t n, Vectors&... vectors) {
+  (make_room(vectors, n), ...);
 }
 
 // A copy of v on the host.
@@ -95,14 +112,93 @@ template <class T> std::vector<T> to_host(const DeviceVector<T>& v) {
   return out;
 }
 
-// The execution policy of every algorithm. On the GPU, Thrust would otherwise wait for each
-// algorithm to finish; the kernels of one stream run in order anyway, and every result the host
-// reads comes back through a copy, which waits. On the CPU, Thrust's device system.
+// The temporary storage of Thrust's algorithms (select, reduce, scan, sort), kept between calls:
+// each algorithm would otherwise allocate and free its own, every step, and on the GPU freeing
+// waits for the device. A request that no kept block fits frees the kept blocks first, so what is
+// kept stays about the largest recent request; `trim` frees them all (after a list build, whose
+// sorts ask for the most). One per thread: an engine runs on the thread that calls it. Used on
+// the GPU only (on_device).
+class Scratch {
+public:
+  using value_type = char;
+  Scratch() = default;
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  ~Scratch() {
+    trim();
+    for (const auto& [at, size] : used_) thrust::device_free(thrust::device_pointer_cast(at));
+  }
+
+  char* allocate(std::ptrdiff_t n) {
+    auto fit = kept_.lower_bound(n);
+    if (fit == kept_.end()) {
+      trim();
+      fit = kept_.emplace(
+          n, thrust::raw_pointer_cast(thrust::device_malloc<char>(static_cast<std::size_t>(n))));
+    }
+    char* at = fit->second;
+    used_.emplace(at, fit->first);
+    kept_.erase(fit);
+    return at;
+  }
+  void deallocate(char* at, std::size_t) {
+    const auto block = used_.find(at);
+    kept_.emplace(block->second, at);
+    used_.erase(block);
+  }
+  void trim() {
+    for (const auto& [size, at] : kept_) thrust::device_free(thrust::device_pointer_cast(at));
+    kept_.clear();
+  }
+  std::size_t bytes() const {
+    std::size_t total = 0;
+    for (const auto& [size, at] : kept_) total += static_cast<std::size_t>(size);
+    return total;
+  }
+
+private:
+  std::multimap<std::ptrdiff_t, char*> kept_;
+  std::map<char*, std::ptrdiff_t> used_;
+};
+
+Scratch& scratch() {
+  thread_local Scratch kept;
+  return kept;
+}
+
+// The execution policy of every algorithm. On the GPU, with the kept temporary storage, and
+// without Thrust's wait after each algorithm: the kernels of one stream run in order anyway, and
+// every result the host reads comes back through a copy, which waits. On the CPU, Thrust's device
+// system as it is (allocating there costs little, and Thrust 1.17's CPU radix sort with an
+// allocator binds element references to a null policy, which UBSan stops).
 #if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-const auto& on_device = thrust::cuda::par_nosync;
+auto on_device() {
+  return thrust::cuda::par_nosync(scratch());
+}
 #else
-const auto& on_device = thrust::device;
+const auto& on_device() {
+  return thrust::device;
+} // (Thrust's own object: a copy trips UBSan)
 #endif
+
+// Sorts [first, last) ascending and carries `values` along, stably. On the GPU, Thrust's radix
+// sort; on the CPU, std::stable_sort through pairs, since Thrust 1.17's CPU sorts (radix and
+// merge) bind element references to a null execution policy, which UBSan stops. Both are stable,
+// so both give the same order.
+template <class K, class V> void sort_by_key(K* first, K* last, V* values) {
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
+  thrust::stable_sort_by_key(on_device(), first, last, values);
+#else
+  std::vector<std::pair<K, V>> zipped(static_cast<std::size_t>(last - first));
+  for (std::size_t k = 0; k < zipped.size(); ++k) zipped[k] = {first[k], values[k]};
+  std::stable_sort(zipped.begin(), zipped.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t k = 0; k < zipped.size(); ++k) {
+    first[k] = zipped[k].first;
+    values[k] = zipped[k].second;
+  }
+#endif
+}
 
 // Waits for the device's work (the phase clocks): nothing to wait for on the CPU.
 void wait_for_device() {
@@ -114,7 +210,7 @@ void wait_for_device() {
 // Applies f to every index in [0, n): one thread per index on the GPU, a loop on the CPU.
 template <class F> void for_each_index(std::uint32_t n, const F& f) {
   if (n == 0) return;
-  thrust::for_each_n(on_device, thrust::counting_iterator<std::uint32_t>(0), n, f);
+  thrust::for_each_n(on_device(), thrust::counting_iterator<std::uint32_t>(0), n, f);
 }
 
 // One element to or from the device. Through copies, not v[k]: Thrust 1.17's element reference
@@ -179,9 +275,11 @@ public:
 
   OrderedSums() : first_(first_width), second_(16 * second_width) {}
 
-  // Queues the sum of v; collect() returns it, in the order of the calls to add.
-  void add(const DeviceVector<double>& v) {
-    const std::uint32_t n = static_cast<std::uint32_t>(v.size());
+  // Queues the sum of v's first n values (all of them by default); collect() returns it, in the
+  // order of the calls to add.
+  void add(const DeviceVector<double>& v) { add(v, v.size()); }
+  void add(const DeviceVector<double>& v, std::size_t count) {
+    const std::uint32_t n = static_cast<std::uint32_t>(count);
     const std::uint32_t wide = std::min(n, first_width), narrow = std::min(wide, second_width);
     if (used_ + narrow > second_.size()) second_.resize(2 * (used_ + narrow)); // keeps the sums
     for_each_index(wide, StridedSum{raw(v), n, wide, raw(first_)});
@@ -204,9 +302,10 @@ public:
     used_ = 0;
     return sums;
   }
-  // The sum of v alone.
-  double operator()(const DeviceVector<double>& v) {
-    add(v);
+  // The sum of v's first n values (all by default) alone.
+  double operator()(const DeviceVector<double>& v) { return (*this)(v, v.size()); }
+  double operator()(const DeviceVector<double>& v, std::size_t n) {
+    add(v, n);
     return collect()[0];
   }
   std::size_t device_bytes() const { return bytes(first_) + bytes(second_); }
@@ -435,13 +534,13 @@ public:
     e.translational = sums_(translation);
     e.rotational = sums_(rotation);
     e.gravitational = sums_(gravitational);
-    e.grains = n_ == 0 ? 0 : thrust::reduce(on_device, raw(grain), last(grain), std::uint32_t{0});
+    e.grains = n_ == 0 ? 0 : thrust::reduce(on_device(), raw(grain), last(grain), std::uint32_t{0});
     const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
-      return open.empty() ? 0 : thrust::count(on_device, raw(open), last(open), std::uint8_t{1});
+      return open.empty() ? 0 : thrust::count(on_device(), raw(open), last(open), std::uint8_t{1});
     };
     e.contacts = touching(open_) + touching(plane_open_);
-    e.elastic = sums_(elastic_) + sums_(plane_elastic_);
-    e.relaxation = sums_(relaxation_) + sums_(plane_relaxation_);
+    e.elastic = sums_(elastic_, flagged_) + sums_(plane_elastic_);
+    e.relaxation = sums_(relaxation_, flagged_) + sums_(plane_relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
     e.wall_work = wall_work_total_;
@@ -494,7 +593,7 @@ public:
                                      pair = to_host(touch_pair_);
     const std::vector<GlobalId> gid = to_host(gid_);
     std::vector<PairEnergy> out;
-    for (std::size_t c = 0; c < elastic.size(); ++c)
+    for (std::size_t c = 0; c < flagged_; ++c)
       if (elastic[c] != 0.0) out.push_back({gid[row[pair[c]]], gid[partner[pair[c]]], elastic[c]});
     const std::vector<double> plane_elastic = to_host(plane_elastic_);
     const std::vector<std::uint32_t> plane_row = to_host(plane_row_);
@@ -515,9 +614,9 @@ public:
            bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(slot_) + bytes(touch_pair_) +
            bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
            bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
-           sums_.device_bytes() + step_sums_.device_bytes() + bytes(coeffs_) + bytes(plane_start_) +
-           bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) +
-           bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
+           sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_) +
+           bytes(plane_start_) + bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) +
+           bytes(plane_open_) + bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
            bytes(plane_relaxation_) + bytes(plane_dissipated_) + bytes(plane_work_);
   }
 
@@ -573,7 +672,7 @@ private:
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
     resize(scratch, order.size());
-    thrust::gather(on_device, raw(order), last(order), raw(field), raw(scratch));
+    thrust::gather(on_device(), raw(order), last(order), raw(field), raw(scratch));
     field.swap(scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
@@ -581,7 +680,8 @@ private:
     DeviceVector<std::uint32_t> gone(n_);
     DeviceVector<double> energy(n_);
     for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
-    const std::uint32_t n_gone = thrust::reduce(on_device, raw(gone), last(gone), std::uint32_t{0});
+    const std::uint32_t n_gone =
+        thrust::reduce(on_device(), raw(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
     if (!remove_escaped_)
       throw std::runtime_error("device engine: " + std::to_string(n_gone) +
@@ -590,7 +690,7 @@ private:
     removed_total_ += sums_(energy);
     escaped_ += n_gone;
     DeviceVector<std::uint32_t> keep(n_ - n_gone);
-    thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
+    thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                     thrust::counting_iterator<std::uint32_t>(n_), raw(gone), raw(keep), IsZero{});
     permute_particles(keep);
     n_ -= n_gone;
@@ -652,7 +752,7 @@ private:
     const std::uint32_t n = static_cast<std::uint32_t>(open.size());
     DeviceVector<std::uint32_t> at(n);
     const std::uint32_t n_set = static_cast<std::uint32_t>(
-        thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
+        thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n), raw(open), raw(at), IsOpen{}) -
         raw(at));
     // (a copy of the first n_set: resize() keeps no values)
@@ -665,8 +765,8 @@ private:
   // in the sort itself, radix sort keeping its values in shared memory).
   static void sort_stash(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& states) {
     DeviceVector<std::uint32_t> by_key(keys.size());
-    thrust::sequence(on_device, raw(by_key), last(by_key));
-    thrust::sort_by_key(on_device, raw(keys), last(keys), raw(by_key));
+    thrust::sequence(on_device(), raw(by_key), last(by_key));
+    sort_by_key(raw(keys), last(keys), raw(by_key));
     DeviceVector<State> scratch;
     permute_by(by_key, states, scratch);
   }
@@ -700,7 +800,7 @@ private:
                                   DeviceVector<std::uint32_t>& start) {
     const std::uint32_t n = static_cast<std::uint32_t>(count.size());
     resize(start, n + 1);
-    thrust::exclusive_scan(on_device, raw(count), last(count), raw(start));
+    thrust::exclusive_scan(on_device(), raw(count), last(count), raw(start));
     const std::uint32_t total = n == 0 ? 0 : read_one(start, n - 1) + read_one(count, n - 1);
     write_one(start, n, total);
     return total;
@@ -720,14 +820,14 @@ private:
     DeviceVector<std::uint64_t> key(n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(key)});
     resize(order_, n_);
-    thrust::sequence(on_device, raw(order_), last(order_));
-    thrust::sort_by_key(on_device, raw(key), last(key), raw(order_));
+    thrust::sequence(on_device(), raw(order_), last(order_));
+    sort_by_key(raw(key), last(key), raw(order_));
     permute_particles(order_);
     resize(cell_, n_);
     for_each_index(n_, CellOfKey{raw(key), raw(cell_)});
     resize(cell_start_, cells_.count() + 1);
     thrust::lower_bound(
-        on_device, raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
+        on_device(), raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
         thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
 
     // 3. The half list: count, offsets, fill.
@@ -747,11 +847,10 @@ private:
     // 4. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
     resize(reverse_pair_, total);
-    thrust::sequence(on_device, raw(reverse_pair_), last(reverse_pair_));
-    thrust::stable_sort_by_key(on_device, raw(partner_sorted), last(partner_sorted),
-                               raw(reverse_pair_));
+    thrust::sequence(on_device(), raw(reverse_pair_), last(reverse_pair_));
+    sort_by_key(raw(partner_sorted), last(partner_sorted), raw(reverse_pair_));
     resize(reverse_start_, n_ + 1);
-    thrust::lower_bound(on_device, raw(partner_sorted), last(partner_sorted),
+    thrust::lower_bound(on_device(), raw(partner_sorted), last(partner_sorted),
                         thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
@@ -778,25 +877,25 @@ private:
                                                    static_cast<std::uint32_t>(planes.keys.size()),
                                                    raw(plane_state_), raw(plane_open_)});
     ++builds_;
+    scratch().trim(); // the sorts' temporary storage: the steps until the next build need little
   }
 
   void compute_forces(double dt) {
     // The pairs that touch or have just come apart, gathered (FindTouches), then their laws.
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
     for_each_index(pairs, FindTouches{view(), pair_list(), box_, raw(open_)});
-    const std::uint32_t flagged =
-        pairs == 0 ? 0
-                   : static_cast<std::uint32_t>(
-                         thrust::count_if(on_device, raw(open_), last(open_), IsFlagged{}));
-    resize_all(flagged, touch_pair_, force_, torque_i_, torque_j_, elastic_, relaxation_,
-               dissipated_, wall_work_);
-    if (flagged > 0)
-      thrust::copy_if(on_device, thrust::counting_iterator<std::uint32_t>(0),
+    flagged_ = pairs == 0 ? 0
+                          : static_cast<std::uint32_t>(thrust::count_if(on_device(), raw(open_),
+                                                                        last(open_), IsFlagged{}));
+    make_room_all(flagged_, touch_pair_, force_, torque_i_, torque_j_, elastic_, relaxation_,
+                  dissipated_, wall_work_);
+    if (flagged_ > 0)
+      thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                       thrust::counting_iterator<std::uint32_t>(pairs), raw(open_), raw(touch_pair_),
                       IsFlagged{});
-    for_each_index(flagged, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
-                                              dt, raw(state_), raw(open_), raw(touch_pair_),
-                                              raw(slot_), pair_output()});
+    for_each_index(flagged_, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_),
+                                               n_materials_, dt, raw(state_), raw(open_),
+                                               raw(touch_pair_), raw(slot_), pair_output()});
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
                    PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
                                       raw(coeffs_), n_materials_, dt, raw(plane_state_),
@@ -813,7 +912,7 @@ private:
     ++step_;
     place_walls();
     if (any_oscillating_) place_planes(); // (still planes stay where the start put them)
-    const bool build = thrust::reduce(on_device, raw(moved_far_), last(moved_far_),
+    const bool build = thrust::reduce(on_device(), raw(moved_far_), last(moved_far_),
                                       std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
     step_sums_.add(gravity_work_); // queued: collected with the contacts' books below
@@ -824,9 +923,9 @@ private:
     clock.add_to(phases_.forces);
     for_each_index(n_, FinalKick{view(), dt_});
     clock.add_to(phases_.integration);
-    step_sums_.add(dissipated_);
+    step_sums_.add(dissipated_, flagged_);
     step_sums_.add(plane_dissipated_);
-    step_sums_.add(wall_work_);
+    step_sums_.add(wall_work_, flagged_);
     const std::vector<double> booked = step_sums_.collect();
     gravity_work_total_ += booked[0];
     dissipated_total_ += booked[1];
@@ -908,6 +1007,7 @@ private:
   DeviceVector<std::uint8_t> open_;        // per pair: FindTouches's flag
   DeviceVector<std::uint32_t> slot_;       // per pair: its slot among the flagged
   DeviceVector<std::uint32_t> touch_pair_; // the flagged pairs, in order
+  std::uint32_t flagged_ = 0;              // how many pairs are flagged: the per-slot arrays' count
   DeviceVector<Vec3> force_, torque_i_, torque_j_;
   DeviceVector<double> elastic_, relaxation_, dissipated_;
   DeviceVector<double> gravity_work_;
