@@ -1,5 +1,6 @@
 // The compiled part of the Python module `yuxi` (python/yuxi/__init__.py wraps it).
 #include "domain/mpi_session.hpp"
+#include "py_coarse_grain.hpp"
 #include "py_scene.hpp"
 #include "py_simulation.hpp"
 #include "py_studies.hpp"
@@ -12,6 +13,7 @@ PYBIND11_MODULE(_yuxi, m) {
   yuxi::python::bind_scene(m);
   yuxi::python::bind_simulation(m);
   yuxi::python::bind_studies(m);
+  yuxi::python::bind_coarse_grain(m);
   // MPI for the interpreter's lifetime: joined where mpi4py started it (yuxi/__init__.py imports
   // mpi4py first when it is there, and mpi4py finishes it), else started here and finished at
   // exit, after the Python layer has closed every simulation.

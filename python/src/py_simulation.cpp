@@ -427,6 +427,16 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("scene_toml",
                              [](PySimulation& s) { return resolved_scene_toml(s.scene()); })
       .def_property_readonly("materials", [](PySimulation& s) { return s.scene().materials; })
+      .def("_box",
+           [](PySimulation& s) {
+             const Box& b = s.sim().config().box;
+             std::string periodic;
+             for (int a = 0; a < 3; ++a)
+               if (b.periodic(a)) periodic += static_cast<char>('x' + a);
+             return py::dict("lo"_a = std::vector<double>{b.lo.x, b.lo.y, b.lo.z},
+                             "hi"_a = std::vector<double>{b.hi.x, b.hi.y, b.hi.z},
+                             "periodic"_a = periodic);
+           })
       .def("_array",
            [](py::object self, const std::string& name) {
              const ParticleStore& p = self.cast<PySimulation&>().sim().particles();

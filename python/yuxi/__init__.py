@@ -28,6 +28,7 @@ except ImportError:  # pragma: no cover - mpi4py is a dependency, but optional h
 
 from . import _yuxi
 from ._yuxi import CollectiveError, SceneError, built_in_models, has_cuda
+from .coarse_graining import coarse_grain
 
 __all__ = [
     "CollectiveError",
@@ -36,6 +37,7 @@ __all__ = [
     "Simulation",
     "StaleViewError",
     "built_in_models",
+    "coarse_grain",
     "collide",
     "has_cuda",
     "two_grain",

@@ -1,0 +1,174 @@
+#include "py_coarse_grain.hpp"
+
+#include "analysis/coarse_grain.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <optional>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace yuxi::python {
+namespace {
+
+using analysis::CgContact;
+using analysis::CgFields;
+using analysis::CgKind;
+using analysis::CgSettings;
+
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Integers = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+// The rows of a (n, 3) array as Vec3s; `name` in the error.
+std::vector<Vec3> vectors(const Doubles& a, py::ssize_t n, const std::string& name) {
+  if (a.ndim() != 2 || a.shape(1) != 3 || a.shape(0) != n)
+    throw std::invalid_argument("coarse_grain: " + name + " must have shape (" + std::to_string(n) +
+                                ", 3)");
+  std::vector<Vec3> out(static_cast<std::size_t>(n));
+  const double* d = a.data();
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = {d[3 * k], d[3 * k + 1], d[3 * k + 2]};
+  return out;
+}
+std::vector<double> scalars(const Doubles& a, py::ssize_t n, const std::string& name) {
+  if (a.ndim() != 1 || a.shape(0) != n)
+    throw std::invalid_argument("coarse_grain: " + name + " must have shape (" + std::to_string(n) +
+                                ",)");
+  return {a.data(), a.data() + n};
+}
+
+CgKind kind_named(const std::string& name) {
+  for (const CgKind k : {CgKind::gaussian, CgKind::lucy, CgKind::bins})
+    if (analysis::to_string(k) == name) return k;
+  throw std::invalid_argument("coarse_grain: function must be \"gaussian\", \"lucy\" or "
+                              "\"bins\" (got \"" +
+                              name + "\")");
+}
+
+// An axis set such as "xy": which of x, y, z it names.
+std::array<bool, 3> axes_named(const std::string& text, const std::string& key) {
+  std::array<bool, 3> on{false, false, false};
+  for (const char c : text) {
+    if (c < 'x' || c > 'z')
+      throw std::invalid_argument("coarse_grain: " + key + " names axes among x, y, z (got \"" +
+                                  text + "\")");
+    on[static_cast<std::size_t>(c - 'x')] = true;
+  }
+  return on;
+}
+
+// A field of the grid as an array indexed [i, j, k] over the resolved axes, then its components.
+py::array_t<double> field(const std::vector<double>& values, const analysis::CgGrid& grid,
+                          int components) {
+  std::vector<py::ssize_t> shape, strides;
+  const auto c = static_cast<py::ssize_t>(components);
+  const py::ssize_t stride[3] = {c * 8, c * 8 * grid.n[0], c * 8 * grid.n[0] * grid.n[1]};
+  for (int a = 0; a < 3; ++a)
+    if (!grid.averaged[static_cast<std::size_t>(a)]) {
+      shape.push_back(grid.n[static_cast<std::size_t>(a)]);
+      strides.push_back(stride[a]);
+    }
+  if (components == 3) shape.push_back(3), strides.push_back(8);
+  if (components == 9) {
+    shape.insert(shape.end(), {3, 3});
+    strides.insert(strides.end(), {24, 8});
+  }
+  py::array_t<double> strided(shape, strides, values.data());
+  return py::array_t<double>(strided.attr("copy")());
+}
+
+py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
+                      const Doubles& volume, const py::object& contacts,
+                      const std::string& function, double width, std::optional<double> cutoff,
+                      const Doubles& lo, const Doubles& hi, const std::vector<int>& n,
+                      const std::string& average, const std::string& periodic) {
+  const py::ssize_t grains = x.ndim() == 2 ? x.shape(0) : -1;
+  if (grains < 0) throw std::invalid_argument("coarse_grain: x must have shape (n, 3)");
+  const std::vector<Vec3> xs = vectors(x, grains, "x"), vs = vectors(v, grains, "v");
+  const std::vector<double> ms = scalars(mass, grains, "mass"),
+                            volumes = scalars(volume, grains, "volume");
+
+  std::vector<CgContact> list;
+  if (!contacts.is_none()) {
+    const py::dict d = contacts.cast<py::dict>();
+    for (const char* key : {"a", "b", "force", "branch", "point", "elastic"})
+      if (!d.contains(key))
+        throw std::invalid_argument(std::string("coarse_grain: contacts need the key '") + key +
+                                    "' (a, b, force, branch, point, elastic)");
+    const Integers a = d["a"].cast<Integers>(), b = d["b"].cast<Integers>();
+    const py::ssize_t count = a.ndim() == 1 ? a.shape(0) : -1;
+    if (count < 0 || b.ndim() != 1 || b.shape(0) != count)
+      throw std::invalid_argument("coarse_grain: contacts' a and b must be 1-D, of one length");
+    const std::vector<Vec3> force = vectors(d["force"].cast<Doubles>(), count, "contacts' force"),
+                            branch =
+                                vectors(d["branch"].cast<Doubles>(), count, "contacts' branch"),
+                            point = vectors(d["point"].cast<Doubles>(), count, "contacts' point");
+    const std::vector<double> elastic =
+        scalars(d["elastic"].cast<Doubles>(), count, "contacts' elastic");
+    for (py::ssize_t k = 0; k < count; ++k) {
+      const auto s = static_cast<std::size_t>(k);
+      list.push_back({a.data()[k], b.data()[k], force[s], branch[s], point[s], elastic[s]});
+    }
+  }
+
+  CgSettings settings;
+  settings.kind = kind_named(function);
+  settings.width = width;
+  settings.cutoff = cutoff.value_or(3.0 * width);
+  if (settings.kind != CgKind::bins && !(width > 0.0))
+    throw std::invalid_argument("coarse_grain: width must be positive (got " +
+                                std::to_string(width) + ")");
+  if (lo.size() != 3 || hi.size() != 3 || n.size() != 3)
+    throw std::invalid_argument("coarse_grain: lo, hi and n take three values (x, y, z)");
+  settings.grid.lo = {lo.data()[0], lo.data()[1], lo.data()[2]};
+  settings.grid.hi = {hi.data()[0], hi.data()[1], hi.data()[2]};
+  settings.grid.averaged = axes_named(average, "average");
+  settings.grid.periodic = axes_named(periodic, "periodic");
+  for (std::size_t a = 0; a < 3; ++a) settings.grid.n[a] = settings.grid.averaged[a] ? 1 : n[a];
+
+  const analysis::CgGrains g{xs, vs, ms, volumes};
+  CgFields f;
+  {
+    py::gil_scoped_release release;
+    f = analysis::coarse_grain(g, list, settings);
+  }
+  const analysis::CgGrid& grid = settings.grid;
+  py::dict out;
+  static constexpr const char* axis_names[] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    if (grid.averaged[static_cast<std::size_t>(a)]) continue;
+    std::vector<double> at(static_cast<std::size_t>(grid.n[static_cast<std::size_t>(a)]));
+    for (std::size_t k = 0; k < at.size(); ++k) at[k] = grid.coordinate(a, static_cast<int>(k));
+    out[axis_names[a]] = py::array_t<double>(static_cast<py::ssize_t>(at.size()), at.data());
+  }
+  out["density"] = field(f.density, grid, 1);
+  out["number_density"] = field(f.number_density, grid, 1);
+  out["volume_fraction"] = field(f.volume_fraction, grid, 1);
+  out["momentum"] = field(f.momentum, grid, 3);
+  out["velocity"] = field(f.velocity, grid, 3);
+  out["kinetic_stress"] = field(f.kinetic_stress, grid, 9);
+  out["contact_stress"] = field(f.contact_stress, grid, 9);
+  out["stress"] = field(f.stress, grid, 9);
+  out["wall_force_density"] = field(f.wall_force, grid, 3);
+  out["temperature"] = field(f.temperature, grid, 1);
+  out["coordination"] = field(f.coordination, grid, 1);
+  out["fabric"] = field(f.fabric, grid, 9);
+  out["kinetic_energy_density"] = field(f.kinetic_energy, grid, 1);
+  out["elastic_energy_density"] = field(f.elastic_energy, grid, 1);
+  out["cell_volume"] = grid.cell_volume();
+  return out;
+}
+
+} // namespace
+
+void bind_coarse_grain(py::module_& m) {
+  m.def("coarse_grain", &coarse_grain, "x"_a, "v"_a, "mass"_a, "volume"_a, "contacts"_a,
+        "function"_a, "width"_a, "cutoff"_a, "lo"_a, "hi"_a, "n"_a, "average"_a, "periodic"_a);
+}
+
+} // namespace yuxi::python

@@ -1,0 +1,113 @@
+"""yuxi.coarse_grain on a live simulation, held to what the engine itself reports: the grains'
+mass, the walls' loads, and the virial of the engine's own forces on every grain."""
+
+import numpy as np
+import pytest
+
+import yuxi
+
+
+@pytest.fixture
+def landed(box_scene, tmp_path):
+    """343 grains that fell into a box with walls on its six faces, with the contacts of the
+    last step recorded."""
+    box_scene["run"]["t_end"] = 0.3
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "box", progress=False)
+    sim.run()
+    sim.record_contacts(True)
+    sim.step()
+    yield sim
+    sim.close()
+
+
+def _grains(sim):
+    p = sim.particles
+    grain = np.asarray(p.kind) == yuxi.Particles.GRAIN
+    return grain, np.asarray(p.mass)[grain]
+
+
+def test_bins_hold_the_mass_and_the_walls_loads(landed):
+    f = yuxi.coarse_grain(landed, function="bins", n=(4, 4, 6))
+    _, mass = _grains(landed)
+    volume = f["cell_volume"]
+    assert f["density"].shape == (4, 4, 6)
+    assert f["density"].sum() * volume == pytest.approx(mass.sum(), rel=1e-12)
+    # The walls' force density over the box is the force of every wall on the grains: minus the
+    # loads that the engine books on the walls.
+    loads = landed.wall_loads()
+    on_walls = sum(np.asarray(load["force"]) for load in loads.values())
+    on_grains = f["wall_force_density"].sum(axis=(0, 1, 2)) * volume
+    assert np.allclose(on_grains, -on_walls, rtol=1e-9, atol=1e-9 * np.abs(on_walls).max())
+    assert loads["box z lo"]["contacts"] > 10
+
+
+def test_contact_stress_is_the_virial_of_the_engines_forces(landed):
+    """Over a grid that holds every branch, the contact stress integrates to sum f b, and that
+    is sum (F_i - m_i g) x_i - sum over wall contacts f c: F_i the engine's force on grain i."""
+    f = yuxi.coarse_grain(landed, function="bins", n=(3, 5, 4))
+    integral = f["contact_stress"].sum(axis=(0, 1, 2)) * f["cell_volume"]
+    grain, mass = _grains(landed)
+    p = landed.particles
+    x = np.asarray(p.position)[grain]
+    force = np.asarray(p.force)[grain]
+    g = np.array([0.0, 0.0, -10.0])
+    table = landed._core.contacts()
+    walls = table["wall"] != ""
+    virial = np.einsum("ia,ib->ab", force - mass[:, None] * g, x)
+    virial -= np.einsum("ia,ib->ab", table["force"][walls], table["point"][walls])
+    scale = np.abs(virial).max()
+    assert scale > 0
+    assert np.allclose(integral, virial, rtol=0, atol=1e-9 * scale)
+    # So does a Gaussian on a grid beyond its reach (cut off at 6 w, sampled at w / 2).
+    smooth = yuxi.coarse_grain(landed, width=0.5, cutoff=3.0, lo=[-3.5, -3.5, -3.5],
+                               hi=[11.5, 11.5, 15.5], n=(60, 60, 76))
+    total = smooth["contact_stress"].sum(axis=(0, 1, 2)) * smooth["cell_volume"]
+    assert np.allclose(total, virial, rtol=0, atol=1e-6 * scale)
+
+
+def test_a_profile_averages_over_the_other_axes(landed):
+    f = yuxi.coarse_grain(landed, width=0.5, average="xy", n=(1, 1, 24), contacts=False)
+    assert f["z"].shape == (24,) and "x" not in f
+    assert f["stress"].shape == (24, 3, 3)
+    _, mass = _grains(landed)
+    # The grains rest near the floor: the profile's mass is near the bottom, and all of it is
+    # there (the Gaussian's tails below the floor are cut off by the grid: most, not all).
+    column = f["density"] * 8.0 * 8.0 * (12.0 / 24)
+    assert column.sum() == pytest.approx(mass.sum(), rel=0.05)
+    assert f["z"][np.argmax(f["density"])] < 4.0
+
+
+def test_misuse_is_refused_with_the_argument_named(landed, tmp_path, box_scene):
+    with pytest.raises(ValueError, match="width"):
+        yuxi.coarse_grain(landed, width=0.0)
+    with pytest.raises(ValueError, match="needs a width"):
+        yuxi.coarse_grain(landed)
+    with pytest.raises(ValueError, match="function"):
+        yuxi.coarse_grain(landed, width=1.0, function="cubic")
+    with pytest.raises(ValueError, match="average"):
+        yuxi.coarse_grain(landed, width=1.0, average="q")
+    with pytest.raises(ValueError, match="hi"):
+        yuxi.coarse_grain(landed, width=1.0, lo=[0, 0, 5], hi=[8, 8, 5])
+    with pytest.raises(ValueError, match="need n"):
+        yuxi.coarse_grain(landed, function="bins")
+    fresh = yuxi.Simulation(box_scene, output=tmp_path / "fresh", progress=False)
+    fresh.step()
+    with pytest.raises(ValueError, match="record_contacts"):
+        yuxi.coarse_grain(fresh, width=1.0)
+    assert yuxi.coarse_grain(fresh, width=1.0, contacts=False)["density"].sum() > 0
+    fresh.close()
+
+
+def test_arrays_saved_from_a_run(tmp_path):
+    """From plain arrays: two grains pressed together along x by a force of 2, as a contact."""
+    arrays = {
+        "x": [[1.0, 1.0, 1.0], [1.8, 1.0, 1.0]], "v": np.zeros((2, 3)), "mass": [1.0, 1.0],
+        "radius": [0.5, 0.5],
+        "box": {"lo": [0, 0, 0], "hi": [3, 2, 2], "periodic": ""},
+        "contacts": {"a": [1], "b": [0], "force": [[2.0, 0, 0]], "branch": [[0.8, 0, 0]],
+                     "point": [[1.4, 1.0, 1.0]], "elastic": [0.01]},
+    }
+    f = yuxi.coarse_grain(arrays, function="bins", n=(3, 1, 1), average="yz")
+    # The branch from x = 1.0 to 1.8 lies in cells [0, 1) (none), [1, 2) (all): f b / V_cell.
+    assert f["contact_stress"][:, 0, 0] == pytest.approx([0.0, 2.0 * 0.8 / 4.0, 0.0])
+    assert f["coordination"][1] == pytest.approx(1.0)

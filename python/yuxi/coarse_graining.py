@@ -1,0 +1,137 @@
+"""Continuum fields from grains: ``yuxi.coarse_grain`` (the definitions: docs/coarse-graining.md)."""
+
+import math
+
+import numpy as np
+
+from . import _yuxi
+
+# The fields that need the contacts.
+CONTACT_FIELDS = ("contact_stress", "wall_force_density", "coordination", "fabric",
+                  "elastic_energy_density")
+
+
+def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, lo=None, hi=None,
+                 average="", contacts=True):
+    """Coarse-grained fields of a simulation's grains now, or of arrays saved from one.
+
+    ``source`` is a :class:`yuxi.Simulation` (its grains, and the contacts of its last step: call
+    ``sim.record_contacts(True)`` before that step) or a dict of arrays: ``x``, ``v`` (n, 3),
+    ``mass`` (n,), ``radius`` or ``volume`` (n,), and optionally ``contacts`` (a dict with ``a``,
+    ``b`` (grain indices, b = -1 for a wall), ``force`` on a, ``branch`` to a's centre from b's
+    centre or from the wall's contact point, ``point``, ``elastic``) and ``box`` (``lo``, ``hi``,
+    ``periodic``, such as "xy").
+
+    ``function`` is "gaussian" (standard deviation ``width``, cut off at ``cutoff``, 3 width by
+    default), "lucy" (radius ``cutoff``, 3 width by default) or "bins" (plain cells, no width).
+    The grid has ``n`` = (nx, ny, nz) points between ``lo`` and ``hi`` (the box by default; ``n``
+    by default one point per width); ``average`` names the axes averaged over ("xy" for a
+    profile along z). With ``contacts=False`` only the kinetic fields are computed.
+
+    Returns a dict of numpy arrays indexed [i, j, k] over the resolved axes (then a vector's or
+    tensor's components): the points' coordinates ``x``, ``y``, ``z`` (resolved axes only),
+    ``density``, ``number_density``, ``volume_fraction``, ``momentum``, ``velocity``,
+    ``kinetic_stress``, ``contact_stress``, ``stress`` (positive in compression),
+    ``wall_force_density``, ``temperature``, ``coordination``, ``fabric``,
+    ``kinetic_energy_density``, ``elastic_energy_density``, and ``cell_volume``.
+    """
+    arrays = _from_simulation(source, contacts) if hasattr(source, "_core") else \
+        _from_dict(source, contacts)
+    box = arrays["box"]
+    lo = np.asarray(box["lo"] if lo is None else lo, dtype=float)
+    hi = np.asarray(box["hi"] if hi is None else hi, dtype=float)
+    if lo.shape != (3,) or hi.shape != (3,):
+        raise ValueError("coarse_grain: lo and hi take three values (x, y, z)")
+    if function != "bins":
+        if width is None:
+            raise ValueError(f"coarse_grain: the {function} function needs a width")
+        if not width > 0:
+            raise ValueError(f"coarse_grain: width must be positive (got {width})")
+        if n is None:
+            n = [max(1, math.ceil((h - l) / width)) for l, h in zip(lo, hi)]
+    elif n is None:
+        raise ValueError("coarse_grain: plain bins need n, the number of cells along each axis")
+    n = [int(k) for k in n]
+    if len(n) != 3:
+        raise ValueError("coarse_grain: n takes three values (x, y, z)")
+    # A periodic axis wraps where the grid spans the box along it.
+    periodic = "".join(a for k, a in enumerate("xyz") if a in box.get("periodic", "")
+                       and lo[k] == box["lo"][k] and hi[k] == box["hi"][k])
+    return _yuxi.coarse_grain(arrays["x"], arrays["v"], arrays["mass"], arrays["volume"],
+                              arrays["contacts"], function, float(width or 0.0), cutoff, lo, hi,
+                              n, average, periodic)
+
+
+def _from_dict(d, contacts):
+    try:
+        x = np.asarray(d["x"], dtype=float)
+        v = np.asarray(d["v"], dtype=float)
+        mass = np.asarray(d["mass"], dtype=float)
+    except KeyError as e:
+        raise ValueError(f"coarse_grain: the arrays need the key {e} (x, v, mass, radius)") from None
+    if "volume" in d:
+        volume = np.asarray(d["volume"], dtype=float)
+    elif "radius" in d:
+        volume = 4.0 / 3.0 * np.pi * np.asarray(d["radius"], dtype=float) ** 3
+    else:
+        raise ValueError("coarse_grain: the arrays need 'radius' or 'volume'")
+    box = d.get("box")
+    if box is None:
+        if len(x) == 0:
+            raise ValueError("coarse_grain: no grains and no box: give lo and hi")
+        box = {"lo": x.min(axis=0), "hi": x.max(axis=0), "periodic": ""}
+    return {"x": x, "v": v, "mass": mass, "volume": volume, "box": box,
+            "contacts": d.get("contacts") if contacts else None}
+
+
+def _from_simulation(sim, contacts):
+    core = sim._core
+    if core.ranks > 1:
+        raise ValueError("coarse_grain: a simulation on several ranks is coarse-grained by a "
+                         "[[coarse_grain]] table in its scene; from Python, on one rank")
+    p = sim.particles
+    grain = np.asarray(p.kind) == 0
+    ids = np.asarray(p.id)[grain]
+    x = np.asarray(p.position)[grain]
+    radius = np.asarray(p.radius)[grain]
+    arrays = {"x": x, "v": np.asarray(p.velocity)[grain], "mass": np.asarray(p.mass)[grain],
+              "volume": 4.0 / 3.0 * np.pi * radius ** 3, "box": core._box(), "contacts": None}
+    if not contacts:
+        return arrays
+    try:
+        table = core.contacts()
+    except RuntimeError as e:
+        raise ValueError("coarse_grain: the contact fields need the contacts of the last step: "
+                         "call sim.record_contacts(True) before it (or pass contacts=False)") \
+            from e
+    order = np.argsort(ids)
+    sorted_ids = ids[order]
+
+    def index_of(gid):  # each id's index among the grains, -1 where not a grain
+        gid = np.asarray(gid)
+        if len(ids) == 0:
+            return np.full(len(gid), -1)
+        at = np.clip(np.searchsorted(sorted_ids, gid), 0, len(ids) - 1)
+        return np.where(sorted_ids[at] == gid, order[at], -1)
+
+    a = index_of(table["id_a"])
+    b = np.where(table["wall"] == "", index_of(table["id_b"]), -1)
+    force = table["force"].copy()
+    normal = table["normal"]
+    point = table["point"]
+    # A wall particle listed first: the grain becomes a, the force the grain's.
+    flip = a < 0
+    a = np.where(flip, b, a)
+    b = np.where(flip, -1, b)
+    force[flip] = -force[flip]
+    if np.any(a < 0):
+        raise ValueError("coarse_grain: a contact touches no grain of this rank")
+    # Branch: between two grains, along the normal (from b to a) across the centres, through
+    # the periodic image that a touches; to a wall, from the contact point to a's centre.
+    branch = x[a] - point
+    pair = b >= 0
+    span = radius[a[pair]] + radius[b[pair]] - table["overlap"][pair]
+    branch[pair] = normal[pair] * span[:, None]
+    arrays["contacts"] = {"a": a, "b": b, "force": force, "branch": branch, "point": point,
+                          "elastic": table["elastic"]}
+    return arrays

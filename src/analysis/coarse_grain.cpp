@@ -1,0 +1,251 @@
+#include "analysis/coarse_grain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace yuxi::analysis {
+namespace {
+
+// The weights of one grain, contact point or branch at the grid's points: phi or psi for a
+// function, 1 / V_cell or the branch's share of a cell for plain bins. Each point's index and
+// weight go to a visitor.
+class Weights {
+public:
+  explicit Weights(const CgSettings& s) : grid_(s.grid), reach_(s.cutoff) {
+    if (s.kind != CgKind::bins)
+      function_.emplace(s.kind, s.width, s.cutoff, grid_.dimension());
+    else
+      reach_ = 0.0;
+    inverse_extent_ = 1.0 / grid_.averaged_extent();
+    inverse_cell_ = 1.0 / grid_.cell_volume();
+  }
+
+  // f(index, weight) for each point that a grain (or contact point) at x weighs on.
+  template <class F> void at_point(const Vec3& x, F&& f) const {
+    if (!function_) {
+      std::array<int, 3> k{};
+      for (int a = 0; a < 3; ++a) {
+        if (grid_.averaged[a]) continue;
+        auto cell = static_cast<long>(std::floor((x[a] - grid_.lo[a]) / grid_.spacing(a)));
+        // A bounded axis's last cell holds its upper end: a wall's contact point on the face.
+        if (!grid_.periodic[static_cast<std::size_t>(a)] &&
+            cell == grid_.n[static_cast<std::size_t>(a)] && x[a] <= grid_.hi[a])
+          cell -= 1;
+        const std::optional<int> at = wrap(a, cell);
+        if (!at) return;
+        k[static_cast<std::size_t>(a)] = *at;
+      }
+      f(grid_.index(k[0], k[1], k[2]), inverse_cell_);
+      return;
+    }
+    each_point(x, x, [&](std::size_t index, const Vec3& p) {
+      const double w = function_->at(norm2(resolved(p - x)));
+      if (w != 0.0) f(index, w * inverse_extent_);
+    });
+  }
+
+  // f(index, weight) for each point that the segment from `from` to `from + b` weighs on.
+  template <class F> void along(const Vec3& from, const Vec3& b, F&& f) const {
+    const Vec3 to = from + b;
+    const Vec3 low{std::min(from.x, to.x), std::min(from.y, to.y), std::min(from.z, to.z)};
+    const Vec3 high{std::max(from.x, to.x), std::max(from.y, to.y), std::max(from.z, to.z)};
+    if (!function_) {
+      each_cell(low, high, [&](std::size_t index, const Vec3& cell_lo) {
+        const double share = share_in_cell(from, b, cell_lo);
+        if (share > 0.0) f(index, share * inverse_cell_);
+      });
+      return;
+    }
+    const Vec3 branch = resolved(b);
+    each_point(low, high, [&](std::size_t index, const Vec3& p) {
+      const double w = function_->along(resolved(p - from), branch);
+      if (w != 0.0) f(index, w * inverse_extent_);
+    });
+  }
+
+private:
+  // v with its averaged components zeroed.
+  Vec3 resolved(Vec3 v) const {
+    for (int a = 0; a < 3; ++a)
+      if (grid_.averaged[a]) v[a] = 0.0;
+    return v;
+  }
+  // Point k along axis a, wrapped on a periodic axis; nothing outside a bounded one.
+  std::optional<int> wrap(int a, long k) const {
+    const long n = grid_.n[static_cast<std::size_t>(a)];
+    if (grid_.periodic[static_cast<std::size_t>(a)]) return static_cast<int>(((k % n) + n) % n);
+    if (k < 0 || k >= n) return std::nullopt;
+    return static_cast<int>(k);
+  }
+  // g(index, point) for the points within reach of the box [low, high] (resolved axes; on a
+  // periodic axis every image, its coordinate unwrapped; on an averaged axis, low's).
+  template <class G> void each_point(const Vec3& low, const Vec3& high, G&& g) const {
+    std::array<long, 3> first{}, last{};
+    for (int a = 0; a < 3; ++a) {
+      const auto s = static_cast<std::size_t>(a);
+      if (grid_.averaged[s]) continue;
+      const double h = grid_.spacing(a);
+      first[s] = static_cast<long>(std::ceil((low[a] - reach_ - grid_.lo[a]) / h - 0.5));
+      last[s] = static_cast<long>(std::floor((high[a] + reach_ - grid_.lo[a]) / h - 0.5));
+      if (!grid_.periodic[s]) {
+        first[s] = std::max(first[s], 0L);
+        last[s] = std::min(last[s], static_cast<long>(grid_.n[s]) - 1);
+      }
+    }
+    Vec3 p = low;
+    for (long k = first[2]; k <= last[2]; ++k) {
+      if (!grid_.averaged[2]) p.z = grid_.coordinate(2, static_cast<int>(k));
+      for (long j = first[1]; j <= last[1]; ++j) {
+        if (!grid_.averaged[1]) p.y = grid_.coordinate(1, static_cast<int>(j));
+        for (long i = first[0]; i <= last[0]; ++i) {
+          if (!grid_.averaged[0]) p.x = grid_.coordinate(0, static_cast<int>(i));
+          g(grid_.index(*wrap(0, i), *wrap(1, j), *wrap(2, k)), p);
+        }
+      }
+    }
+  }
+  // g(index, the cell's low corner, unwrapped) for the cells that the box [low, high] meets.
+  template <class G> void each_cell(const Vec3& low, const Vec3& high, G&& g) const {
+    std::array<long, 3> first{}, last{};
+    for (int a = 0; a < 3; ++a) {
+      const auto s = static_cast<std::size_t>(a);
+      if (grid_.averaged[s]) continue;
+      const double h = grid_.spacing(a);
+      first[s] = static_cast<long>(std::floor((low[a] - grid_.lo[a]) / h));
+      last[s] = static_cast<long>(std::floor((high[a] - grid_.lo[a]) / h));
+      if (!grid_.periodic[s]) {
+        first[s] = std::max(first[s], 0L);
+        last[s] = std::min(last[s], static_cast<long>(grid_.n[s]) - 1);
+      }
+    }
+    Vec3 corner = low;
+    for (long k = first[2]; k <= last[2]; ++k) {
+      if (!grid_.averaged[2]) corner.z = grid_.lo.z + static_cast<double>(k) * grid_.spacing(2);
+      for (long j = first[1]; j <= last[1]; ++j) {
+        if (!grid_.averaged[1]) corner.y = grid_.lo.y + static_cast<double>(j) * grid_.spacing(1);
+        for (long i = first[0]; i <= last[0]; ++i) {
+          if (!grid_.averaged[0]) corner.x = grid_.lo.x + static_cast<double>(i) * grid_.spacing(0);
+          g(grid_.index(*wrap(0, i), *wrap(1, j), *wrap(2, k)), corner);
+        }
+      }
+    }
+  }
+  // The share of the segment from + s b, s in [0, 1), that lies in the cell whose low corner is
+  // cell_lo (resolved axes; the slabs' intersection).
+  double share_in_cell(const Vec3& from, const Vec3& b, const Vec3& cell_lo) const {
+    double s0 = 0.0, s1 = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      if (grid_.averaged[static_cast<std::size_t>(a)]) continue;
+      const double c0 = cell_lo[a], c1 = cell_lo[a] + grid_.spacing(a);
+      if (b[a] == 0.0) {
+        if (!(from[a] >= c0 && from[a] < c1)) return 0.0;
+        continue;
+      }
+      double e0 = (c0 - from[a]) / b[a], e1 = (c1 - from[a]) / b[a];
+      if (e0 > e1) std::swap(e0, e1);
+      s0 = std::max(s0, e0);
+      s1 = std::min(s1, e1);
+    }
+    return s1 > s0 ? s1 - s0 : 0.0;
+  }
+
+  const CgGrid& grid_;
+  double reach_;
+  std::optional<CgFunction> function_;
+  double inverse_extent_ = 1.0, inverse_cell_ = 1.0;
+};
+
+void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) t[3 * r + c] += a[r] * b[c] * w;
+}
+
+} // namespace
+
+CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
+                      const CgSettings& settings) {
+  settings.grid.check();
+  const std::size_t n_grains = grains.x.size();
+  if (grains.v.size() != n_grains || grains.mass.size() != n_grains ||
+      grains.volume.size() != n_grains)
+    throw std::invalid_argument("coarse-graining: the grains' positions, velocities, masses and "
+                                "volumes differ in number");
+  const Weights weights(settings);
+  const std::size_t points = settings.grid.size();
+  CgFields out;
+  for (auto* scalar : {&out.density, &out.number_density, &out.volume_fraction, &out.temperature,
+                       &out.coordination, &out.kinetic_energy, &out.elastic_energy})
+    scalar->assign(points, 0.0);
+  for (auto* vector : {&out.momentum, &out.velocity, &out.wall_force})
+    vector->assign(3 * points, 0.0);
+  for (auto* tensor : {&out.kinetic_stress, &out.contact_stress, &out.stress, &out.fabric})
+    tensor->assign(9 * points, 0.0);
+
+  // Each grain's contacts: their number, and the sum of n n over them (n the unit branch).
+  std::vector<double> contact_count(n_grains, 0.0), normals(9 * n_grains, 0.0);
+  const auto count = [&](std::int64_t g, const Vec3& unit) {
+    if (g < 0) return;
+    if (static_cast<std::size_t>(g) >= n_grains)
+      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(g) +
+                                  " of " + std::to_string(n_grains));
+    contact_count[static_cast<std::size_t>(g)] += 1.0;
+    add_outer(&normals[9 * static_cast<std::size_t>(g)], unit, unit, 1.0);
+  };
+  for (const CgContact& c : contacts) {
+    const double length = norm(c.branch);
+    const Vec3 unit = length > 0.0 ? c.branch / length : Vec3{};
+    if (c.a < 0)
+      throw std::invalid_argument("coarse-graining: a contact's grain a must be a grain index");
+    count(c.a, unit);
+    count(c.b, unit);
+  }
+
+  // The grains: sum m v v phi is kept in the kinetic stress until V is known.
+  for (std::size_t i = 0; i < n_grains; ++i) {
+    const double m = grains.mass[i], volume = grains.volume[i];
+    const Vec3 v = grains.v[i];
+    weights.at_point(grains.x[i], [&](std::size_t p, double w) {
+      out.density[p] += m * w;
+      out.number_density[p] += w;
+      out.volume_fraction[p] += volume * w;
+      for (int a = 0; a < 3; ++a) out.momentum[3 * p + a] += m * v[a] * w;
+      add_outer(&out.kinetic_stress[9 * p], v, v, m * w);
+      out.kinetic_energy[p] += 0.5 * m * norm2(v) * w;
+      out.coordination[p] += contact_count[i] * w;
+      for (int k = 0; k < 9; ++k) out.fabric[9 * p + k] += volume * normals[9 * i + k] * w;
+    });
+  }
+  // The contacts: the branch from b (or the wall's contact point) to a's centre.
+  for (const CgContact& c : contacts) {
+    const Vec3 from = grains.x[static_cast<std::size_t>(c.a)] - c.branch;
+    weights.along(from, c.branch, [&](std::size_t p, double w) {
+      add_outer(&out.contact_stress[9 * p], c.force, c.branch, w);
+    });
+    weights.at_point(c.point, [&](std::size_t p, double w) {
+      out.elastic_energy[p] += c.elastic * w;
+      if (c.b < 0)
+        for (int a = 0; a < 3; ++a) out.wall_force[3 * p + a] += c.force[a] * w;
+    });
+  }
+  // Derived fields: V, the fluctuations' stress sum m v v phi - rho V V, T, Z.
+  for (std::size_t p = 0; p < points; ++p) {
+    const double rho = out.density[p];
+    Vec3 velocity;
+    if (rho > 0.0)
+      for (int a = 0; a < 3; ++a) velocity[a] = out.momentum[3 * p + a] / rho;
+    for (int a = 0; a < 3; ++a) out.velocity[3 * p + a] = velocity[a];
+    add_outer(&out.kinetic_stress[9 * p], velocity, velocity, -rho);
+    for (int k = 0; k < 9; ++k)
+      out.stress[9 * p + k] = out.kinetic_stress[9 * p + k] + out.contact_stress[9 * p + k];
+    const double* sk = &out.kinetic_stress[9 * p];
+    out.temperature[p] = rho > 0.0 ? (sk[0] + sk[4] + sk[8]) / (3.0 * rho) : 0.0;
+    const double number = out.number_density[p];
+    out.coordination[p] = number > 0.0 ? out.coordination[p] / number : 0.0;
+  }
+  return out;
+}
+
+} // namespace yuxi::analysis

@@ -1,0 +1,71 @@
+// Continuum fields from grains and contacts by coarse-graining (Goldhirsch, Granular Matter
+// 12:239, 2010; Weinhart, Thornton, Luding & Bokhove, Granular Matter 14:289, 2012): the
+// definitions, with their equations, are in docs/coarse-graining.md.
+//
+// Stresses are positive in compression (a pressure is positive), so that the momentum balance
+// reads d(rho V)/dt + div(rho V V) = -div(sigma) + rho g + t, with sigma = sigma_k + sigma_c the
+// kinetic and contact stresses and t the walls' force density. A tensor T is stored row-major,
+// T[3 a + b] = T_ab; for the contact stress T_ab = sum f_a b_b psi, the force's component a and
+// the branch's component b.
+#pragma once
+
+#include "analysis/cg_function.hpp"
+#include "analysis/cg_grid.hpp"
+#include "core/vec3.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace yuxi::analysis {
+
+// The grains (never wall particles: their contacts are walls' contacts).
+struct CgGrains {
+  std::span<const Vec3> x, v;     // positions (any periodic image), velocities
+  std::span<const double> mass;   // kg
+  std::span<const double> volume; // m^3 (4/3 pi r^3 for a sphere)
+};
+
+// One contact, once: grain a with grain b, or grain a with a wall (b = -1: a plane, mesh,
+// cylinder or wall particle).
+struct CgContact {
+  std::int64_t a = 0, b = -1; // indices into CgGrains
+  Vec3 force;                 // on a, N (on b: -force)
+  Vec3 branch;                // to a's centre from b's centre (the image a touches), or from the
+                              // contact point on a wall, m
+  Vec3 point;                 // the contact point, m
+  double elastic = 0.0;       // the contact's elastic energy, J
+};
+
+struct CgSettings {
+  CgKind kind = CgKind::gaussian;
+  double width = 0.0;  // w, m (bins: unused)
+  double cutoff = 0.0; // c, m (bins: unused)
+  CgGrid grid;
+};
+
+// The fields at every point of the grid (CgGrid::index order); vectors 3 and tensors 9 values a
+// point, one point after another.
+struct CgFields {
+  std::vector<double> density;         // rho = sum m_i phi_i, kg/m^3
+  std::vector<double> number_density;  // n = sum phi_i, 1/m^3
+  std::vector<double> volume_fraction; // nu = sum V_i phi_i
+  std::vector<double> momentum;        // rho V = sum m_i v_i phi_i, kg/(m^2 s)
+  std::vector<double> velocity;        // V = momentum / rho (0 where rho = 0), m/s
+  std::vector<double> kinetic_stress;  // sum m_i v'_i v'_i phi_i, v' = v_i - V, Pa
+  std::vector<double> contact_stress;  // sum over contacts f b psi, Pa
+  std::vector<double> stress;          // kinetic + contact, Pa
+  std::vector<double> wall_force;      // t = sum over wall contacts f phi(r - c), N/m^3
+  std::vector<double> temperature;     // tr(kinetic stress) / (3 rho), m^2/s^2
+  std::vector<double> coordination;    // sum z_i phi_i / n: contacts per grain
+  std::vector<double> fabric;          // sum V_i phi_i sum_c n_c n_c
+  std::vector<double> kinetic_energy;  // sum m_i v_i^2 / 2 phi_i, J/m^3
+  std::vector<double> elastic_energy;  // sum over contacts E phi(r - c), J/m^3
+};
+
+// The fields of `grains` and `contacts` on settings.grid. Throws std::invalid_argument for bad
+// settings (naming the setting) or inconsistent inputs.
+CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
+                      const CgSettings& settings);
+
+} // namespace yuxi::analysis

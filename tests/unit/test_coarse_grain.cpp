@@ -1,0 +1,256 @@
+// Coarse-graining held to what it must satisfy, not to its own output: the functions integrate
+// to one (independent quadrature), the line integral equals brute-force quadrature, the mass on
+// a grid that covers a periodic box is the grains' mass, and the fields of grains moving under
+// given forces satisfy the continuum balances of mass and momentum, d rho/dt + div(rho V) = 0
+// and d(rho V)/dt + div(rho V V + sigma) = t (docs/coarse-graining.md), by finite differences
+// in time and space of the fields themselves.
+#include "analysis/coarse_grain.hpp"
+#include "core/random.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace yuxi::analysis {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// Composite Simpson's rule of f on [a, b] with n (even) intervals.
+template <class F> double simpson(F f, double a, double b, int n) {
+  const double h = (b - a) / n;
+  double s = f(a) + f(b);
+  for (int k = 1; k < n; ++k) s += f(a + k * h) * (k % 2 ? 4.0 : 2.0);
+  return s * h / 3.0;
+}
+
+TEST(CoarseGrainFunction, IntegratesToOneInEveryDimension) {
+  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy})
+    for (int d = 1; d <= 3; ++d) {
+      const double w = 0.7, c = kind == CgKind::gaussian ? 2.5 * w : 3.0 * w;
+      const CgFunction phi(kind, w, c, d);
+      // The d-sphere's surface: 2 (d = 1), 2 pi r (d = 2), 4 pi r^2 (d = 3).
+      const double integral = simpson(
+          [&](double r) {
+            const double shell = d == 1 ? 2.0 : d == 2 ? 2.0 * pi * r : 4.0 * pi * r * r;
+            return phi.at(r * r) * shell;
+          },
+          0.0, c * (1.0 - 1e-15), 20000);
+      EXPECT_NEAR(integral, 1.0, 1e-9) << to_string(kind) << " in " << d << "-D";
+      EXPECT_EQ(phi.at(c * c * 1.0000001), 0.0);
+    }
+}
+
+TEST(CoarseGrainFunction, LineIntegralIsTheQuadratureOfTheFunction) {
+  Random random(7);
+  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy})
+    for (int d = 1; d <= 3; ++d) {
+      // (The Gaussian cut off where it is below round-off: Simpson's rule across a jump would
+      // not reach 1e-9.)
+      const double w = 0.5;
+      const CgFunction phi(kind, w, (kind == CgKind::gaussian ? 9.0 : 3.0) * w, d);
+      for (int trial = 0; trial < 50; ++trial) {
+        Vec3 q{random.uniform(-2, 2), random.uniform(-2, 2), random.uniform(-2, 2)};
+        Vec3 b{random.uniform(-2, 2), random.uniform(-2, 2), random.uniform(-2, 2)};
+        if (d < 3) q.z = b.z = 0.0;
+        if (d < 2) q.y = b.y = 0.0;
+        const double brute =
+            simpson([&](double s) { return phi.at(norm2(q - b * s)); }, 0.0, 1.0, 200000);
+        EXPECT_NEAR(phi.along(q, b), brute, 1e-9 * (1.0 + std::abs(brute)))
+            << to_string(kind) << " " << d << "-D, trial " << trial;
+      }
+    }
+}
+
+TEST(CoarseGrainFunction, RefusesImpossibleSettings) {
+  EXPECT_THROW(CgFunction(CgKind::gaussian, 0.0, 1.0, 3), std::invalid_argument);
+  EXPECT_THROW(CgFunction(CgKind::lucy, 1.0, -1.0, 3), std::invalid_argument);
+  EXPECT_THROW(CgFunction(CgKind::gaussian, 1.0, 3.0, 0), std::invalid_argument);
+  CgGrid grid{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {false, false, false}, {false, false, false}};
+  grid.hi.y = 0.0;
+  EXPECT_THROW(grid.check(), std::invalid_argument);
+  grid.hi.y = 1.0;
+  grid.averaged = {true, true, true};
+  EXPECT_THROW(grid.check(), std::invalid_argument);
+}
+
+// Random grains in the periodic box [0, 4)^3.
+struct Grains {
+  std::vector<Vec3> x, v;
+  std::vector<double> mass, volume;
+  CgGrains view() const { return {x, v, mass, volume}; }
+  double total_mass() const {
+    double m = 0.0;
+    for (const double mi : mass) m += mi;
+    return m;
+  }
+};
+Grains random_grains(int n, std::uint64_t seed) {
+  Random random(seed);
+  Grains g;
+  for (int i = 0; i < n; ++i) {
+    g.x.push_back({random.uniform(0, 4), random.uniform(0, 4), random.uniform(0, 4)});
+    g.v.push_back({random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)});
+    g.mass.push_back(random.uniform(0.5, 2.0));
+    g.volume.push_back(random.uniform(0.01, 0.05));
+  }
+  return g;
+}
+
+double grid_sum(const std::vector<double>& field, const CgGrid& grid) {
+  double s = 0.0;
+  for (const double f : field) s += f;
+  return s * grid.cell_volume();
+}
+
+TEST(CoarseGrain, MassOnABinGridOverAPeriodicBoxIsTheGrainsMass) {
+  const Grains g = random_grains(500, 1);
+  CgSettings s;
+  s.kind = CgKind::bins;
+  s.grid = {{0, 0, 0}, {4, 4, 4}, {5, 3, 4}, {false, false, false}, {true, true, true}};
+  const CgFields f = coarse_grain(g.view(), {}, s);
+  EXPECT_NEAR(grid_sum(f.density, s.grid), g.total_mass(), 1e-12 * g.total_mass());
+}
+
+TEST(CoarseGrain, MassOfAResolvedGaussianOverAPeriodicBoxIsTheGrainsMass) {
+  // A Gaussian cut off where it is below round-off, sampled at half its width: the grid's sum is
+  // its integral to round-off (the trapezoidal rule on a smooth periodic function).
+  const Grains g = random_grains(200, 2);
+  CgSettings s;
+  s.kind = CgKind::gaussian;
+  s.width = 0.4;
+  s.cutoff = 9.0 * s.width;
+  for (const auto& averaged :
+       {std::array<bool, 3>{true, true, false}, std::array<bool, 3>{false, true, false},
+        std::array<bool, 3>{false, false, false}}) {
+    s.grid = {{0, 0, 0}, {4, 4, 4}, {20, 20, 20}, averaged, {true, true, true}};
+    for (int a = 0; a < 3; ++a)
+      if (averaged[static_cast<std::size_t>(a)]) s.grid.n[static_cast<std::size_t>(a)] = 1;
+    const CgFields f = coarse_grain(g.view(), {}, s);
+    EXPECT_NEAR(grid_sum(f.density, s.grid), g.total_mass(), 1e-11 * g.total_mass())
+        << "dimension " << s.grid.dimension();
+  }
+}
+
+// Grains moving under constant forces (pair forces, equal and opposite, and wall forces): the
+// fields at one point, at t = -dt, 0, +dt, and at the six neighbours of the point a step h
+// away, for the balances' central differences.
+struct Moving {
+  Grains at_zero;
+  std::vector<Vec3> acceleration;
+  std::vector<CgContact> contacts;
+};
+
+Moving moving_grains() {
+  Random random(11);
+  Moving m;
+  m.at_zero = random_grains(40, 3);
+  for (Vec3& x : m.at_zero.x) x = x * 0.5 + Vec3{1, 1, 1}; // within [1, 3)^3
+  std::vector<Vec3> force(m.at_zero.x.size());
+  for (std::size_t i = 0; i < force.size(); ++i)
+    for (std::size_t j = i + 1; j < force.size(); ++j) {
+      const Vec3 branch = m.at_zero.x[i] - m.at_zero.x[j];
+      if (norm(branch) > 0.6) continue;
+      // Any force, friction-like (not along the branch) included.
+      const Vec3 f{random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)};
+      force[i] += f, force[j] -= f;
+      m.contacts.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), f, branch,
+                            m.at_zero.x[j] + branch * 0.5, 0.0});
+    }
+  for (std::size_t i = 0; i < 5; ++i) { // walls below five grains, their contact points 0.1 down
+    const Vec3 f{random.uniform(-0.3, 0.3), random.uniform(-0.3, 0.3), random.uniform(0.5, 1)};
+    const Vec3 point = m.at_zero.x[i] - Vec3{0, 0, 0.1};
+    force[i] += f;
+    m.contacts.push_back({static_cast<std::int64_t>(i), -1, f, m.at_zero.x[i] - point, point, 0.0});
+  }
+  for (std::size_t i = 0; i < force.size(); ++i)
+    m.acceleration.push_back(force[i] / m.at_zero.mass[i]);
+  return m;
+}
+
+// The grains at time t (exact motion under constant forces).
+Grains at_time(const Moving& m, double t) {
+  Grains g = m.at_zero;
+  for (std::size_t i = 0; i < g.x.size(); ++i) {
+    g.x[i] = m.at_zero.x[i] + m.at_zero.v[i] * t + m.acceleration[i] * (0.5 * t * t);
+    g.v[i] = m.at_zero.v[i] + m.acceleration[i] * t;
+  }
+  return g;
+}
+
+// The fields at one point: a grid of one point, the centre of [p - 1, p + 1].
+CgFields at_point(const Grains& g, std::span<const CgContact> contacts, CgKind kind,
+                  const Vec3& p) {
+  CgSettings s;
+  s.kind = kind;
+  s.width = 0.3;
+  s.cutoff = 3.0 * s.width;
+  s.grid = {p - Vec3{1, 1, 1},
+            p + Vec3{1, 1, 1},
+            {1, 1, 1},
+            {false, false, false},
+            {false, false, false}};
+  return coarse_grain(g.view(), contacts, s);
+}
+
+TEST(CoarseGrain, FieldsOfMovingGrainsSatisfyTheBalancesOfMassAndMomentum) {
+  const Moving m = moving_grains();
+  const double dt = 1e-4, h = 1e-4;
+  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy})
+    for (const Vec3 p : {Vec3{2.0, 2.0, 2.0}, Vec3{1.7, 2.2, 1.9}, Vec3{2.3, 1.6, 2.4}}) {
+      const Grains now = at_time(m, 0.0);
+      const CgFields later = at_point(at_time(m, dt), {}, kind, p);
+      const CgFields earlier = at_point(at_time(m, -dt), {}, kind, p);
+      const CgFields here = at_point(now, m.contacts, kind, p);
+      const double rho_rate = (later.density[0] - earlier.density[0]) / (2 * dt);
+      Vec3 momentum_rate;
+      for (int a = 0; a < 3; ++a)
+        momentum_rate[a] = (later.momentum[a] - earlier.momentum[a]) / (2 * dt);
+      // Divergences by central differences: div(rho V), and div of the momentum flux
+      // rho V V + sigma_k + sigma_c = sum m v v phi + sigma_c.
+      double mass_divergence = 0.0;
+      Vec3 flux_divergence;
+      for (int b = 0; b < 3; ++b) {
+        Vec3 step;
+        step[b] = h;
+        const CgFields plus = at_point(now, m.contacts, kind, p + step);
+        const CgFields minus = at_point(now, m.contacts, kind, p - step);
+        mass_divergence += (plus.momentum[b] - minus.momentum[b]) / (2 * h);
+        const auto flux = [&](const CgFields& f, int a) {
+          const Vec3 v{f.velocity[0], f.velocity[1], f.velocity[2]};
+          return f.density[0] * v[a] * v[b] + f.kinetic_stress[3 * a + b] +
+                 f.contact_stress[3 * a + b];
+        };
+        for (int a = 0; a < 3; ++a)
+          flux_divergence[a] += (flux(plus, a) - flux(minus, a)) / (2 * h);
+      }
+      const double scale = std::abs(rho_rate) + std::abs(mass_divergence) + 1.0;
+      EXPECT_NEAR(rho_rate + mass_divergence, 0.0, 1e-6 * scale) << to_string(kind);
+      for (int a = 0; a < 3; ++a) {
+        const double residual = momentum_rate[a] + flux_divergence[a] - here.wall_force[a];
+        const double size = std::abs(momentum_rate[a]) + std::abs(flux_divergence[a]) + 1.0;
+        EXPECT_NEAR(residual, 0.0, 1e-6 * size) << to_string(kind) << ", component " << a;
+      }
+    }
+}
+
+TEST(CoarseGrain, KineticStressIsTheFluctuationsAndTemperatureItsTrace) {
+  // Two grains of one mass with opposite velocities at one place: V = 0, and the kinetic stress
+  // at their place is m (v v + v v) phi; T = |v|^2 / 3.
+  Grains g;
+  g.x = {{1, 1, 1}, {1, 1, 1}};
+  g.v = {{0.3, -0.4, 1.2}, {-0.3, 0.4, -1.2}};
+  g.mass = {2.0, 2.0};
+  g.volume = {0.1, 0.1};
+  const CgFields f = at_point(g, {}, CgKind::gaussian, {1, 1, 1});
+  const double phi = CgFunction(CgKind::gaussian, 0.3, 0.9, 3).at(0.0);
+  EXPECT_NEAR(f.velocity[0], 0.0, 1e-15);
+  EXPECT_NEAR(f.kinetic_stress[0], 2 * 2.0 * 0.09 * phi, 1e-12 * phi);
+  EXPECT_NEAR(f.kinetic_stress[1], 2 * 2.0 * (0.3 * -0.4) * phi, 1e-12 * phi);
+  EXPECT_NEAR(f.temperature[0], (0.09 + 0.16 + 1.44) / 3.0, 1e-12);
+}
+
+} // namespace
+} // namespace yuxi::analysis
