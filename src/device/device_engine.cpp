@@ -227,7 +227,7 @@ template <class T> void write_one(DeviceVector<T>& v, std::size_t k, const T& va
 
 // A contact that touches (a pair's or a grain-plane candidate's flag).
 struct IsOpen {
-  YUXI_HD bool operator()(std::uint8_t b) const { return b == 1; }
+  YUXI_HD bool operator()(std::uint8_t b) const { return (b & touches_now) != 0; }
 };
 // A pair whose contact PairForces evaluates or releases this step (FindTouches).
 struct IsFlagged {
@@ -536,7 +536,7 @@ public:
     e.gravitational = sums_(gravitational);
     e.grains = n_ == 0 ? 0 : thrust::reduce(on_device(), raw(grain), last(grain), std::uint32_t{0});
     const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
-      return open.empty() ? 0 : thrust::count(on_device(), raw(open), last(open), std::uint8_t{1});
+      return open.empty() ? 0 : thrust::count_if(on_device(), raw(open), last(open), IsOpen{});
     };
     e.contacts = touching(open_) + touching(plane_open_);
     e.elastic = sums_(elastic_, flagged_) + sums_(plane_elastic_);
@@ -611,7 +611,7 @@ public:
            bytes(x_rest_) + bytes(motion_) + bytes(wall_work_) + bytes(kind_) + bytes(material_) +
            bytes(cell_) + bytes(order_) + bytes(cell_start_) + bytes(count_) + bytes(row_start_) +
            bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
-           bytes(reverse_pair_) + bytes(state_) + bytes(open_) + bytes(slot_) + bytes(touch_pair_) +
+           bytes(reverse_pair_) + bytes(carried_) + bytes(states_) + bytes(open_) + bytes(slot_) + bytes(touch_pair_) +
            bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
            bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
            sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_) +
@@ -789,7 +789,7 @@ private:
     const std::uint32_t n_open = static_cast<std::uint32_t>(open_pairs.size());
     resize(keys, n_open);
     resize(stashed, n_open);
-    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(state_), raw(open_pairs),
+    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(carried_), raw(slot_), raw(open_pairs),
                                                raw(keys), raw(stashed)});
     sort_stash(keys, stashed);
   }
@@ -854,10 +854,12 @@ private:
                         thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
-    // 5. Per-pair room, and the open contacts' states back in their new pairs.
-    resize_all(total, state_, open_, slot_);
+    // 5. Per-pair room, and the open contacts back in their new pairs: their states in the
+    // stash's slots, where the next evaluation carries them from (CarryState).
+    resize_all(total, open_, slot_);
+    make_room(carried_, n_stashed);
     for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
-                                                n_stashed, raw(state_), raw(open_)});
+                                                n_stashed, raw(carried_), raw(slot_), raw(open_)});
 
     // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
     DeviceVector<std::uint32_t> plane_count(n_);
@@ -881,21 +883,25 @@ private:
   }
 
   void compute_forces(double dt) {
-    // The pairs that touch or have just come apart, gathered (FindTouches), then their laws.
+    // The pairs that touch or have just come apart, gathered (FindTouches), their states carried
+    // into their new slots, then their laws.
     const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
     for_each_index(pairs, FindTouches{view(), pair_list(), box_, raw(open_)});
     flagged_ = pairs == 0 ? 0
                           : static_cast<std::uint32_t>(thrust::count_if(on_device(), raw(open_),
                                                                         last(open_), IsFlagged{}));
-    make_room_all(flagged_, touch_pair_, force_, torque_i_, torque_j_, elastic_, relaxation_,
-                  dissipated_, wall_work_);
+    make_room_all(flagged_, touch_pair_, states_, force_, torque_i_, torque_j_, elastic_,
+                  relaxation_, dissipated_, wall_work_);
     if (flagged_ > 0)
       thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                       thrust::counting_iterator<std::uint32_t>(pairs), raw(open_), raw(touch_pair_),
                       IsFlagged{});
+    for_each_index(flagged_, CarryState<Model>{raw(open_), raw(touch_pair_), raw(carried_),
+                                               raw(states_), raw(slot_)});
     for_each_index(flagged_, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_),
-                                               n_materials_, dt, raw(state_), raw(open_),
-                                               raw(touch_pair_), raw(slot_), pair_output()});
+                                               n_materials_, dt, raw(states_), raw(open_),
+                                               raw(touch_pair_), pair_output()});
+    carried_.swap(states_); // this evaluation's states, for the next
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
                    PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
                                       raw(coeffs_), n_materials_, dt, raw(plane_state_),
@@ -1003,7 +1009,7 @@ private:
   DeviceVector<std::uint32_t> cell_, order_, cell_start_, count_;
   DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
   DeviceVector<std::uint8_t> image_;
-  DeviceVector<State> state_;
+  DeviceVector<State> carried_, states_; // per slot: the last evaluation's, this one's
   DeviceVector<std::uint8_t> open_;        // per pair: FindTouches's flag
   DeviceVector<std::uint32_t> slot_;       // per pair: its slot among the flagged
   DeviceVector<std::uint32_t> touch_pair_; // the flagged pairs, in order

@@ -201,41 +201,49 @@ YUXI_HD inline std::uint32_t find_key(const std::uint64_t* keys, std::uint32_t n
 template <class Model> struct StashContact {
   Particles p;
   PairList list;
-  const typename Model::State* state;
+  const typename Model::State* state; // per slot (the contacts' states, CarryState)
+  const std::uint32_t* slot;          // per pair
   const std::uint32_t* open_pairs;
   std::uint64_t* key;
   typename Model::State* stashed;
   YUXI_HD void operator()(std::uint32_t k) const {
     const std::uint32_t pair = open_pairs[k];
     const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
+    const typename Model::State& s = state[slot[pair]];
     key[k] = contact_key(gi, gj);
-    stashed[k] = gi < gj ? state[pair] : state[pair].mirrored();
+    stashed[k] = gi < gj ? s : s.mirrored();
   }
 };
 
-// After a list build: each pair takes its stashed state back (binary search on the sorted keys).
+// After a list build: each pair finds its stashed contact (binary search on the sorted keys).
+// A found one is open and takes the stash's slot: its state goes there, as the pair sees it.
 template <class Model> struct RestoreContact {
   Particles p;
   PairList list;
   const std::uint64_t* key;
   const typename Model::State* stashed;
   std::uint32_t n_stashed;
-  typename Model::State* state;
+  typename Model::State* state; // per slot
+  std::uint32_t* slot;          // per pair
   std::uint8_t* open;
   YUXI_HD void operator()(std::uint32_t pair) const {
     const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
     const std::uint32_t at = find_key(key, n_stashed, contact_key(gi, gj));
     const bool found = at < n_stashed;
     open[pair] = found ? 1 : 0;
-    state[pair] =
-        !found ? typename Model::State{} : (gi < gj ? stashed[at] : stashed[at].mirrored());
+    if (!found) return;
+    slot[pair] = at;
+    state[at] = gi < gj ? stashed[at] : stashed[at].mirrored();
   }
 };
 
-// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep): a pair's
-// flag becomes 1 where it overlaps, 2 where it touched until now and has come apart (PairForces
-// releases its springs), 0 otherwise. The flagged pairs are then gathered into one list, so that
-// the laws run on full warps: most listed pairs do not touch (83 % on the chute).
+// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep). A pair's
+// flag holds two bits: `touches_now` (it overlaps) and `touched_before` (it overlapped at the last
+// evaluation, or its contact came back at a list build). A pair with either is flagged: the
+// flagged pairs are gathered into one list, so that the laws run on full warps (most listed
+// pairs do not touch: 83 % on the chute), and only they have a state (CarryState). A pair that
+// touched and does not touch any more releases its springs (PairForces).
+constexpr std::uint8_t touches_now = 1, touched_before = 2;
 struct FindTouches {
   Particles p;
   PairList list;
@@ -245,7 +253,25 @@ struct FindTouches {
     const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
     const double touch = p.radius[i] + p.radius[j];
     const bool overlaps = norm2(separation(p.x[i], p.x[j], list.image[pair], box)) < touch * touch;
-    open[pair] = overlaps ? 1 : open[pair] == 1 ? 2 : 0;
+    open[pair] = static_cast<std::uint8_t>((overlaps ? touches_now : 0) |
+                                           ((open[pair] & touches_now) ? touched_before : 0));
+  }
+};
+
+// Each flagged pair's state for this step, in its slot c: the state it had at its last slot
+// where it touched then, a fresh one otherwise; the pair learns its new slot. States live in
+// slots only, two arrays of them in turn (the last evaluation's, this one's), so that a pair
+// that does not touch holds none.
+template <class Model> struct CarryState {
+  const std::uint8_t* open;
+  const std::uint32_t* touch_pair;
+  const typename Model::State* carried; // per slot of the last evaluation
+  typename Model::State* state;         // per slot of this one
+  std::uint32_t* slot;                  // per pair
+  YUXI_HD void operator()(std::uint32_t c) const {
+    const std::uint32_t pair = touch_pair[c];
+    state[c] = (open[pair] & touched_before) ? carried[slot[pair]] : typename Model::State{};
+    slot[pair] = c;
   }
 };
 
@@ -261,9 +287,9 @@ struct PairOutput {
   double* wall_work;  // this step, by a moving wall particle on its partner
 };
 
-// The contact law on each flagged pair (contact_forces.hpp's sweep and compute_pairs): a pair
-// that overlaps is evaluated, one that has come apart releases what its springs held. Each pair
-// learns its slot (`slot`), where SumForces finds its force.
+// The contact law on each flagged pair (contact_forces.hpp's sweep and compute_pairs), in its
+// slot c: a pair that overlaps is evaluated, one that has come apart releases what its springs
+// held.
 template <class Model> struct PairForces {
   Particles p;
   PairList list;
@@ -271,30 +297,28 @@ template <class Model> struct PairForces {
   const typename Model::Coeffs* coeffs; // per material pair, n_materials^2
   std::uint32_t n_materials;
   double dt;
-  typename Model::State* state;
+  typename Model::State* state; // per slot
   const std::uint8_t* open;
   const std::uint32_t* touch_pair;
-  std::uint32_t* slot;
   PairOutput out;
 
   YUXI_HD void operator()(std::uint32_t c) const {
     const std::uint32_t pair = touch_pair[c];
     const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
-    slot[pair] = c;
     const typename Model::Coeffs& k = coeffs[p.material[i] * n_materials + p.material[j]];
     ContactResult r;
     double released = 0.0, work = 0.0;
-    if (open[pair] == 1) {
+    if (open[pair] & touches_now) {
       const Vec3 d = separation(p.x[i], p.x[j], list.image[pair], box);
       const ContactGeometry g = pair_geometry(d, norm2(d), p.radius[i], p.radius[j], p.v[i], p.v[j],
                                               p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
-      r = Model::evaluate(g, k, state[pair]);
+      r = Model::evaluate(g, k, state[c]);
       // Work of a wall particle's prescribed motion (contact_forces.hpp, book_wall_work).
       if (p.kind[j] == Kind::wall) work += dot(r.force, p.v[j]) * dt;
       if (p.kind[i] == Kind::wall) work -= dot(r.force, p.v[i]) * dt;
     } else {
-      released = Model::release(k, state[pair]);
-      state[pair] = typename Model::State{};
+      released = Model::release(k, state[c]);
+      state[c] = typename Model::State{};
     }
     out.force[c] = r.force;
     out.torque_i[c] = r.torque_i;
@@ -457,7 +481,7 @@ struct SumForces {
   Particles p;
   PairList list;
   PairOutput out;
-  const std::uint8_t* open;         // 1 for the pairs that touch this step (FindTouches)
+  const std::uint8_t* open;         // FindTouches's flags
   const std::uint32_t* slot;        // a flagged pair's slot in `out` (PairForces)
   const std::uint32_t* plane_start; // each particle's first grain-plane candidate
   PlaneOutput planes;
@@ -470,13 +494,13 @@ struct SumForces {
     }
     Vec3 f = gravity * p.mass[i], t;
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
-      if (open[k] != 1) continue;
+      if (!(open[k] & touches_now)) continue;
       f += out.force[slot[k]];
       t += out.torque_i[slot[k]];
     }
     for (std::uint32_t k = list.reverse_start[i]; k < list.reverse_start[i + 1]; ++k) {
       const std::uint32_t pair = list.reverse_pair[k];
-      if (open[pair] != 1) continue;
+      if (!(open[pair] & touches_now)) continue;
       f -= out.force[slot[pair]];
       t += out.torque_j[slot[pair]];
     }
