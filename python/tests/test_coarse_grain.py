@@ -111,3 +111,35 @@ def test_arrays_saved_from_a_run(tmp_path):
     # The branch from x = 1.0 to 1.8 lies in cells [0, 1) (none), [1, 2) (all): f b / V_cell.
     assert f["contact_stress"][:, 0, 0] == pytest.approx([0.0, 2.0 * 0.8 / 4.0, 0.0])
     assert f["coordination"][1] == pytest.approx(1.0)
+
+
+def test_a_bed_at_rest_carries_the_weight_above(box_scene, tmp_path):
+    """343 grains settled between smooth frictionless side walls (no tangential spring and no
+    tangential dashpot: the linear law damps sliding even at mu = 0): at rest, the momentum
+    balance is d sigma_zz / dz = -rho g, so sigma_zz(z) is the weight above, g times the
+    integral of the density above z. Checked inside the bed, a cutoff above the floor and
+    below the surface's fall-off; and the floor carries the grains' weight."""
+    box_scene["contact"]["pair"][1].update(mu_s=0.0, mu_d=0.0, gamma_t=0.0)
+    for pair in box_scene["contact"]["pair"]:
+        pair["gamma_n"] = 200.0
+    box_scene["run"]["t_end"] = 6.0
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "bed", progress=False)
+    sim.run()
+    books = sim.energies()
+    assert books["translational"] < 0.01 * books["elastic"]  # at rest
+    sim.record_contacts(True)
+    sim.step()
+    _, mass = _grains(sim)
+    g = 10.0
+    floor = sim.wall_loads()["box z lo"]["force"][2]
+    assert -floor == pytest.approx(mass.sum() * g, rel=0.01)
+    f = yuxi.coarse_grain(sim, width=0.5, average="xy", n=(1, 1, 96))
+    z, rho, h = f["z"], f["density"], f["z"][1] - f["z"][0]
+    weight_above = g * (np.cumsum(rho[::-1])[::-1] - rho / 2) * h
+    inside = (z > 1.5) & (z < 4.0)
+    assert inside.sum() > 15
+    assert np.allclose(f["stress"][inside, 2, 2], weight_above[inside], rtol=0.01)
+    # Side walls without friction carry no weight.
+    for name in ("box x lo", "box x hi", "box y lo", "box y hi"):
+        assert abs(sim.wall_loads()[name]["force"][2]) < 1e-9 * mass.sum() * g
+    sim.close()
