@@ -85,19 +85,20 @@ CgFunction::CgFunction(CgKind kind, double width, double cutoff, int dimension)
                              : 105.0 / (16.0 * pi * c * c * c);
     return;
   }
-  // The truncated Gaussian's integral over the d-ball of radius c.
+  // The truncated Gaussian's integral over the d-ball of radius c, less the shift's.
   const double a = c / (std::numbers::sqrt2 * w);
-  const double integral = dimension == 1 ? std::sqrt(2.0 * pi) * w * std::erf(a)
-                          : dimension == 2
-                              ? 2.0 * pi * w * w * -std::expm1(-a * a)
-                              : std::pow(2.0 * pi, 1.5) * w * w * w *
-                                    (std::erf(a) - 2.0 / std::sqrt(pi) * a * std::exp(-a * a));
-  norm_ = 1.0 / integral;
+  shift_ = std::exp(-a * a);
+  double gaussian = std::pow(2.0 * pi, 1.5) * w * w * w *
+                    (std::erf(a) - 2.0 / std::sqrt(pi) * a * std::exp(-a * a));
+  double ball = 4.0 / 3.0 * pi * c * c * c;
+  if (dimension == 1) gaussian = std::sqrt(2.0 * pi) * w * std::erf(a), ball = 2.0 * c;
+  if (dimension == 2) gaussian = 2.0 * pi * w * w * -std::expm1(-a * a), ball = pi * c * c;
+  norm_ = 1.0 / (gaussian - shift_ * ball);
 }
 
 double CgFunction::at(double r2) const {
   if (!(r2 < cutoff_ * cutoff_)) return 0.0;
-  if (kind_ == CgKind::gaussian) return norm_ * std::exp(-r2 / (2.0 * width_ * width_));
+  if (kind_ == CgKind::gaussian) return norm_ * (std::exp(-r2 / (2.0 * width_ * width_)) - shift_);
   const double u = std::sqrt(r2) / cutoff_, v = 1.0 - u;
   return norm_ * (1.0 + 3.0 * u) * v * v * v;
 }
@@ -116,8 +117,10 @@ double CgFunction::along(const Vec3& q, const Vec3& b) const {
   if (!(s1 > s0)) return 0.0;
   if (kind_ == CgKind::gaussian) {
     const double scale = std::numbers::sqrt2 * width_;
-    return norm_ * std::exp(-across2 / (scale * scale)) * scale * std::sqrt(pi) / 2.0 / length *
-           erf_difference((s0 * length - t0) / scale, (s1 * length - t0) / scale);
+    const double full = std::exp(-across2 / (scale * scale)) * scale * std::sqrt(pi) / 2.0 /
+                        length *
+                        erf_difference((s0 * length - t0) / scale, (s1 * length - t0) / scale);
+    return norm_ * (full - shift_ * (s1 - s0));
   }
   // Lucy: on each side of the closest approach the integrand is smooth.
   const GaussLegendre& rule = gauss_legendre();

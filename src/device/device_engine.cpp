@@ -611,13 +611,14 @@ public:
            bytes(x_rest_) + bytes(motion_) + bytes(wall_work_) + bytes(kind_) + bytes(material_) +
            bytes(cell_) + bytes(order_) + bytes(cell_start_) + bytes(count_) + bytes(row_start_) +
            bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
-           bytes(reverse_pair_) + bytes(carried_) + bytes(states_) + bytes(open_) + bytes(slot_) + bytes(touch_pair_) +
-           bytes(force_) + bytes(torque_i_) + bytes(torque_j_) + bytes(elastic_) +
-           bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) + bytes(moved_far_) +
-           sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_) +
-           bytes(plane_start_) + bytes(plane_row_) + bytes(plane_of_) + bytes(plane_state_) +
-           bytes(plane_open_) + bytes(plane_force_) + bytes(plane_torque_) + bytes(plane_elastic_) +
-           bytes(plane_relaxation_) + bytes(plane_dissipated_) + bytes(plane_work_);
+           bytes(reverse_pair_) + bytes(carried_) + bytes(states_) + bytes(open_) + bytes(slot_) +
+           bytes(touch_pair_) + bytes(force_) + bytes(torque_i_) + bytes(torque_j_) +
+           bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) +
+           bytes(moved_far_) + sums_.device_bytes() + step_sums_.device_bytes() +
+           scratch().bytes() + bytes(coeffs_) + bytes(plane_start_) + bytes(plane_row_) +
+           bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) + bytes(plane_force_) +
+           bytes(plane_torque_) + bytes(plane_elastic_) + bytes(plane_relaxation_) +
+           bytes(plane_dissipated_) + bytes(plane_work_);
   }
 
   std::string device_name() const override {
@@ -789,8 +790,8 @@ private:
     const std::uint32_t n_open = static_cast<std::uint32_t>(open_pairs.size());
     resize(keys, n_open);
     resize(stashed, n_open);
-    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(carried_), raw(slot_), raw(open_pairs),
-                                               raw(keys), raw(stashed)});
+    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(carried_), raw(slot_),
+                                               raw(open_pairs), raw(keys), raw(stashed)});
     sort_stash(keys, stashed);
   }
 
@@ -898,9 +899,9 @@ private:
                       IsFlagged{});
     for_each_index(flagged_, CarryState<Model>{raw(open_), raw(touch_pair_), raw(carried_),
                                                raw(states_), raw(slot_)});
-    for_each_index(flagged_, PairForces<Model>{view(), pair_list(), box_, raw(coeffs_),
-                                               n_materials_, dt, raw(states_), raw(open_),
-                                               raw(touch_pair_), pair_output()});
+    for_each_index(flagged_,
+                   PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_, dt,
+                                     raw(states_), raw(open_), raw(touch_pair_), pair_output()});
     carried_.swap(states_); // this evaluation's states, for the next
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
                    PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
@@ -1009,7 +1010,7 @@ private:
   DeviceVector<std::uint32_t> cell_, order_, cell_start_, count_;
   DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
   DeviceVector<std::uint8_t> image_;
-  DeviceVector<State> carried_, states_; // per slot: the last evaluation's, this one's
+  DeviceVector<State> carried_, states_;   // per slot: the last evaluation's, this one's
   DeviceVector<std::uint8_t> open_;        // per pair: FindTouches's flag
   DeviceVector<std::uint32_t> slot_;       // per pair: its slot among the flagged
   DeviceVector<std::uint32_t> touch_pair_; // the flagged pairs, in order
