@@ -112,7 +112,13 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
         scalars(d["elastic"].cast<Doubles>(), count, "contacts' elastic");
     for (py::ssize_t k = 0; k < count; ++k) {
       const auto s = static_cast<std::size_t>(k);
-      list.push_back({a.data()[k], b.data()[k], force[s], branch[s], point[s], elastic[s]});
+      const std::int64_t ia = a.data()[k], ib = b.data()[k];
+      if (ia < 0 || ia >= grains || ib >= grains)
+        throw std::invalid_argument("coarse_grain: contact " + std::to_string(k) +
+                                    " names a grain outside 0 to " + std::to_string(grains - 1));
+      const bool wall = ib < 0;
+      list.push_back({ia, wall, wall ? 0.0 : volumes[static_cast<std::size_t>(ib)], force[s],
+                      branch[s], point[s], elastic[s]});
     }
   }
 

@@ -165,8 +165,28 @@ void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
 
 } // namespace
 
-CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
-                      const CgSettings& settings) {
+namespace {
+// Where each sum sits among a point's cg_sums_per_point.
+struct Sum {
+  enum : std::size_t {
+    mass = 0,            // sum m phi
+    number = 1,          // sum phi
+    volume = 2,          // sum V phi
+    momentum = 3,        // sum m v phi (3)
+    momentum_flux = 6,   // sum m v v phi (9)
+    contact_stress = 15, // sum f b psi (9)
+    wall_force = 24,     // sum over wall contacts f phi (3)
+    contacts = 27,       // sum over contacts (phi_a + phi_b): sum z phi
+    fabric = 28,         // sum over contacts (V_a phi_a + V_b phi_b) n n (9)
+    kinetic = 37,        // sum m v^2 / 2 phi
+    elastic = 38,        // sum over contacts E phi(r - c)
+  };
+};
+} // namespace
+static_assert(cg_sums_per_point == Sum::elastic + 1);
+
+std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const CgContact> contacts,
+                                      const CgSettings& settings) {
   settings.grid.check();
   const std::size_t n_grains = grains.x.size();
   if (grains.v.size() != n_grains || grains.mass.size() != n_grains ||
@@ -174,7 +194,56 @@ CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contact
     throw std::invalid_argument("coarse-graining: the grains' positions, velocities, masses and "
                                 "volumes differ in number");
   const Weights weights(settings);
-  const std::size_t points = settings.grid.size();
+  std::vector<double> sums(cg_sums_per_point * settings.grid.size(), 0.0);
+  const auto at = [&](std::size_t p, std::size_t s) { return &sums[cg_sums_per_point * p + s]; };
+
+  for (std::size_t i = 0; i < n_grains; ++i) {
+    const double m = grains.mass[i], volume = grains.volume[i];
+    const Vec3 v = grains.v[i];
+    weights.at_point(grains.x[i], [&](std::size_t p, double w) {
+      *at(p, Sum::mass) += m * w;
+      *at(p, Sum::number) += w;
+      *at(p, Sum::volume) += volume * w;
+      for (int a = 0; a < 3; ++a) at(p, Sum::momentum)[a] += m * v[a] * w;
+      add_outer(at(p, Sum::momentum_flux), v, v, m * w);
+      *at(p, Sum::kinetic) += 0.5 * m * norm2(v) * w;
+    });
+  }
+  for (const CgContact& c : contacts) {
+    if (c.a < 0 || static_cast<std::size_t>(c.a) >= n_grains)
+      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(c.a) +
+                                  " of " + std::to_string(n_grains));
+    const Vec3 x_a = grains.x[static_cast<std::size_t>(c.a)], from = x_a - c.branch;
+    const double length = norm(c.branch);
+    const Vec3 unit = length > 0.0 ? c.branch / length : Vec3{};
+    // The branch, from b's centre or the wall's contact point to a's centre.
+    weights.along(from, c.branch, [&](std::size_t p, double w) {
+      add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
+    });
+    weights.at_point(c.point, [&](std::size_t p, double w) {
+      *at(p, Sum::elastic) += c.elastic * w;
+      if (c.wall)
+        for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
+    });
+    // The contact counts for each grain it joins, where that grain stands.
+    const double volume_a = grains.volume[static_cast<std::size_t>(c.a)];
+    weights.at_point(x_a, [&](std::size_t p, double w) {
+      *at(p, Sum::contacts) += w;
+      add_outer(at(p, Sum::fabric), unit, unit, volume_a * w);
+    });
+    if (!c.wall)
+      weights.at_point(from, [&](std::size_t p, double w) {
+        *at(p, Sum::contacts) += w;
+        add_outer(at(p, Sum::fabric), unit, unit, c.volume_b * w);
+      });
+  }
+  return sums;
+}
+
+CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid) {
+  const std::size_t points = grid.size();
+  if (sums.size() != cg_sums_per_point * points)
+    throw std::invalid_argument("coarse-graining: the sums do not fit the grid");
   CgFields out;
   for (auto* scalar : {&out.density, &out.number_density, &out.volume_fraction, &out.temperature,
                        &out.coordination, &out.kinetic_energy, &out.elastic_energy})
@@ -183,69 +252,39 @@ CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contact
     vector->assign(3 * points, 0.0);
   for (auto* tensor : {&out.kinetic_stress, &out.contact_stress, &out.stress, &out.fabric})
     tensor->assign(9 * points, 0.0);
-
-  // Each grain's contacts: their number, and the sum of n n over them (n the unit branch).
-  std::vector<double> contact_count(n_grains, 0.0), normals(9 * n_grains, 0.0);
-  const auto count = [&](std::int64_t g, const Vec3& unit) {
-    if (g < 0) return;
-    if (static_cast<std::size_t>(g) >= n_grains)
-      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(g) +
-                                  " of " + std::to_string(n_grains));
-    contact_count[static_cast<std::size_t>(g)] += 1.0;
-    add_outer(&normals[9 * static_cast<std::size_t>(g)], unit, unit, 1.0);
-  };
-  for (const CgContact& c : contacts) {
-    const double length = norm(c.branch);
-    const Vec3 unit = length > 0.0 ? c.branch / length : Vec3{};
-    if (c.a < 0)
-      throw std::invalid_argument("coarse-graining: a contact's grain a must be a grain index");
-    count(c.a, unit);
-    count(c.b, unit);
-  }
-
-  // The grains: sum m v v phi is kept in the kinetic stress until V is known.
-  for (std::size_t i = 0; i < n_grains; ++i) {
-    const double m = grains.mass[i], volume = grains.volume[i];
-    const Vec3 v = grains.v[i];
-    weights.at_point(grains.x[i], [&](std::size_t p, double w) {
-      out.density[p] += m * w;
-      out.number_density[p] += w;
-      out.volume_fraction[p] += volume * w;
-      for (int a = 0; a < 3; ++a) out.momentum[3 * p + a] += m * v[a] * w;
-      add_outer(&out.kinetic_stress[9 * p], v, v, m * w);
-      out.kinetic_energy[p] += 0.5 * m * norm2(v) * w;
-      out.coordination[p] += contact_count[i] * w;
-      for (int k = 0; k < 9; ++k) out.fabric[9 * p + k] += volume * normals[9 * i + k] * w;
-    });
-  }
-  // The contacts: the branch from b (or the wall's contact point) to a's centre.
-  for (const CgContact& c : contacts) {
-    const Vec3 from = grains.x[static_cast<std::size_t>(c.a)] - c.branch;
-    weights.along(from, c.branch, [&](std::size_t p, double w) {
-      add_outer(&out.contact_stress[9 * p], c.force, c.branch, w);
-    });
-    weights.at_point(c.point, [&](std::size_t p, double w) {
-      out.elastic_energy[p] += c.elastic * w;
-      if (c.b < 0)
-        for (int a = 0; a < 3; ++a) out.wall_force[3 * p + a] += c.force[a] * w;
-    });
-  }
-  // Derived fields: V, the fluctuations' stress sum m v v phi - rho V V, T, Z.
   for (std::size_t p = 0; p < points; ++p) {
-    const double rho = out.density[p];
+    const double* s = &sums[cg_sums_per_point * p];
+    const double rho = s[Sum::mass], number = s[Sum::number];
+    out.density[p] = rho;
+    out.number_density[p] = number;
+    out.volume_fraction[p] = s[Sum::volume];
+    out.kinetic_energy[p] = s[Sum::kinetic];
+    out.elastic_energy[p] = s[Sum::elastic];
+    out.coordination[p] = number > 0.0 ? s[Sum::contacts] / number : 0.0;
     Vec3 velocity;
-    if (rho > 0.0)
-      for (int a = 0; a < 3; ++a) velocity[a] = out.momentum[3 * p + a] / rho;
-    for (int a = 0; a < 3; ++a) out.velocity[3 * p + a] = velocity[a];
-    add_outer(&out.kinetic_stress[9 * p], velocity, velocity, -rho);
-    for (int k = 0; k < 9; ++k)
-      out.stress[9 * p + k] = out.kinetic_stress[9 * p + k] + out.contact_stress[9 * p + k];
-    const double* sk = &out.kinetic_stress[9 * p];
-    out.temperature[p] = rho > 0.0 ? (sk[0] + sk[4] + sk[8]) / (3.0 * rho) : 0.0;
-    const double number = out.number_density[p];
-    out.coordination[p] = number > 0.0 ? out.coordination[p] / number : 0.0;
+    for (int a = 0; a < 3; ++a) {
+      out.momentum[3 * p + a] = s[Sum::momentum + a];
+      out.wall_force[3 * p + a] = s[Sum::wall_force + a];
+      if (rho > 0.0) velocity[a] = s[Sum::momentum + a] / rho;
+      out.velocity[3 * p + a] = velocity[a];
+    }
+    // The fluctuations' stress: sum m v v phi - rho V V.
+    double* kinetic = &out.kinetic_stress[9 * p];
+    for (int k = 0; k < 9; ++k) {
+      kinetic[k] = s[Sum::momentum_flux + k];
+      out.contact_stress[9 * p + k] = s[Sum::contact_stress + k];
+      out.fabric[9 * p + k] = s[Sum::fabric + k];
+    }
+    add_outer(kinetic, velocity, velocity, -rho);
+    for (int k = 0; k < 9; ++k) out.stress[9 * p + k] = kinetic[k] + s[Sum::contact_stress + k];
+    out.temperature[p] = rho > 0.0 ? (kinetic[0] + kinetic[4] + kinetic[8]) / (3.0 * rho) : 0.0;
   }
   return out;
+}
+
+CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
+                      const CgSettings& settings) {
+  return coarse_grain_fields(coarse_grain_sums(grains, contacts, settings), settings.grid);
 }
 
 } // namespace yuxi::analysis

@@ -26,15 +26,17 @@ struct CgGrains {
   std::span<const double> volume; // m^3 (4/3 pi r^3 for a sphere)
 };
 
-// One contact, once: grain a with grain b, or grain a with a wall (b = -1: a plane, mesh,
-// cylinder or wall particle).
+// One contact, once: grain a with another grain b (b may be another rank's: it stands at
+// x_a - branch), or grain a with a wall (a plane, mesh, cylinder or wall particle).
 struct CgContact {
-  std::int64_t a = 0, b = -1; // indices into CgGrains
-  Vec3 force;                 // on a, N (on b: -force)
-  Vec3 branch;                // to a's centre from b's centre (the image a touches), or from the
-                              // contact point on a wall, m
-  Vec3 point;                 // the contact point, m
-  double elastic = 0.0;       // the contact's elastic energy, J
+  std::int64_t a = 0;    // index into CgGrains
+  bool wall = false;     // with a wall; else with a grain b
+  double volume_b = 0.0; // b's volume (its share of the fabric), m^3
+  Vec3 force;            // on a, N (on b: -force)
+  Vec3 branch;           // to a's centre from b's centre (the image a touches), or from the
+                         // contact point on a wall, m
+  Vec3 point;            // the contact point, m
+  double elastic = 0.0;  // the contact's elastic energy, J
 };
 
 struct CgSettings {
@@ -63,8 +65,20 @@ struct CgFields {
   std::vector<double> elastic_energy;  // sum over contacts E phi(r - c), J/m^3
 };
 
-// The fields of `grains` and `contacts` on settings.grid. Throws std::invalid_argument for bad
+// Every field is made of sums over grains and contacts; the fields that divide (velocity,
+// temperature, coordination) or subtract (the kinetic stress's rho V V) are made from the sums
+// at the end. The sums of several parts (the ranks' grains and contacts, each contact on one
+// rank) add up to the sums of the whole: reduce them, then make the fields once.
+inline constexpr std::size_t cg_sums_per_point = 39;
+
+// The sums at every point (cg_sums_per_point a point). Throws std::invalid_argument for bad
 // settings (naming the setting) or inconsistent inputs.
+std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const CgContact> contacts,
+                                      const CgSettings& settings);
+// The fields from the (summed) sums on `grid`.
+CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid);
+
+// Both: the fields of `grains` and `contacts` on settings.grid.
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
                       const CgSettings& settings);
 

@@ -154,14 +154,15 @@ Moving moving_grains() {
       // Any force, friction-like (not along the branch) included.
       const Vec3 f{random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)};
       force[i] += f, force[j] -= f;
-      m.contacts.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), f, branch,
+      m.contacts.push_back({static_cast<std::int64_t>(i), false, m.at_zero.volume[j], f, branch,
                             m.at_zero.x[j] + branch * 0.5, 0.0});
     }
   for (std::size_t i = 0; i < 5; ++i) { // walls below five grains, their contact points 0.1 down
     const Vec3 f{random.uniform(-0.3, 0.3), random.uniform(-0.3, 0.3), random.uniform(0.5, 1)};
     const Vec3 point = m.at_zero.x[i] - Vec3{0, 0, 0.1};
     force[i] += f;
-    m.contacts.push_back({static_cast<std::int64_t>(i), -1, f, m.at_zero.x[i] - point, point, 0.0});
+    m.contacts.push_back(
+        {static_cast<std::int64_t>(i), true, 0.0, f, m.at_zero.x[i] - point, point, 0.0});
   }
   for (std::size_t i = 0; i < force.size(); ++i)
     m.acceleration.push_back(force[i] / m.at_zero.mass[i]);
@@ -248,6 +249,69 @@ TEST(CoarseGrain, KineticStressIsTheFluctuationsAndTemperatureItsTrace) {
   EXPECT_NEAR(f.kinetic_stress[0], 2 * 2.0 * 0.09 * phi, 1e-12 * phi);
   EXPECT_NEAR(f.kinetic_stress[1], 2 * 2.0 * (0.3 * -0.4) * phi, 1e-12 * phi);
   EXPECT_NEAR(f.temperature[0], (0.09 + 0.16 + 1.44) / 3.0, 1e-12);
+}
+
+} // namespace
+} // namespace yuxi::analysis
+
+namespace yuxi::analysis {
+namespace {
+
+TEST(CoarseGrain, SumsOfPartsAddUpToTheWhole) {
+  // The ranks' way: each part (its grains, its contacts, each contact once, a grain of another
+  // part standing at x_a - branch) adds its sums, and the fields come from the total.
+  const Moving m = moving_grains();
+  CgSettings s;
+  s.kind = CgKind::lucy;
+  s.width = 0.3;
+  s.cutoff = 0.9;
+  s.grid = {{0, 0, 0}, {4, 4, 4}, {8, 8, 8}, {false, false, false}, {false, false, false}};
+  const CgFields whole = coarse_grain(m.at_zero.view(), m.contacts, s);
+  std::vector<double> total(cg_sums_per_point * s.grid.size(), 0.0);
+  for (int part = 0; part < 2; ++part) {
+    Grains g;
+    std::vector<std::int64_t> index(m.at_zero.x.size(), -1);
+    for (std::size_t i = 0; i < m.at_zero.x.size(); ++i) {
+      if (static_cast<int>(i % 2) != part) continue;
+      index[i] = static_cast<std::int64_t>(g.x.size());
+      g.x.push_back(m.at_zero.x[i]);
+      g.v.push_back(m.at_zero.v[i]);
+      g.mass.push_back(m.at_zero.mass[i]);
+      g.volume.push_back(m.at_zero.volume[i]);
+    }
+    std::vector<CgContact> mine;
+    for (CgContact c : m.contacts) {
+      if (index[static_cast<std::size_t>(c.a)] < 0) continue;
+      c.a = index[static_cast<std::size_t>(c.a)];
+      mine.push_back(c);
+    }
+    const std::vector<double> sums = coarse_grain_sums(g.view(), mine, s);
+    for (std::size_t k = 0; k < total.size(); ++k) total[k] += sums[k];
+  }
+  const CgFields parts = coarse_grain_fields(total, s.grid);
+  for (std::size_t p = 0; p < s.grid.size(); ++p) {
+    EXPECT_NEAR(parts.density[p], whole.density[p], 1e-12 * (1 + whole.density[p]));
+    for (int k = 0; k < 9; ++k) {
+      EXPECT_NEAR(parts.stress[9 * p + k], whole.stress[9 * p + k],
+                  1e-10 * (1 + std::abs(whole.stress[9 * p + k])));
+      EXPECT_NEAR(parts.fabric[9 * p + k], whole.fabric[9 * p + k],
+                  1e-12 * (1 + std::abs(whole.fabric[9 * p + k])));
+    }
+    EXPECT_NEAR(parts.coordination[p], whole.coordination[p], 1e-12);
+  }
+}
+
+TEST(CoarseGrain, FabricTraceIsVolumeFractionTimesCoordination) {
+  // With grains of one volume V, tr F = sum over contacts V (phi_a + phi_b) = V n Z = nu Z.
+  Moving m = moving_grains();
+  for (double& v : m.at_zero.volume) v = 0.02;
+  for (CgContact& c : m.contacts) c.volume_b = c.wall ? 0.0 : 0.02;
+  for (const Vec3 p : {Vec3{2.0, 2.0, 2.0}, Vec3{1.6, 2.3, 2.1}}) {
+    const CgFields f = at_point(m.at_zero, m.contacts, CgKind::gaussian, p);
+    ASSERT_GT(f.coordination[0], 0.5);
+    EXPECT_NEAR(f.fabric[0] + f.fabric[4] + f.fabric[8], f.volume_fraction[0] * f.coordination[0],
+                1e-12 * f.volume_fraction[0] * f.coordination[0]);
+  }
 }
 
 } // namespace
