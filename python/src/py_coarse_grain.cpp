@@ -23,7 +23,6 @@ using analysis::CgKind;
 using analysis::CgSettings;
 
 using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Integers = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
 // The rows of a (n, 3) array as Vec3s; `name` in the error.
 std::vector<Vec3> vectors(const Doubles& a, py::ssize_t n, const std::string& name) {
@@ -86,40 +85,41 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
                       const Doubles& volume, const py::object& contacts,
                       const std::string& function, double width, std::optional<double> cutoff,
                       const Doubles& lo, const Doubles& hi, const std::vector<int>& n,
-                      const std::string& average, const std::string& periodic) {
+                      const std::string& average, const std::string& periodic,
+                      const py::object& reduce) {
   const py::ssize_t grains = x.ndim() == 2 ? x.shape(0) : -1;
   if (grains < 0) throw std::invalid_argument("coarse_grain: x must have shape (n, 3)");
   const std::vector<Vec3> xs = vectors(x, grains, "x"), vs = vectors(v, grains, "v");
   const std::vector<double> ms = scalars(mass, grains, "mass"),
                             volumes = scalars(volume, grains, "volume");
 
+  // Contacts as analysis::CgContact's fields (yuxi/coarse_graining.py makes them).
   std::vector<CgContact> list;
   if (!contacts.is_none()) {
     const py::dict d = contacts.cast<py::dict>();
-    for (const char* key : {"a", "b", "force", "branch", "point", "elastic"})
+    for (const char* key :
+         {"centre", "volume", "wall", "volume_b", "force", "branch", "point", "elastic"})
       if (!d.contains(key))
         throw std::invalid_argument(std::string("coarse_grain: contacts need the key '") + key +
-                                    "' (a, b, force, branch, point, elastic)");
-    const Integers a = d["a"].cast<Integers>(), b = d["b"].cast<Integers>();
-    const py::ssize_t count = a.ndim() == 1 ? a.shape(0) : -1;
-    if (count < 0 || b.ndim() != 1 || b.shape(0) != count)
-      throw std::invalid_argument("coarse_grain: contacts' a and b must be 1-D, of one length");
-    const std::vector<Vec3> force = vectors(d["force"].cast<Doubles>(), count, "contacts' force"),
+                                    "'");
+    const Doubles volume_a = d["volume"].cast<Doubles>();
+    const py::ssize_t count = volume_a.ndim() == 1 ? volume_a.shape(0) : -1;
+    if (count < 0) throw std::invalid_argument("coarse_grain: contacts' volume must be 1-D");
+    const std::vector<Vec3> centre =
+                                vectors(d["centre"].cast<Doubles>(), count, "contacts' centre"),
+                            force = vectors(d["force"].cast<Doubles>(), count, "contacts' force"),
                             branch =
                                 vectors(d["branch"].cast<Doubles>(), count, "contacts' branch"),
                             point = vectors(d["point"].cast<Doubles>(), count, "contacts' point");
-    const std::vector<double> elastic =
-        scalars(d["elastic"].cast<Doubles>(), count, "contacts' elastic");
-    for (py::ssize_t k = 0; k < count; ++k) {
-      const auto s = static_cast<std::size_t>(k);
-      const std::int64_t ia = a.data()[k], ib = b.data()[k];
-      if (ia < 0 || ia >= grains || ib >= grains)
-        throw std::invalid_argument("coarse_grain: contact " + std::to_string(k) +
-                                    " names a grain outside 0 to " + std::to_string(grains - 1));
-      const bool wall = ib < 0;
-      list.push_back({ia, wall, wall ? 0.0 : volumes[static_cast<std::size_t>(ib)], force[s],
-                      branch[s], point[s], elastic[s]});
-    }
+    const std::vector<double> va = scalars(volume_a, count, "contacts' volume"),
+                              vb = scalars(d["volume_b"].cast<Doubles>(), count,
+                                           "contacts' volume_b"),
+                              elastic =
+                                  scalars(d["elastic"].cast<Doubles>(), count, "contacts' elastic"),
+                              wall = scalars(d["wall"].cast<Doubles>(), count, "contacts' wall");
+    for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k)
+      list.push_back(
+          {centre[k], va[k], wall[k] != 0.0, vb[k], force[k], branch[k], point[k], elastic[k]});
   }
 
   CgSettings settings;
@@ -138,11 +138,17 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
   for (std::size_t a = 0; a < 3; ++a) settings.grid.n[a] = settings.grid.averaged[a] ? 1 : n[a];
 
   const analysis::CgGrains g{xs, vs, ms, volumes};
-  CgFields f;
+  std::vector<double> sums;
   {
     py::gil_scoped_release release;
-    f = analysis::coarse_grain(g, list, settings);
+    sums = analysis::coarse_grain_sums(g, list, settings);
   }
+  // The ranks' sums added up (reduce sums a numpy array over the ranks, in place): every rank
+  // then makes the fields of the whole.
+  if (!reduce.is_none())
+    reduce(py::array_t<double>(static_cast<py::ssize_t>(sums.size()), sums.data(),
+                               py::capsule(sums.data(), [](void*) {})));
+  const CgFields f = analysis::coarse_grain_fields(sums, settings.grid);
   const analysis::CgGrid& grid = settings.grid;
   py::dict out;
   static constexpr const char* axis_names[] = {"x", "y", "z"};
@@ -174,7 +180,8 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
 
 void bind_coarse_grain(py::module_& m) {
   m.def("coarse_grain", &coarse_grain, "x"_a, "v"_a, "mass"_a, "volume"_a, "contacts"_a,
-        "function"_a, "width"_a, "cutoff"_a, "lo"_a, "hi"_a, "n"_a, "average"_a, "periodic"_a);
+        "function"_a, "width"_a, "cutoff"_a, "lo"_a, "hi"_a, "n"_a, "average"_a, "periodic"_a,
+        "reduce"_a = py::none());
 }
 
 } // namespace yuxi::python

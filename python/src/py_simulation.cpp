@@ -558,7 +558,14 @@ void bind_simulation(py::module_& m) {
                                         "them)");
              s.sim().record_contacts(on);
            })
-      .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); });
+      .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); })
+      .def("_cg_contacts", [](PySimulation& s) { return cg_contact_arrays(s.sim()); })
+      .def("_sum_over_ranks", [](PySimulation& s, py::array_t<double> values) {
+        // In place, over the ranks (collective): coarse-graining's sums.
+        s.collective("coarse_grain()");
+        auto v = values.mutable_unchecked<1>();
+        s.sim().comm().sum(v.mutable_data(0), static_cast<int>(v.shape(0)));
+      });
 }
 
 } // namespace yuxi::python

@@ -7,6 +7,7 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -74,3 +75,20 @@ def test_a_collective_call_on_one_rank_raises_after_the_timeout(tmp_path):
     assert "rank 0 waited 1 s" in report["raised"]
     assert "the ranks are out of step since energies() timed out" in report["after"]
     assert 1.0 <= report["waited"] < 30.0
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_coarse_grained_fields_do_not_depend_on_the_ranks(tmp_path):
+    """Each rank adds the sums of its grains and of its contacts (each contact on one rank), the
+    sums are added over the ranks, and every rank makes the fields of the whole: 1, 2 and 4
+    ranks give the same fields, to the runs' own agreement (the trajectories differ in the last
+    digits with the decomposition's summation order)."""
+    runs = [run(k, tmp_path / f"cg{k}", "mpi_coarse_grain.py") for k in (1, 2, 4)]
+    assert [r["ranks"] for r in runs] == [1, 2, 4]
+    one = runs[0]["fields"]
+    assert np.sum(one["grid_density"]) > 0 and np.abs(one["profile_stress"]).max() > 0
+    for other in runs[1:]:
+        assert other["ranks_differ_by"] == 0.0
+        for key, value in one.items():
+            a, b = np.asarray(value), np.asarray(other["fields"][key])
+            assert np.allclose(b, a, rtol=1e-6, atol=1e-9 * np.abs(a).max()), key

@@ -16,7 +16,8 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     """Coarse-grained fields of a simulation's grains now, or of arrays saved from one.
 
     ``source`` is a :class:`yuxi.Simulation` (its grains, and the contacts of its last step: call
-    ``sim.record_contacts(True)`` before that step) or a dict of arrays: ``x``, ``v`` (n, 3),
+    ``sim.record_contacts(True)`` before that step; on several ranks a collective call, every
+    rank getting the fields of the whole) or a dict of arrays: ``x``, ``v`` (n, 3),
     ``mass`` (n,), ``radius`` or ``volume`` (n,), and optionally ``contacts`` (a dict with ``a``,
     ``b`` (grain indices, b = -1 for a wall), ``force`` on a, ``branch`` to a's centre from b's
     centre or from the wall's contact point, ``point``, ``elastic``) and ``box`` (``lo``, ``hi``,
@@ -59,7 +60,7 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
                        and lo[k] == box["lo"][k] and hi[k] == box["hi"][k])
     return _yuxi.coarse_grain(arrays["x"], arrays["v"], arrays["mass"], arrays["volume"],
                               arrays["contacts"], function, float(width or 0.0), cutoff, lo, hi,
-                              n, average, periodic)
+                              n, average, periodic, arrays.get("reduce"))
 
 
 def _from_dict(d, contacts):
@@ -80,58 +81,49 @@ def _from_dict(d, contacts):
         if len(x) == 0:
             raise ValueError("coarse_grain: no grains and no box: give lo and hi")
         box = {"lo": x.min(axis=0), "hi": x.max(axis=0), "periodic": ""}
-    return {"x": x, "v": v, "mass": mass, "volume": volume, "box": box,
-            "contacts": d.get("contacts") if contacts else None}
+    table = d.get("contacts") if contacts else None
+    if table is not None and "centre" not in table:
+        table = _indexed_contacts(table, x, volume)
+    return {"x": x, "v": v, "mass": mass, "volume": volume, "box": box, "contacts": table}
+
+
+def _indexed_contacts(table, x, volume):
+    """Contacts given by grain index (a, and b or -1 for a wall) in the coarse-graining's form."""
+    try:
+        a = np.asarray(table["a"], dtype=np.int64)
+        b = np.asarray(table["b"], dtype=np.int64)
+        force, branch, point = (np.asarray(table[k], dtype=float)
+                                for k in ("force", "branch", "point"))
+    except KeyError as e:
+        raise ValueError(f"coarse_grain: contacts need the key {e} (a, b, force, branch, point; "
+                         "elastic optional)") from None
+    n = len(x)
+    if a.ndim != 1 or b.shape != a.shape or np.any((a < 0) | (a >= n)) or np.any(b >= n):
+        raise ValueError(f"coarse_grain: contacts' a and b must be grain indices below {n} "
+                         "(b = -1 for a wall)")
+    wall = b < 0
+    return {"centre": x[a], "volume": volume[a], "wall": wall.astype(float),
+            "volume_b": np.where(wall, 0.0, volume[np.where(wall, 0, b)]), "force": force,
+            "branch": branch, "point": point,
+            "elastic": np.asarray(table.get("elastic", np.zeros(len(a))), dtype=float)}
 
 
 def _from_simulation(sim, contacts):
     core = sim._core
-    if core.ranks > 1:
-        raise ValueError("coarse_grain: a simulation on several ranks is coarse-grained by a "
-                         "[[coarse_grain]] table in its scene; from Python, on one rank")
     p = sim.particles
     grain = np.asarray(p.kind) == 0
-    ids = np.asarray(p.id)[grain]
-    x = np.asarray(p.position)[grain]
     radius = np.asarray(p.radius)[grain]
-    arrays = {"x": x, "v": np.asarray(p.velocity)[grain], "mass": np.asarray(p.mass)[grain],
-              "volume": 4.0 / 3.0 * np.pi * radius ** 3, "box": core._box(), "contacts": None}
+    arrays = {"x": np.asarray(p.position)[grain], "v": np.asarray(p.velocity)[grain],
+              "mass": np.asarray(p.mass)[grain], "volume": 4.0 / 3.0 * np.pi * radius ** 3,
+              "box": core._box(), "contacts": None,
+              # every rank adds the sums of its grains and contacts, and makes the fields
+              "reduce": core._sum_over_ranks if core.ranks > 1 else None}
     if not contacts:
         return arrays
     try:
-        table = core.contacts()
+        arrays["contacts"] = core._cg_contacts()
     except RuntimeError as e:
         raise ValueError("coarse_grain: the contact fields need the contacts of the last step: "
                          "call sim.record_contacts(True) before it (or pass contacts=False)") \
             from e
-    order = np.argsort(ids)
-    sorted_ids = ids[order]
-
-    def index_of(gid):  # each id's index among the grains, -1 where not a grain
-        gid = np.asarray(gid)
-        if len(ids) == 0:
-            return np.full(len(gid), -1)
-        at = np.clip(np.searchsorted(sorted_ids, gid), 0, len(ids) - 1)
-        return np.where(sorted_ids[at] == gid, order[at], -1)
-
-    a = index_of(table["id_a"])
-    b = np.where(table["wall"] == "", index_of(table["id_b"]), -1)
-    force = table["force"].copy()
-    normal = table["normal"]
-    point = table["point"]
-    # A wall particle listed first: the grain becomes a, the force the grain's.
-    flip = a < 0
-    a = np.where(flip, b, a)
-    b = np.where(flip, -1, b)
-    force[flip] = -force[flip]
-    if np.any(a < 0):
-        raise ValueError("coarse_grain: a contact touches no grain of this rank")
-    # Branch: between two grains, along the normal (from b to a) across the centres, through
-    # the periodic image that a touches; to a wall, from the contact point to a's centre.
-    branch = x[a] - point
-    pair = b >= 0
-    span = radius[a[pair]] + radius[b[pair]] - table["overlap"][pair]
-    branch[pair] = normal[pair] * span[:, None]
-    arrays["contacts"] = {"a": a, "b": b, "force": force, "branch": branch, "point": point,
-                          "elastic": table["elastic"]}
     return arrays

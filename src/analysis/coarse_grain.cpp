@@ -210,10 +210,7 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
     });
   }
   for (const CgContact& c : contacts) {
-    if (c.a < 0 || static_cast<std::size_t>(c.a) >= n_grains)
-      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(c.a) +
-                                  " of " + std::to_string(n_grains));
-    const Vec3 x_a = grains.x[static_cast<std::size_t>(c.a)], from = x_a - c.branch;
+    const Vec3 x_a = c.centre, from = x_a - c.branch;
     const double length = norm(c.branch);
     const Vec3 unit = length > 0.0 ? c.branch / length : Vec3{};
     // The branch, from b's centre or the wall's contact point to a's centre.
@@ -226,10 +223,9 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
         for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
     });
     // The contact counts for each grain it joins, where that grain stands.
-    const double volume_a = grains.volume[static_cast<std::size_t>(c.a)];
     weights.at_point(x_a, [&](std::size_t p, double w) {
       *at(p, Sum::contacts) += w;
-      add_outer(at(p, Sum::fabric), unit, unit, volume_a * w);
+      add_outer(at(p, Sum::fabric), unit, unit, c.volume * w);
     });
     if (!c.wall)
       weights.at_point(from, [&](std::size_t p, double w) {

@@ -26,10 +26,11 @@ struct CgGrains {
   std::span<const double> volume; // m^3 (4/3 pi r^3 for a sphere)
 };
 
-// One contact, once: grain a with another grain b (b may be another rank's: it stands at
-// x_a - branch), or grain a with a wall (a plane, mesh, cylinder or wall particle).
+// One contact, once: grain a with another grain b (b stands at centre - branch: it may be
+// another rank's), or grain a with a wall (a plane, mesh, cylinder or wall particle).
 struct CgContact {
-  std::int64_t a = 0;    // index into CgGrains
+  Vec3 centre;           // a's centre, m
+  double volume = 0.0;   // a's volume, m^3
   bool wall = false;     // with a wall; else with a grain b
   double volume_b = 0.0; // b's volume (its share of the fabric), m^3
   Vec3 force;            // on a, N (on b: -force)

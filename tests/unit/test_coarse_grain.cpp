@@ -154,15 +154,15 @@ Moving moving_grains() {
       // Any force, friction-like (not along the branch) included.
       const Vec3 f{random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)};
       force[i] += f, force[j] -= f;
-      m.contacts.push_back({static_cast<std::int64_t>(i), false, m.at_zero.volume[j], f, branch,
-                            m.at_zero.x[j] + branch * 0.5, 0.0});
+      m.contacts.push_back({m.at_zero.x[i], m.at_zero.volume[i], false, m.at_zero.volume[j], f,
+                            branch, m.at_zero.x[j] + branch * 0.5, 0.0});
     }
   for (std::size_t i = 0; i < 5; ++i) { // walls below five grains, their contact points 0.1 down
     const Vec3 f{random.uniform(-0.3, 0.3), random.uniform(-0.3, 0.3), random.uniform(0.5, 1)};
     const Vec3 point = m.at_zero.x[i] - Vec3{0, 0, 0.1};
     force[i] += f;
     m.contacts.push_back(
-        {static_cast<std::int64_t>(i), true, 0.0, f, m.at_zero.x[i] - point, point, 0.0});
+        {m.at_zero.x[i], m.at_zero.volume[i], true, 0.0, f, m.at_zero.x[i] - point, point, 0.0});
   }
   for (std::size_t i = 0; i < force.size(); ++i)
     m.acceleration.push_back(force[i] / m.at_zero.mass[i]);
@@ -279,12 +279,11 @@ TEST(CoarseGrain, SumsOfPartsAddUpToTheWhole) {
       g.mass.push_back(m.at_zero.mass[i]);
       g.volume.push_back(m.at_zero.volume[i]);
     }
+    // The contacts of the grains this part holds.
     std::vector<CgContact> mine;
-    for (CgContact c : m.contacts) {
-      if (index[static_cast<std::size_t>(c.a)] < 0) continue;
-      c.a = index[static_cast<std::size_t>(c.a)];
-      mine.push_back(c);
-    }
+    for (const CgContact& c : m.contacts)
+      for (std::size_t i = 0; i < m.at_zero.x.size(); ++i)
+        if (index[i] >= 0 && m.at_zero.x[i] == c.centre) mine.push_back(c);
     const std::vector<double> sums = coarse_grain_sums(g.view(), mine, s);
     for (std::size_t k = 0; k < total.size(); ++k) total[k] += sums[k];
   }
@@ -305,7 +304,7 @@ TEST(CoarseGrain, FabricTraceIsVolumeFractionTimesCoordination) {
   // With grains of one volume V, tr F = sum over contacts V (phi_a + phi_b) = V n Z = nu Z.
   Moving m = moving_grains();
   for (double& v : m.at_zero.volume) v = 0.02;
-  for (CgContact& c : m.contacts) c.volume_b = c.wall ? 0.0 : 0.02;
+  for (CgContact& c : m.contacts) c.volume = 0.02, c.volume_b = c.wall ? 0.0 : 0.02;
   for (const Vec3 p : {Vec3{2.0, 2.0, 2.0}, Vec3{1.6, 2.3, 2.1}}) {
     const CgFields f = at_point(m.at_zero, m.contacts, CgKind::gaussian, p);
     ASSERT_GT(f.coordination[0], 0.5);
