@@ -1,5 +1,7 @@
 #include "py_contacts.hpp"
 
+#include "run/coarse_grain_contacts.hpp"
+
 #include <cstring>
 #include <numbers>
 #include <pybind11/numpy.h>
@@ -112,52 +114,15 @@ py::dict contact_arrays(const Simulation& sim) {
 }
 
 py::dict cg_contact_arrays(const Simulation& sim) {
-  const ContactRecord& rec = sim.contact_record();
-  if (!rec.enabled)
-    throw std::runtime_error("contacts are not recorded: call record_contacts(True), then step");
-  const ParticleStore& p = sim.particles();
-  const NeighborList& list = sim.neighbor_list();
+  const std::vector<analysis::CgContact> contacts = coarse_grain_contacts(sim);
   std::vector<double> centre, volume, wall, volume_b, force, branch, point, elastic;
   const auto vec = [](std::vector<double>& c, const Vec3& v) {
     c.insert(c.end(), {v.x, v.y, v.z});
   };
-  const auto sphere = [](double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; };
-  // grain (centre x, radius r) touched with force f: by a grain of radius r_b whose centre is
-  // x - b, or by a wall at `at` (r_b < 0).
-  const auto add = [&](const Vec3& x, double r, const Vec3& f, const Vec3& b, const Vec3& at,
-                       double r_b, double e) {
-    vec(centre, x), vec(force, f), vec(branch, b), vec(point, at);
-    volume.push_back(sphere(r)), wall.push_back(r_b < 0 ? 1.0 : 0.0);
-    volume_b.push_back(r_b < 0 ? 0.0 : sphere(r_b)), elastic.push_back(e);
-  };
-  // Pairs: each listed once over the ranks; the partner may be a ghost (an image, or another
-  // rank's). A wall particle is a wall: the grain is then a, whichever the list made the row.
-  for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
-    std::uint32_t i = list.rows[k], j = list.partners[k];
-    Vec3 f = rec.pair_force[k];
-    if (!p.is_grain(i)) std::swap(i, j), f = -f;
-    if (!p.is_grain(i)) continue; // two wall particles
-    const Vec3 d = p.x[i] - p.x[j];
-    const double dist = norm(d), overlap = p.radius[i] + p.radius[j] - dist;
-    const Vec3 at = p.x[i] - d * ((p.radius[i] - 0.5 * overlap) / dist);
-    if (p.is_grain(j))
-      add(p.x[i], p.radius[i], f, d, at, p.radius[j], rec.pair_elastic[k]);
-    else
-      add(p.x[i], p.radius[i], f, p.x[i] - at, at, -1.0, rec.pair_elastic[k]);
-  }
-  for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
-    if (!touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
-    const auto& pc = list.planes[k];
-    const PlaneWall& w = sim.planes()[pc.plane];
-    const Vec3 x = p.x[pc.particle];
-    const Vec3 at = x - w.normal * w.distance(x, sim.time());
-    add(x, p.radius[pc.particle], rec.plane_force[k], x - at, at, -1.0, rec.plane_elastic[k]);
-  }
-  for (const WallContactRecord& r : rec.wall) {
-    const WallContactRef ref = list.walls[r.candidate];
-    const Vec3 x = p.x[ref.particle];
-    add(x, p.radius[ref.particle], r.force, x - r.point, r.point, -1.0, r.elastic);
+  for (const analysis::CgContact& c : contacts) {
+    vec(centre, c.centre), vec(force, c.force), vec(branch, c.branch), vec(point, c.point);
+    volume.push_back(c.volume), wall.push_back(c.wall ? 1.0 : 0.0);
+    volume_b.push_back(c.volume_b), elastic.push_back(c.elastic);
   }
   const auto n = static_cast<py::ssize_t>(volume.size());
   py::dict d;

@@ -181,3 +181,51 @@ def test_fields_of_a_falling_pile_satisfy_the_balances(box_scene, tmp_path, func
     scale = np.abs(flux_divergence[inner]).max()
     assert np.abs(rate[inner]).max() > 0.5 * scale  # a flow, not a bed at rest
     assert np.abs(residual[inner]).max() < 0.03 * scale
+
+
+def test_a_run_writes_its_coarse_grain_tables(box_scene, tmp_path):
+    """[[coarse_grain]] tables: a CSV and a VTK image per sample and a .pvd series, the same
+    fields that yuxi.coarse_grain gives at that step, and the bins' mass the grains'."""
+    box_scene["run"]["t_end"] = 0.3
+    box_scene["coarse_grain"] = [
+        {"name": "cells", "function": "bins", "n": [4, 4, 6], "interval": 0.1},
+        {"name": "profile", "width": 0.5, "average": "xy", "n": [1, 1, 24], "interval": 0.1,
+         "fields": ["density", "stress"]},
+    ]
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "run", progress=False)
+    sim.record_contacts(True)
+    sim.run()
+    assert sim.step_count == 1500
+    folder = tmp_path / "run" / "coarse_grain"
+    cells = np.genfromtxt(folder / "cells" / "cells_000001500.csv", delimiter=",", names=True)
+    _, mass = _grains(sim)
+    assert cells["density"].sum() * 8.0 == pytest.approx(mass.sum(), rel=1e-9)
+    profile = np.genfromtxt(folder / "profile" / "profile_000001500.csv", delimiter=",",
+                            names=True)
+    assert profile.dtype.names == ("x", "y", "z", "density", *(
+        f"stress_{a}{b}" for a in "xyz" for b in "xyz"))
+    now = yuxi.coarse_grain(sim, width=0.5, average="xy", n=(1, 1, 24))
+    assert np.allclose(profile["z"], now["z"])
+    assert np.allclose(profile["stress_zz"], now["stress"][:, 2, 2], rtol=1e-9,
+                       atol=1e-9 * np.abs(now["stress"]).max())
+    series = (folder / "profile" / "profile.pvd").read_text()
+    assert series.count("<DataSet") == 3 and "profile_000000500.vti" in series
+    image = (folder / "profile" / "profile_000001500.vti").read_text()
+    assert 'WholeExtent="0 0 0 0 0 23"' in image and 'Name="stress" NumberOfComponents="9"' in image
+    sim.close()
+
+
+@pytest.mark.parametrize("table, key, message", [
+    ({"name": "a", "width": 0.0}, "width", "must be > 0"),
+    ({"name": "a", "width": 1.0, "lo": [20, 0, 0], "hi": [30, 8, 12]}, "lo", "outside the box"),
+    ({"name": "a", "width": 1.0, "fields": ["density", "pressure"]}, "fields", "pressure"),
+    ({"name": "a", "function": "bins"}, "n", "cells"),
+    ({"name": "a/b", "width": 1.0}, "name", "folder"),
+    ({"name": "a", "width": 1.0, "average": "xyz"}, "average", "resolve one"),
+    ({"name": "a", "width": 1.0, "function": "cubic"}, "function", "cubic"),
+])
+def test_a_bad_coarse_grain_table_names_its_key(box_scene, table, key, message):
+    box_scene["coarse_grain"] = [table]
+    with pytest.raises(yuxi.SceneError, match=message) as refused:
+        yuxi.Scene(box_scene)
+    assert refused.value.key == f"coarse_grain[1].{key}"  # (tables count from 1)

@@ -80,9 +80,10 @@ def test_a_collective_call_on_one_rank_raises_after_the_timeout(tmp_path):
 @pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
 def test_coarse_grained_fields_do_not_depend_on_the_ranks(tmp_path):
     """Each rank adds the sums of its grains and of its contacts (each contact on one rank), the
-    sums are added over the ranks, and every rank makes the fields of the whole: 1, 2 and 4
-    ranks give the same fields, to the runs' own agreement (the trajectories differ in the last
-    digits with the decomposition's summation order)."""
+    sums are added over the ranks, and every rank makes the fields of the whole (from Python),
+    or rank 0 writes them (a [[coarse_grain]] table): 1, 2 and 4 ranks give the same fields, to
+    the runs' own agreement (the trajectories differ in the last digits with the
+    decomposition's summation order)."""
     runs = [run(k, tmp_path / f"cg{k}", "mpi_coarse_grain.py") for k in (1, 2, 4)]
     assert [r["ranks"] for r in runs] == [1, 2, 4]
     one = runs[0]["fields"]

@@ -2,6 +2,7 @@
 
 #include "contact/contact_model.hpp"
 #include "core/units.hpp"
+#include "io/coarse_grain_scene_reader.hpp"
 #include "io/lammps_data_reader.hpp"
 #include "io/measure_scene_reader.hpp"
 #include "io/source_scene_reader.hpp"
@@ -656,6 +657,7 @@ Scene read_scene_text(std::string_view text, const std::string& source, bool lin
   read_particles(scene, root);
   read_sources(scene, root);
   read_measures(scene, root);
+  read_coarse_grains(scene, root);
   root.finish();
   check_consistency(scene, root);
   return scene;

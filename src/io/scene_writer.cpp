@@ -175,6 +175,34 @@ void write_sources(const Scene& s, toml::table& doc) {
   }
 }
 
+void write_coarse_grains(const Scene& s, toml::table& doc) {
+  if (s.coarse_grains.empty()) return;
+  toml::array tables;
+  for (const CoarseGrainSpec& c : s.coarse_grains) {
+    toml::table t;
+    t.insert("name", c.name);
+    t.insert("function", c.function);
+    if (c.function != "bins") {
+      t.insert("width", c.width);
+      t.insert("cutoff", c.cutoff);
+    }
+    t.insert("lo", vec(c.lo));
+    t.insert("hi", vec(c.hi));
+    t.insert("n", toml::array{c.n[0], c.n[1], c.n[2]});
+    std::string average;
+    for (int a = 0; a < 3; ++a)
+      if (c.averaged[static_cast<std::size_t>(a)]) average += static_cast<char>('x' + a);
+    t.insert("average", average);
+    t.insert("interval", c.interval);
+    t.insert("contacts", c.contacts);
+    toml::array fields;
+    for (const std::string& f : c.fields) fields.push_back(f);
+    t.insert("fields", fields);
+    tables.push_back(t);
+  }
+  doc.insert("coarse_grain", tables);
+}
+
 void write_measures(const Scene& s, toml::table& doc) {
   if (s.measures.empty()) return;
   using Quantity = MeasureSpec::Quantity;
@@ -430,6 +458,7 @@ std::string resolved_scene_toml(const Scene& s) {
   }
   write_sources(s, doc);
   write_measures(s, doc);
+  write_coarse_grains(s, doc);
   std::ostringstream out;
   out << "# Resolved scene: the input with every default filled in. Runs as it stands.\n\n"
       << doc << "\n";

@@ -4,6 +4,7 @@
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
 #include "run/bed_measurements.hpp"
+#include "run/coarse_grain_output.hpp"
 #include "run/device_stepper.hpp"
 #include "run/progress.hpp"
 #include "run/run_analysis.hpp"
@@ -39,6 +40,7 @@ struct RunDriver::Impl {
   std::unique_ptr<VtkSeries> vtk;
   std::unique_ptr<LammpsDumpWriter> dump;
   std::unique_ptr<BedMeasurements> measures;
+  std::unique_ptr<CoarseGrainOutput> coarse; // [[coarse_grain]]
   std::unique_ptr<RunAnalysis> analysis;
   std::optional<CheckpointSet> checkpoints;
   std::unique_ptr<DeviceStepper> stepper; // the device engine, where the run is on it
@@ -117,6 +119,19 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
     if (root)
       measurements = std::make_unique<EnergyCsv>(dir / "measurements.csv",
                                                  resume_after(energy_every), measures->header());
+  }
+  // coarse_grain/<name>/: the [[coarse_grain]] tables' fields. The device engine records no
+  // contacts: there, a table asks for the kinetic fields alone (contacts = false).
+  if (!scene.coarse_grains.empty()) {
+    if (stepper)
+      for (const CoarseGrainSpec& c : scene.coarse_grains)
+        if (c.contacts)
+          throw std::invalid_argument(fmt::format(
+              "[[coarse_grain]] '{}': its contact fields need the contacts, which the device "
+              "engine does not record; set contacts = false there, or run on the CPU engine "
+              "(--device cpu)",
+              c.name));
+    coarse = std::make_unique<CoarseGrainOutput>(scene.coarse_grains, sim, dir, dt);
   }
   checkpoints.emplace(dir, scene.checkpoint.keep);
   last_checkpoint = std::chrono::steady_clock::now();
@@ -239,6 +254,7 @@ std::int64_t RunDriver::Impl::next_host_step(std::int64_t until, const StepHook&
   due(scene.checkpoint.every_steps);
   if (hook.call) due(hook.every);
   if (analysis) next = std::min(next, analysis->next_step_after(k));
+  if (coarse) next = std::min(next, coarse->next_sample_after(k));
   return next;
 }
 
@@ -293,6 +309,7 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
     // The step reached: the simulation's, or the device engine's, which hands its state to the
     // simulation only where the host needs it (a poll of the signal and the clock does not).
     const auto reached = [&] { return d.stepper ? d.stepper->step() : sim.step_count(); };
+    bool recording = false; // contacts recorded for this step's coarse-graining sample
     while (reached() < until) {
       // The CPU engine steps once; the device engine to the next step the host needs.
       const std::int64_t now = reached();
@@ -302,18 +319,23 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
         d.particle_steps += d.n_particles * static_cast<double>(next - now);
         d.stepper->advance(next - now);
       } else {
+        // The contacts of a coarse-graining sample are recorded on its step only.
+        recording =
+            d.coarse && d.coarse->needs_contacts_at(now + 1) && !sim.contact_record().enabled;
+        if (recording) sim.record_contacts(true);
         if (d.analysis) d.analysis->before_step(sim);
         sim.step();
         if (d.analysis) d.analysis->after_step(sim);
         d.particle_steps += d.n_particles;
       }
       const std::int64_t k = reached();
+      const bool coarse_due = d.coarse && d.coarse->next_sample_after(k - 1) == k;
       const bool energy_row = k % d.energy_every == 0 || k == d.last;
       const bool frame = d.snapshot_every && (k % d.snapshot_every == 0 || k == d.last);
       const bool hook_due = hook.every > 0 && k % hook.every == 0 && hook.call;
       const bool analysis_due = d.stepper && d.analysis && d.analysis->next_step_after(k - 1) == k;
       const bool host_needs_state = frame || hook_due || checkpoint_now || analysis_due ||
-                                    k == until || d.measures || d.walls;
+                                    coarse_due || k == until || d.measures || d.walls;
       if (d.stepper && energy_row && !host_needs_state) {
         // A row of the device's own books; a gain that nothing put in brings the state back,
         // whose check stops the run with the diagnosis.
@@ -325,6 +347,8 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
         if (energy_row) d.write_energies();
       }
       if (analysis_due) d.analysis->after_step(sim);
+      if (coarse_due) d.coarse->sample(sim); // collective
+      if (recording) sim.record_contacts(false), recording = false;
       if (frame) d.snapshot();
       // Every rank calls the hook at the same step, and any one that says stop stops them all
       // there (a decision from this rank's particles alone would leave the others waiting).
