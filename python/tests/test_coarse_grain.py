@@ -229,3 +229,28 @@ def test_a_bad_coarse_grain_table_names_its_key(box_scene, table, key, message):
     with pytest.raises(yuxi.SceneError, match=message) as refused:
         yuxi.Scene(box_scene)
     assert refused.value.key == f"coarse_grain[1].{key}"  # (tables count from 1)
+
+
+def test_a_table_averages_over_a_window(box_scene, tmp_path):
+    """average_every = 1: each write is the mean of every step's sums since the last, so its
+    density and contact stress (sums, not ratios) are the means of the steps' fields."""
+    box_scene["run"]["t_end"] = 0.3
+    box_scene["coarse_grain"] = [{"name": "mean", "width": 0.5, "average": "xy",
+                                  "n": [1, 1, 24], "interval": 0.01, "average_every": 1}]
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "run", progress=False)
+    sim.record_contacts(True)
+    sim.run(t_end=0.29)
+    assert sim.step_count == 1450
+    density, stress = 0.0, 0.0
+    for _ in range(50):
+        sim.step()
+        f = yuxi.coarse_grain(sim, width=0.5, average="xy", n=(1, 1, 24))
+        density = density + f["density"] / 50
+        stress = stress + f["contact_stress"][:, 2, 2] / 50
+    table = np.genfromtxt(tmp_path / "run" / "coarse_grain" / "mean" / "mean_000001500.csv",
+                          delimiter=",", names=True)
+    assert np.allclose(table["density"], density, rtol=1e-9, atol=1e-12 * density.max())
+    assert np.allclose(table["contact_stress_zz"], stress, rtol=1e-9,
+                       atol=1e-9 * np.abs(stress).max())
+    assert np.abs(stress).max() > 0
+    sim.close()

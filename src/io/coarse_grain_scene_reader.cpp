@@ -63,6 +63,7 @@ void read_coarse_grain(Scene& scene, TomlReader& t) {
   c.interval =
       t.positive("interval",
                  scene.output.energy_interval > 0 ? scene.output.energy_interval : scene.run.t_end);
+  c.average_every = static_cast<int>(t.integer("average_every", 0, 0, 1000000000));
   c.contacts = t.boolean("contacts", true);
   const auto& names = CoarseGrainSpec::field_names();
   if (t.has("fields")) {

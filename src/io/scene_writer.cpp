@@ -194,6 +194,7 @@ void write_coarse_grains(const Scene& s, toml::table& doc) {
       if (c.averaged[static_cast<std::size_t>(a)]) average += static_cast<char>('x' + a);
     t.insert("average", average);
     t.insert("interval", c.interval);
+    if (c.average_every > 0) t.insert("average_every", c.average_every);
     t.insert("contacts", c.contacts);
     toml::array fields;
     for (const std::string& f : c.fields) fields.push_back(f);

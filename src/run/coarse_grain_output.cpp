@@ -76,6 +76,7 @@ CoarseGrainOutput::CoarseGrainOutput(std::vector<CoarseGrainSpec> specs, const S
           box.periodic(a) && spec.lo[a] == box.lo[a] && spec.hi[a] == box.hi[a];
     t.settings.grid.check();
     t.every = std::max<std::int64_t>(1, std::llround(spec.interval / dt));
+    t.sample = spec.average_every > 0 ? spec.average_every : t.every;
     t.folder = dir / "coarse_grain" / spec.name;
     if (root_) std::filesystem::create_directories(t.folder);
     t.spec = std::move(spec);
@@ -85,13 +86,16 @@ CoarseGrainOutput::CoarseGrainOutput(std::vector<CoarseGrainSpec> specs, const S
 
 std::int64_t CoarseGrainOutput::next_sample_after(std::int64_t step) const {
   std::int64_t next = std::numeric_limits<std::int64_t>::max();
-  for (const Table& t : tables_) next = std::min(next, (step / t.every + 1) * t.every);
+  for (const Table& t : tables_) {
+    next = std::min(next, (step / t.every + 1) * t.every);
+    next = std::min(next, (step / t.sample + 1) * t.sample);
+  }
   return next;
 }
 
 bool CoarseGrainOutput::needs_contacts_at(std::int64_t step) const {
   return std::any_of(tables_.begin(), tables_.end(), [&](const Table& t) {
-    return t.spec.contacts && step > 0 && step % t.every == 0;
+    return t.spec.contacts && step > 0 && (step % t.every == 0 || step % t.sample == 0);
   });
 }
 
@@ -101,8 +105,9 @@ void CoarseGrainOutput::sample(const Simulation& sim) {
   std::vector<double> mass, volume;
   std::vector<analysis::CgContact> contacts;
   bool gathered = false;
-  for (const Table& t : tables_) {
-    if (step % t.every != 0) continue;
+  for (Table& t : tables_) {
+    const bool write_now = step % t.every == 0, sample_now = step % t.sample == 0 || write_now;
+    if (!sample_now) continue;
     if (!gathered) {
       const ParticleStore& p = sim.particles();
       for (std::size_t i = 0; i < p.n_owned(); ++i) {
@@ -117,9 +122,17 @@ void CoarseGrainOutput::sample(const Simulation& sim) {
     const std::span<const analysis::CgContact> used =
         t.spec.contacts ? std::span<const analysis::CgContact>(contacts)
                         : std::span<const analysis::CgContact>();
-    std::vector<double> sums = analysis::coarse_grain_sums(grains, used, t.settings);
-    sim.comm().sum(sums.data(), static_cast<int>(sums.size()));
-    if (root_) write(t, analysis::coarse_grain_fields(sums, t.settings.grid), step);
+    const std::vector<double> sums = analysis::coarse_grain_sums(grains, used, t.settings);
+    if (t.sums.empty()) t.sums.assign(sums.size(), 0.0);
+    for (std::size_t k = 0; k < sums.size(); ++k) t.sums[k] += sums[k];
+    ++t.samples;
+    if (!write_now) continue;
+    // The mean of the samples since the last write (one sample without a time average).
+    sim.comm().sum(t.sums.data(), static_cast<int>(t.sums.size()));
+    for (double& total : t.sums) total /= static_cast<double>(t.samples);
+    if (root_) write(t, analysis::coarse_grain_fields(t.sums, t.settings.grid), step);
+    t.sums.assign(t.sums.size(), 0.0);
+    t.samples = 0;
   }
 }
 

@@ -1,8 +1,9 @@
 // The [[coarse_grain]] tables of a run (scene/coarse_grain_spec.hpp): every `interval`, each
 // rank adds the coarse-graining sums of its grains and of the contacts it lists, the sums are
 // added over the ranks, and rank 0 writes the fields into coarse_grain/<name>/: a CSV and a VTK
-// image (.vti, for ParaView, with a .pvd series) per sample (docs/coarse-graining.md, "In a
-// run").
+// image (.vti, for ParaView, with a .pvd series) per write (docs/coarse-graining.md, "In a
+// run"). With average_every = k, the sums of every k-th step since the last write are averaged:
+// the fields of the mean sums (a time average; the ranks add theirs at the write only).
 #pragma once
 
 #include "analysis/coarse_grain.hpp"
@@ -34,8 +35,11 @@ private:
   struct Table {
     CoarseGrainSpec spec;
     analysis::CgSettings settings;
-    std::int64_t every = 1;
+    std::int64_t every = 1;  // steps between writes
+    std::int64_t sample = 1; // steps between samples (every, or average_every)
     std::filesystem::path folder;
+    std::vector<double> sums; // this rank's, since the last write
+    std::int64_t samples = 0;
   };
   void write(const Table& t, const analysis::CgFields& f, std::int64_t step) const;
   std::vector<Table> tables_;

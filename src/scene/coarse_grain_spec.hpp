@@ -19,7 +19,9 @@ struct CoarseGrainSpec {
   Vec3 lo, hi;                       // the grid's corners (the box by default)
   std::array<int, 3> n{1, 1, 1};     // points along x, y, z (1 on averaged axes)
   std::array<bool, 3> averaged{false, false, false};
-  double interval = 0.0;           // between samples
+  double interval = 0.0;           // between writes
+  int average_every = 0;           // > 0: each write is the mean over every k-th step since the
+                                   // last (a time average); 0: the state at the write
   bool contacts = true;            // the contact fields too (recorded on the sample's step)
   std::vector<std::string> fields; // the fields written (all by default)
 
