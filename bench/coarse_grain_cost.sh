@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The cost of coarse-graining during a run: LAMMPS's chute (scenes/chute-lammps.toml, 32,000
 # grains) run plain, with a [[coarse_grain]] profile along z (Gaussian, contacts included)
-# written every 100 steps, and with the same profile averaged over every step (average_every =
-# 1). The runs alternate, REPEATS times each; the script prints the median step rates and the
-# overheads against the plain run.
+# written every 100 steps, with the same profile averaged over every step (average_every = 1),
+# and with a profile of plain bins averaged over every step. The runs alternate, REPEATS times
+# each; the script prints the median step rates and the overheads against the plain run.
 # usage: bench/coarse_grain_cost.sh [YUXI] [STEPS] [REPEATS]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -25,22 +25,24 @@ sed "s|\"\.\./data/|\"$(cd "$here/.." && pwd)/data/|" "$here/../scenes/chute-lam
 { cat "$work/plain.toml"; printf '\n%s\ninterval = 0.01\n' "$profile"; } > "$work/every100.toml"
 { cat "$work/plain.toml"; printf '\n%s\ninterval = 0.01\naverage_every = 1\n' "$profile"; } \
   > "$work/every_step.toml"
+{
+  cat "$work/plain.toml"
+  printf '\n[[coarse_grain]]\nname = "bins"\nfunction = "bins"\naverage = "xy"\n'
+  printf 'n = [1, 1, 80]\ninterval = 0.01\naverage_every = 1\n'
+} > "$work/bins_every_step.toml"
 rate() { # SCENE: the run's steps per second of wall time (the log's "N steps in T s")
   "$yuxi" run "$1" -o "$work/out" --t-end "$t_end" --overwrite --no-progress --no-plots 2>&1 |
     sed -n 's/.* \([0-9]*\) steps in \([0-9.]*\) s:.*/\1 \2/p' | awk '{ printf "%.6g", $1 / $2 }'
 }
-plain="" every100="" every_step=""
+declare -A rates
+configs=(plain every100 every_step bins_every_step)
 for ((k = 0; k < repeats; ++k)); do
-  plain+=" $(rate "$work/plain.toml")"
-  every100+=" $(rate "$work/every100.toml")"
-  every_step+=" $(rate "$work/every_step.toml")"
+  for c in "${configs[@]}"; do rates[$c]+=" $(rate "$work/$c.toml")"; done
 done
-p=$(median <<< "$plain")
-a=$(median <<< "$every100")
-b=$(median <<< "$every_step")
-echo "chute, steps $steps, repeats $repeats: steps/s plain $p, profile every 100 steps $a," \
-  "profile averaged every step $b"
-awk -v p="$p" -v a="$a" -v b="$b" 'BEGIN {
-  printf "overhead: every 100 steps %.1f %%, averaged every step %.1f %%\n", 100 * (p / a - 1), 100 * (p / b - 1) }'
-echo "run by run, every 100 (against plain): $(run_by_run "$plain" "$every100" 1 %.3f)"
-echo "run by run, every step (against plain): $(run_by_run "$plain" "$every_step" 1 %.3f)"
+p=$(median <<< "${rates[plain]}")
+echo "chute, $steps steps, $repeats repeats, median steps/s: plain $p"
+for c in every100 every_step bins_every_step; do
+  r=$(median <<< "${rates[$c]}")
+  awk -v c="$c" -v p="$p" -v r="$r" 'BEGIN { printf "  %-16s %8.4g steps/s, overhead %.1f %%\n", c, r, 100 * (p / r - 1) }'
+  echo "    run by run against plain: $(run_by_run "${rates[plain]}" "${rates[$c]}" 1 %.3f)"
+done
