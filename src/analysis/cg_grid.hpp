@@ -3,9 +3,9 @@
 //
 // Along a resolved axis the n points stand at the centres of n equal cells of [lo, hi]:
 // lo + (k + 1/2) h, h = (hi - lo) / n (the cells are the bins of plain binning). An averaged axis
-// has one point; the fields are averages over [lo, hi] along it, which holds all the grains
-// only if the grains stay within it (a periodic axis across the box, or a wall's span). Along a
-// periodic resolved axis the grid spans the period exactly, and the points wrap.
+// has one point; the fields are averages over [lo, hi] along it, of the grains (and the parts of
+// branches) within it. Along a periodic axis that the grid spans exactly, the points wrap and
+// every grain counts.
 // Points are stored with x fastest: index = (k * ny + j) * nx + i.
 #pragma once
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace yuxi::analysis {
 namespace {
@@ -25,6 +26,7 @@ public:
 
   // f(index, weight) for each point that a grain (or contact point) at x weighs on.
   template <class F> void at_point(const Vec3& x, F&& f) const {
+    if (!within_averaged(x)) return;
     if (!function_) {
       std::array<int, 3> k{};
       for (int a = 0; a < 3; ++a) {
@@ -48,25 +50,58 @@ public:
   }
 
   // f(index, weight) for each point that the segment from `from` to `from + b` weighs on.
-  template <class F> void along(const Vec3& from, const Vec3& b, F&& f) const {
+  template <class F> void along(const Vec3& whole_from, const Vec3& whole_b, F&& f) const {
+    // The part of the segment within the averaged axes' span, as its own segment: psi over it
+    // is (s1 - s0) times psi of the part (ds = (s1 - s0) ds').
+    const auto [s0, s1] = averaged_part(whole_from, whole_b);
+    if (!(s1 > s0)) return;
+    const Vec3 from = whole_from + whole_b * s0, b = whole_b * (s1 - s0);
+    const double part = s1 - s0;
     const Vec3 to = from + b;
     const Vec3 low{std::min(from.x, to.x), std::min(from.y, to.y), std::min(from.z, to.z)};
     const Vec3 high{std::max(from.x, to.x), std::max(from.y, to.y), std::max(from.z, to.z)};
     if (!function_) {
       each_cell(low, high, [&](std::size_t index, const Vec3& cell_lo) {
         const double share = share_in_cell(from, b, cell_lo);
-        if (share > 0.0) f(index, share * inverse_cell_);
+        if (share > 0.0) f(index, part * share * inverse_cell_);
       });
       return;
     }
     const Vec3 branch = resolved(b);
     each_point(low, high, [&](std::size_t index, const Vec3& p) {
       const double w = function_->along(resolved(p - from), branch);
-      if (w != 0.0) f(index, w * inverse_extent_);
+      if (w != 0.0) f(index, part * w * inverse_extent_);
     });
   }
 
 private:
+  // Whether x lies within the span of every bounded averaged axis (the average is over that
+  // span: a grain beside it does not count; along a periodic axis every grain does).
+  bool within_averaged(const Vec3& x) const {
+    for (int a = 0; a < 3; ++a) {
+      const auto s = static_cast<std::size_t>(a);
+      if (grid_.averaged[s] && !grid_.periodic[s] && !(x[a] >= grid_.lo[a] && x[a] <= grid_.hi[a]))
+        return false;
+    }
+    return true;
+  }
+  // The range [s0, s1] of the segment from + s b within the bounded averaged axes' span.
+  std::pair<double, double> averaged_part(const Vec3& from, const Vec3& b) const {
+    double s0 = 0.0, s1 = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      const auto s = static_cast<std::size_t>(a);
+      if (!grid_.averaged[s] || grid_.periodic[s]) continue;
+      if (b[a] == 0.0) {
+        if (!(from[a] >= grid_.lo[a] && from[a] <= grid_.hi[a])) return {0.0, 0.0};
+        continue;
+      }
+      double e0 = (grid_.lo[a] - from[a]) / b[a], e1 = (grid_.hi[a] - from[a]) / b[a];
+      if (e0 > e1) std::swap(e0, e1);
+      s0 = std::max(s0, e0);
+      s1 = std::min(s1, e1);
+    }
+    return {s0, s1};
+  }
   // v with its averaged components zeroed.
   Vec3 resolved(Vec3 v) const {
     for (int a = 0; a < 3; ++a)
