@@ -90,17 +90,22 @@ private:
     double s0 = 0.0, s1 = 1.0;
     for (int a = 0; a < 3; ++a) {
       const auto s = static_cast<std::size_t>(a);
-      if (!grid_.averaged[s] || grid_.periodic[s]) continue;
-      if (b[a] == 0.0) {
-        if (!(from[a] >= grid_.lo[a] && from[a] <= grid_.hi[a])) return {0.0, 0.0};
-        continue;
-      }
-      double e0 = (grid_.lo[a] - from[a]) / b[a], e1 = (grid_.hi[a] - from[a]) / b[a];
-      if (e0 > e1) std::swap(e0, e1);
-      s0 = std::max(s0, e0);
-      s1 = std::min(s1, e1);
+      if (grid_.averaged[s] && !grid_.periodic[s] &&
+          !clip_to_slab(a, from, b, grid_.lo[a], grid_.hi[a], true, s0, s1))
+        return {0.0, 0.0};
     }
     return {s0, s1};
+  }
+  // Narrows [s0, s1] to where from + s b lies between c0 and c1 along axis a. A segment across
+  // the axis is in where from[a] is: in [c0, c1) (or [c0, c1] where `closed`), else false.
+  static bool clip_to_slab(int a, const Vec3& from, const Vec3& b, double c0, double c1,
+                           bool closed, double& s0, double& s1) {
+    if (b[a] == 0.0) return from[a] >= c0 && (closed ? from[a] <= c1 : from[a] < c1);
+    double e0 = (c0 - from[a]) / b[a], e1 = (c1 - from[a]) / b[a];
+    if (e0 > e1) std::swap(e0, e1);
+    s0 = std::max(s0, e0);
+    s1 = std::min(s1, e1);
+    return true;
   }
   // v with its averaged components zeroed.
   Vec3 resolved(Vec3 v) const {
@@ -115,75 +120,69 @@ private:
     if (k < 0 || k >= n) return std::nullopt;
     return static_cast<int>(k);
   }
+  // g(index, {i, j, k}) for the unwrapped indices in [first, last] along each axis, clamped to
+  // the grid along a bounded axis (an averaged axis has its one point).
+  template <class G>
+  void each_index(std::array<long, 3> first, std::array<long, 3> last, G&& g) const {
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (grid_.averaged[a]) {
+        first[a] = last[a] = 0;
+      } else if (!grid_.periodic[a]) {
+        first[a] = std::max(first[a], 0L);
+        last[a] = std::min(last[a], static_cast<long>(grid_.n[a]) - 1);
+      }
+    }
+    for (long k = first[2]; k <= last[2]; ++k)
+      for (long j = first[1]; j <= last[1]; ++j)
+        for (long i = first[0]; i <= last[0]; ++i)
+          g(grid_.index(*wrap(0, i), *wrap(1, j), *wrap(2, k)), std::array<long, 3>{i, j, k});
+  }
   // g(index, point) for the points within reach of the box [low, high] (resolved axes; on a
   // periodic axis every image, its coordinate unwrapped; on an averaged axis, low's).
   template <class G> void each_point(const Vec3& low, const Vec3& high, G&& g) const {
     std::array<long, 3> first{}, last{};
     for (int a = 0; a < 3; ++a) {
-      const auto s = static_cast<std::size_t>(a);
-      if (grid_.averaged[s]) continue;
       const double h = grid_.spacing(a);
-      first[s] = static_cast<long>(std::ceil((low[a] - reach_ - grid_.lo[a]) / h - 0.5));
-      last[s] = static_cast<long>(std::floor((high[a] + reach_ - grid_.lo[a]) / h - 0.5));
-      if (!grid_.periodic[s]) {
-        first[s] = std::max(first[s], 0L);
-        last[s] = std::min(last[s], static_cast<long>(grid_.n[s]) - 1);
-      }
+      first[static_cast<std::size_t>(a)] =
+          static_cast<long>(std::ceil((low[a] - reach_ - grid_.lo[a]) / h - 0.5));
+      last[static_cast<std::size_t>(a)] =
+          static_cast<long>(std::floor((high[a] + reach_ - grid_.lo[a]) / h - 0.5));
     }
-    Vec3 p = low;
-    for (long k = first[2]; k <= last[2]; ++k) {
-      if (!grid_.averaged[2]) p.z = grid_.coordinate(2, static_cast<int>(k));
-      for (long j = first[1]; j <= last[1]; ++j) {
-        if (!grid_.averaged[1]) p.y = grid_.coordinate(1, static_cast<int>(j));
-        for (long i = first[0]; i <= last[0]; ++i) {
-          if (!grid_.averaged[0]) p.x = grid_.coordinate(0, static_cast<int>(i));
-          g(grid_.index(*wrap(0, i), *wrap(1, j), *wrap(2, k)), p);
-        }
-      }
-    }
+    each_index(first, last, [&](std::size_t index, const std::array<long, 3>& k) {
+      Vec3 p = low;
+      for (int a = 0; a < 3; ++a)
+        if (!grid_.averaged[static_cast<std::size_t>(a)])
+          p[a] = grid_.coordinate(a, static_cast<int>(k[static_cast<std::size_t>(a)]));
+      g(index, p);
+    });
   }
   // g(index, the cell's low corner, unwrapped) for the cells that the box [low, high] meets.
   template <class G> void each_cell(const Vec3& low, const Vec3& high, G&& g) const {
     std::array<long, 3> first{}, last{};
     for (int a = 0; a < 3; ++a) {
-      const auto s = static_cast<std::size_t>(a);
-      if (grid_.averaged[s]) continue;
       const double h = grid_.spacing(a);
-      first[s] = static_cast<long>(std::floor((low[a] - grid_.lo[a]) / h));
-      last[s] = static_cast<long>(std::floor((high[a] - grid_.lo[a]) / h));
-      if (!grid_.periodic[s]) {
-        first[s] = std::max(first[s], 0L);
-        last[s] = std::min(last[s], static_cast<long>(grid_.n[s]) - 1);
-      }
+      first[static_cast<std::size_t>(a)] =
+          static_cast<long>(std::floor((low[a] - grid_.lo[a]) / h));
+      last[static_cast<std::size_t>(a)] =
+          static_cast<long>(std::floor((high[a] - grid_.lo[a]) / h));
     }
-    Vec3 corner = low;
-    for (long k = first[2]; k <= last[2]; ++k) {
-      if (!grid_.averaged[2]) corner.z = grid_.lo.z + static_cast<double>(k) * grid_.spacing(2);
-      for (long j = first[1]; j <= last[1]; ++j) {
-        if (!grid_.averaged[1]) corner.y = grid_.lo.y + static_cast<double>(j) * grid_.spacing(1);
-        for (long i = first[0]; i <= last[0]; ++i) {
-          if (!grid_.averaged[0]) corner.x = grid_.lo.x + static_cast<double>(i) * grid_.spacing(0);
-          g(grid_.index(*wrap(0, i), *wrap(1, j), *wrap(2, k)), corner);
-        }
-      }
-    }
+    each_index(first, last, [&](std::size_t index, const std::array<long, 3>& k) {
+      Vec3 corner = low;
+      for (int a = 0; a < 3; ++a)
+        if (!grid_.averaged[static_cast<std::size_t>(a)])
+          corner[a] =
+              grid_.lo[a] + static_cast<double>(k[static_cast<std::size_t>(a)]) * grid_.spacing(a);
+      g(index, corner);
+    });
   }
   // The share of the segment from + s b, s in [0, 1), that lies in the cell whose low corner is
   // cell_lo (resolved axes; the slabs' intersection).
   double share_in_cell(const Vec3& from, const Vec3& b, const Vec3& cell_lo) const {
     double s0 = 0.0, s1 = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      if (grid_.averaged[static_cast<std::size_t>(a)]) continue;
-      const double c0 = cell_lo[a], c1 = cell_lo[a] + grid_.spacing(a);
-      if (b[a] == 0.0) {
-        if (!(from[a] >= c0 && from[a] < c1)) return 0.0;
-        continue;
-      }
-      double e0 = (c0 - from[a]) / b[a], e1 = (c1 - from[a]) / b[a];
-      if (e0 > e1) std::swap(e0, e1);
-      s0 = std::max(s0, e0);
-      s1 = std::min(s1, e1);
-    }
+    for (int a = 0; a < 3; ++a)
+      if (!grid_.averaged[static_cast<std::size_t>(a)] &&
+          !clip_to_slab(a, from, b, cell_lo[a], cell_lo[a] + grid_.spacing(a), false, s0, s1))
+        return 0.0;
     return s1 > s0 ? s1 - s0 : 0.0;
   }
 
