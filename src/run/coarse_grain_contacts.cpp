@@ -1,22 +1,12 @@
 #include "run/coarse_grain_contacts.hpp"
 
+#include "core/ball_volume.hpp"
+
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <utility>
 
 namespace yuxi {
-namespace {
-
-bool touched(const Vec3& f, double elastic) {
-  return !(f.x == 0 && f.y == 0 && f.z == 0 && elastic == 0);
-}
-
-double sphere(double r) {
-  return 4.0 / 3.0 * std::numbers::pi * r * r * r;
-}
-
-} // namespace
 
 std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
   const ContactRecord& rec = sim.contact_record();
@@ -29,10 +19,10 @@ std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
   // x - b, or by a wall at `at` (r_b < 0).
   const auto add = [&](const Vec3& x, double r, const Vec3& f, const Vec3& b, const Vec3& at,
                        double r_b, double e) {
-    out.push_back({x, sphere(r), r_b < 0, r_b < 0 ? 0.0 : sphere(r_b), f, b, at, e});
+    out.push_back({x, ball_volume(r), r_b < 0, r_b < 0 ? 0.0 : ball_volume(r_b), f, b, at, e});
   };
   for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
+    if (!ContactRecord::touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
     std::uint32_t i = list.rows[k], j = list.partners[k];
     Vec3 f = rec.pair_force[k];
     if (!p.is_grain(i)) std::swap(i, j), f = -f;
@@ -46,7 +36,7 @@ std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
       add(p.x[i], p.radius[i], f, p.x[i] - at, at, -1.0, rec.pair_elastic[k]);
   }
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
-    if (!touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
+    if (!ContactRecord::touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
     const auto& pc = list.planes[k];
     const PlaneWall& w = sim.planes()[pc.plane];
     const Vec3 x = p.x[pc.particle];

@@ -1,5 +1,6 @@
 #include "run/coarse_grain_output.hpp"
 
+#include "core/ball_volume.hpp"
 #include "run/coarse_grain_contacts.hpp"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <limits>
-#include <numbers>
 #include <string>
 
 namespace yuxi {
@@ -113,7 +113,7 @@ void CoarseGrainOutput::sample(const Simulation& sim) {
       for (std::size_t i = 0; i < p.n_owned(); ++i) {
         if (!p.is_grain(i)) continue;
         x.push_back(p.x[i]), v.push_back(p.v[i]), mass.push_back(p.mass[i]);
-        volume.push_back(4.0 / 3.0 * std::numbers::pi * p.radius[i] * p.radius[i] * p.radius[i]);
+        volume.push_back(ball_volume(p.radius[i]));
       }
       if (sim.contact_record().enabled) contacts = coarse_grain_contacts(sim);
       gathered = true;

@@ -1,5 +1,6 @@
 #include "scene/particle_fill.hpp"
 
+#include "core/ball_volume.hpp"
 #include "core/units.hpp"
 #include "scene/ball_hash.hpp"
 
@@ -10,7 +11,7 @@
 namespace yuxi {
 
 double GrainKind::mass_of(double r) const {
-  return density * (4.0 / 3.0 * pi * r * r * r);
+  return density * ball_volume(r);
 }
 
 Vec3 GrainKind::draw_velocity(Random& rng) const {
@@ -22,10 +23,6 @@ Vec3 GrainKind::draw_velocity(Random& rng) const {
 }
 
 namespace {
-
-double ball_volume(double r) {
-  return 4.0 / 3.0 * pi * r * r * r;
-}
 
 // The radii of the fill, from its size stream: the count, or as many as reach the volume or
 // mass asked for (the last one included where it brings the total nearer).

@@ -102,6 +102,11 @@ struct ContactRecord {
   void keep_wall(const WallContactRecord& r) {
     if (enabled) wall.push_back(r);
   }
+  // Whether a pair's or a plane's slot holds a touching contact (a listed pair or candidate
+  // apart keeps a zero force and no energy).
+  static bool touched(const Vec3& force, double elastic) {
+    return !(force.x == 0 && force.y == 0 && force.z == 0 && elastic == 0);
+  }
 };
 
 } // namespace yuxi
