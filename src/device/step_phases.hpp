@@ -197,6 +197,10 @@ YUXI_HD inline std::uint32_t find_key(const std::uint64_t* keys, std::uint32_t n
   return lo < n && keys[lo] == k ? lo : n;
 }
 
+// A pair's flag holds two bits: `touches_now` (it overlaps at this evaluation) and
+// `touched_before` (it overlapped at the last one, or its contact came back at a list build).
+constexpr std::uint8_t touches_now = 1, touched_before = 2;
+
 // Before a list build: the key and the state (as seen from the smaller id) of each open contact.
 template <class Model> struct StashContact {
   Particles p;
@@ -230,20 +234,18 @@ template <class Model> struct RestoreContact {
     const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
     const std::uint32_t at = find_key(key, n_stashed, contact_key(gi, gj));
     const bool found = at < n_stashed;
-    open[pair] = found ? 1 : 0;
+    open[pair] = found ? touches_now : 0; // (the next evaluation reads it as touched_before)
     if (!found) return;
     slot[pair] = at;
     state[at] = gi < gj ? stashed[at] : stashed[at].mirrored();
   }
 };
 
-// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep). A pair's
-// flag holds two bits: `touches_now` (it overlaps) and `touched_before` (it overlapped at the last
-// evaluation, or its contact came back at a list build). A pair with either is flagged: the
-// flagged pairs are gathered into one list, so that the laws run on full warps (most listed
-// pairs do not touch: 83 % on the chute), and only they have a state (CarryState). A pair that
-// touched and does not touch any more releases its springs (PairForces).
-constexpr std::uint8_t touches_now = 1, touched_before = 2;
+// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep). A pair
+// with either flag bit is flagged: the flagged pairs are gathered into one list, so that the
+// laws run on full warps (most listed pairs do not touch: 83 % on the chute), and only they have
+// a state (CarryState). A pair that touched and does not touch any more releases its springs
+// (PairForces).
 struct FindTouches {
   Particles p;
   PairList list;
