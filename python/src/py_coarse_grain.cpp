@@ -158,20 +158,8 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
     for (std::size_t k = 0; k < at.size(); ++k) at[k] = grid.coordinate(a, static_cast<int>(k));
     out[axis_names[a]] = py::array_t<double>(static_cast<py::ssize_t>(at.size()), at.data());
   }
-  out["density"] = field(f.density, grid, 1);
-  out["number_density"] = field(f.number_density, grid, 1);
-  out["volume_fraction"] = field(f.volume_fraction, grid, 1);
-  out["momentum"] = field(f.momentum, grid, 3);
-  out["velocity"] = field(f.velocity, grid, 3);
-  out["kinetic_stress"] = field(f.kinetic_stress, grid, 9);
-  out["contact_stress"] = field(f.contact_stress, grid, 9);
-  out["stress"] = field(f.stress, grid, 9);
-  out["wall_force_density"] = field(f.wall_force, grid, 3);
-  out["temperature"] = field(f.temperature, grid, 1);
-  out["coordination"] = field(f.coordination, grid, 1);
-  out["fabric"] = field(f.fabric, grid, 9);
-  out["kinetic_energy_density"] = field(f.kinetic_energy, grid, 1);
-  out["elastic_energy_density"] = field(f.elastic_energy, grid, 1);
+  for (const analysis::CgNamedField& named : analysis::named_fields(f))
+    out[py::str(std::string(named.name))] = field(*named.values, grid, named.components);
   out["cell_volume"] = grid.cell_volume();
   return out;
 }

@@ -312,6 +312,23 @@ CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid) {
   return out;
 }
 
+std::vector<CgNamedField> named_fields(const CgFields& f) {
+  return {{"density", &f.density, 1},
+          {"number_density", &f.number_density, 1},
+          {"volume_fraction", &f.volume_fraction, 1},
+          {"momentum", &f.momentum, 3},
+          {"velocity", &f.velocity, 3},
+          {"kinetic_stress", &f.kinetic_stress, 9},
+          {"contact_stress", &f.contact_stress, 9},
+          {"stress", &f.stress, 9},
+          {"wall_force_density", &f.wall_force, 3},
+          {"temperature", &f.temperature, 1},
+          {"coordination", &f.coordination, 1},
+          {"fabric", &f.fabric, 9},
+          {"kinetic_energy_density", &f.kinetic_energy, 1},
+          {"elastic_energy_density", &f.elastic_energy, 1}};
+}
+
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
                       const CgSettings& settings) {
   return coarse_grain_fields(coarse_grain_sums(grains, contacts, settings), settings.grid);

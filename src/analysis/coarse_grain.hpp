@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace yuxi::analysis {
@@ -65,6 +66,16 @@ struct CgFields {
   std::vector<double> kinetic_energy;  // sum m_i v_i^2 / 2 phi_i, J/m^3
   std::vector<double> elastic_energy;  // sum over contacts E phi(r - c), J/m^3
 };
+
+// A field by its name in the files and in Python (scene/coarse_grain_spec.hpp lists the same
+// names, in the same order), with its values and their components a point (1, 3 or 9).
+struct CgNamedField {
+  std::string_view name;
+  const std::vector<double>* values;
+  int components;
+};
+// Every field of f, in that order.
+std::vector<CgNamedField> named_fields(const CgFields& f);
 
 // Every field is made of sums over grains and contacts; the fields that divide (velocity,
 // temperature, coordination) or subtract (the kinetic stress's rho V V) are made from the sums

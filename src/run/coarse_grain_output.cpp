@@ -19,29 +19,6 @@ analysis::CgKind kind_of(const std::string& function) {
   return analysis::CgKind::gaussian;
 }
 
-// A field's values and its number of components (1, 3 or 9).
-struct Column {
-  const std::vector<double>* values;
-  int components;
-};
-
-Column column(const analysis::CgFields& f, const std::string& name) {
-  if (name == "density") return {&f.density, 1};
-  if (name == "number_density") return {&f.number_density, 1};
-  if (name == "volume_fraction") return {&f.volume_fraction, 1};
-  if (name == "momentum") return {&f.momentum, 3};
-  if (name == "velocity") return {&f.velocity, 3};
-  if (name == "kinetic_stress") return {&f.kinetic_stress, 9};
-  if (name == "contact_stress") return {&f.contact_stress, 9};
-  if (name == "stress") return {&f.stress, 9};
-  if (name == "wall_force_density") return {&f.wall_force, 3};
-  if (name == "temperature") return {&f.temperature, 1};
-  if (name == "coordination") return {&f.coordination, 1};
-  if (name == "fabric") return {&f.fabric, 9};
-  if (name == "kinetic_energy_density") return {&f.kinetic_energy, 1};
-  return {&f.elastic_energy, 1}; // elastic_energy_density (the reader checked the names)
-}
-
 // The CSV column names of a field: name, name_x..., name_xx, name_xy, ...
 std::vector<std::string> column_names(const std::string& name, int components) {
   static constexpr const char* axis[] = {"x", "y", "z"};
@@ -140,8 +117,12 @@ void CoarseGrainOutput::write(const Table& t, const analysis::CgFields& f,
                               std::int64_t step) const {
   const analysis::CgGrid& g = t.settings.grid;
   const std::string stem = fmt::format("{}_{:09d}", t.spec.name, step);
-  std::vector<Column> columns;
-  for (const std::string& name : t.spec.fields) columns.push_back(column(f, name));
+  // The table's fields, in the order it names them (the reader checked the names).
+  std::vector<analysis::CgNamedField> columns;
+  const std::vector<analysis::CgNamedField> all = analysis::named_fields(f);
+  for (const std::string& name : t.spec.fields)
+    columns.push_back(*std::find_if(
+        all.begin(), all.end(), [&](const analysis::CgNamedField& c) { return c.name == name; }));
 
   // CSV: the point (x fastest), then each field's components.
   {
@@ -157,7 +138,7 @@ void CoarseGrainOutput::write(const Table& t, const analysis::CgFields& f,
           const std::size_t p = g.index(i, j, k);
           csv << fmt::format("{:.10g},{:.10g},{:.10g}", g.coordinate(0, i), g.coordinate(1, j),
                              g.coordinate(2, k));
-          for (const Column& col : columns)
+          for (const analysis::CgNamedField& col : columns)
             for (int q = 0; q < col.components; ++q)
               csv << fmt::format(",{:.10g}", (*col.values)[p * col.components + q]);
           csv << '\n';

@@ -6,6 +6,7 @@
 // in time and space of the fields themselves.
 #include "analysis/coarse_grain.hpp"
 #include "core/random.hpp"
+#include "scene/coarse_grain_spec.hpp"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -347,6 +348,21 @@ TEST(CoarseGrain, AnAverageCountsOnlyWhatLiesWithinItsSpan) {
     EXPECT_NEAR(mass, 1.0, tolerance) << to_string(kind);
     EXPECT_NEAR(stress, 0.5, tolerance) << to_string(kind);
   }
+}
+
+} // namespace
+} // namespace yuxi::analysis
+
+namespace yuxi::analysis {
+namespace {
+
+TEST(CoarseGrain, TheSceneNamesTheFieldsThatTheAnalysisMakes) {
+  // A [[coarse_grain]] table's `fields` are checked against the scene's list; the files and
+  // Python take the fields by the analysis's names: the two lists are one.
+  const CgFields f;
+  std::vector<std::string> made;
+  for (const CgNamedField& n : named_fields(f)) made.emplace_back(n.name);
+  EXPECT_EQ(made, CoarseGrainSpec::field_names());
 }
 
 } // namespace
