@@ -9,11 +9,7 @@ namespace {
 
 void read_coarse_grain(Scene& scene, TomlReader& t) {
   CoarseGrainSpec c;
-  c.name = t.string("name");
-  const bool plain = !c.name.empty() && std::all_of(c.name.begin(), c.name.end(), [](char ch) {
-    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
-  });
-  if (!plain) t.fail("name", "a folder's name: letters, digits, '_' and '-' only");
+  c.name = t.plain_name("name", "_-", "a folder's name");
   for (const CoarseGrainSpec& other : scene.coarse_grains)
     if (other.name == c.name)
       t.fail("name", fmt::format("'{}' names another [[coarse_grain]]", c.name));

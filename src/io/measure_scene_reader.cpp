@@ -25,11 +25,7 @@ std::vector<std::string> wall_names(const Scene& scene) {
 
 void read_measure(Scene& scene, TomlReader& t) {
   MeasureSpec m;
-  m.name = t.string("name");
-  const bool plain = !m.name.empty() && std::all_of(m.name.begin(), m.name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  });
-  if (!plain) t.fail("name", "a CSV column name: letters, digits, '_', '-' and '.' only");
+  m.name = t.plain_name("name", "_-.", "a CSV column name");
   for (const MeasureSpec& other : scene.measures)
     if (other.name == m.name) t.fail("name", fmt::format("'{}' names another measure", m.name));
   if (!t.has("quantity"))

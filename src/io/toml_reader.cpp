@@ -2,6 +2,8 @@
 
 #include "io/nearest_word.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -150,6 +152,21 @@ std::string TomlReader::string(std::string_view key) {
 
 std::string TomlReader::string(std::string_view key, std::string fallback) {
   return has(key) ? string(key) : fallback;
+}
+
+std::string TomlReader::plain_name(std::string_view key, std::string_view also,
+                                   std::string_view what) {
+  std::string name = string(key);
+  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || also.find(c) != std::string_view::npos;
+  });
+  if (!plain) {
+    std::string allowed = "letters, digits";
+    for (std::size_t k = 0; k < also.size(); ++k)
+      allowed += fmt::format("{}'{}'", k + 1 == also.size() ? " and " : ", ", also[k]);
+    fail(key, fmt::format("{}: {} only", what, allowed));
+  }
+  return name;
 }
 
 std::string TomlReader::choice(std::string_view key,

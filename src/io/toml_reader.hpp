@@ -41,6 +41,9 @@ public:
   bool boolean(std::string_view key, bool fallback);
   std::string string(std::string_view key);
   std::string string(std::string_view key, std::string fallback);
+  // A required name of letters, digits and the characters of `also` only; else fails, saying
+  // that it must be `what` (a CSV column's name, a folder's name).
+  std::string plain_name(std::string_view key, std::string_view also, std::string_view what);
   std::string choice(std::string_view key, std::initializer_list<std::string_view> options,
                      std::string_view fallback);
   std::string choice(std::string_view key, std::span<const std::string_view> options,
