@@ -37,6 +37,9 @@ public:
 
   // phi at squared distance r2 (in the resolved axes), 1/length^d.
   double at(double r2) const;
+  // The Gaussian's phi at a distance r < c where exp(-r^2 / (2 w^2)) = g, computed by the caller
+  // (along each axis, for a grid: the exponential is a product over the axes).
+  double gaussian_from(double g) const { return norm_ * (g - shift_); }
 
   // The line integral psi = int_0^1 phi(q - s b) ds, for q the point's position relative to the
   // segment's start and b the segment (both in the resolved axes): the weight with which a
@@ -45,6 +48,10 @@ public:
   // Lucy's polynomial, 16-point Gauss-Legendre on each side of the closest approach, exact
   // wherever the segment passes through the point's axis and otherwise accurate to ~1e-12.
   double along(const Vec3& q, const Vec3& b) const;
+  // The same on a grid that resolves one axis: q and b the components along it. Exact for both
+  // functions (Lucy's is a polynomial in |u| along a line through the point: it integrates in
+  // closed form), without along's work in three dimensions.
+  double along_axis(double q, double b) const;
 
 private:
   CgKind kind_;

@@ -1,11 +1,13 @@
 #include "analysis/coarse_grain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace yuxi::analysis {
 namespace {
@@ -22,6 +24,11 @@ public:
       reach_ = 0.0;
     inverse_extent_ = 1.0 / grid_.averaged_extent();
     inverse_cell_ = 1.0 / grid_.cell_volume();
+    for (std::size_t a = 0; a < 3; ++a)
+      if (grid_.averaged[a]) {
+        axes_[a].hold(1);
+        axes_[a].index[0] = 0, axes_[a].d2[0] = 0.0, axes_[a].gauss[0] = 1.0;
+      }
   }
 
   // f(index, weight) for each point that a grain (or contact point) at x weighs on.
@@ -43,10 +50,27 @@ public:
       f(grid_.index(k[0], k[1], k[2]), inverse_cell_);
       return;
     }
-    each_point(x, x, [&](std::size_t index, const Vec3& p) {
-      const double w = function_->at(norm2(resolved(p - x)));
-      if (w != 0.0) f(index, w * inverse_extent_);
-    });
+    // The resolved axes' points within reach, then their products: a grain weighs on about
+    // (2 c / h)^d points, but the Gaussian needs exponentials along each axis only.
+    for (int a = 0; a < 3; ++a)
+      if (!reach_along(a, x[a], axes_[static_cast<std::size_t>(a)])) return;
+    const AxisReach &ax = axes_[0], &ay = axes_[1], &az = axes_[2];
+    const double c2 = reach_ * reach_;
+    const bool gaussian = function_->kind() == CgKind::gaussian;
+    for (std::size_t k = 0; k < az.count; ++k)
+      for (std::size_t j = 0; j < ay.count; ++j) {
+        const double r2_zy = az.d2[k] + ay.d2[j];
+        if (!(r2_zy < c2)) continue;
+        const double g_zy = az.gauss[k] * ay.gauss[j];
+        const std::size_t row = grid_.index(0, ay.index[j], az.index[k]);
+        for (std::size_t i = 0; i < ax.count; ++i) {
+          const double r2 = r2_zy + ax.d2[i];
+          if (!(r2 < c2)) continue;
+          const double w =
+              gaussian ? function_->gaussian_from(g_zy * ax.gauss[i]) : function_->at(r2);
+          if (w != 0.0) f(row + static_cast<std::size_t>(ax.index[i]), w * inverse_extent_);
+        }
+      }
   }
 
   // f(index, weight) for each point that the segment from `from` to `from + b` weighs on.
@@ -67,6 +91,24 @@ public:
       });
       return;
     }
+    if (grid_.dimension() == 1) {
+      // One resolved axis a: psi in closed form along it, point by point.
+      int a = 0;
+      while (grid_.averaged[static_cast<std::size_t>(a)]) ++a;
+      const double h = grid_.spacing(a), lo = grid_.lo[a];
+      const auto first = static_cast<long>(std::ceil((low[a] - reach_ - lo) / h - 0.5));
+      const auto last = static_cast<long>(std::floor((high[a] + reach_ - lo) / h - 0.5));
+      for (long k = first; k <= last; ++k) {
+        const std::optional<int> at = wrap(a, k);
+        if (!at) continue;
+        const double q = lo + (static_cast<double>(k) + 0.5) * h - from[a];
+        const double w = function_->along_axis(q, b[a]);
+        if (w != 0.0)
+          f(grid_.index(a == 0 ? *at : 0, a == 1 ? *at : 0, a == 2 ? *at : 0),
+            part * w * inverse_extent_);
+      }
+      return;
+    }
     const Vec3 branch = resolved(b);
     each_point(low, high, [&](std::size_t index, const Vec3& p) {
       const double w = function_->along(resolved(p - from), branch);
@@ -75,6 +117,63 @@ public:
   }
 
 private:
+  // The points of one axis within reach of a coordinate: their indices (wrapped on a periodic
+  // axis), their squared offsets and, for the Gaussian, exp(-d^2 / (2 w^2)) (1 for Lucy's
+  // polynomial). An averaged axis has its one point, at offset 0, filled once.
+  struct AxisReach {
+    std::size_t count = 0;
+    std::vector<int> index;
+    std::vector<double> d2, gauss;
+    void hold(std::size_t n) {
+      count = n;
+      if (index.size() < n) index.resize(n), d2.resize(n), gauss.resize(n);
+    }
+  };
+  // Fills `out` for coordinate x along axis a; false where no point is within reach.
+  bool reach_along(int a, double x, AxisReach& out) const {
+    const auto s = static_cast<std::size_t>(a);
+    if (grid_.averaged[s]) return true;
+    const double h = grid_.spacing(a), lo = grid_.lo[a];
+    auto first = static_cast<long>(std::ceil((x - reach_ - lo) / h - 0.5));
+    auto last = static_cast<long>(std::floor((x + reach_ - lo) / h - 0.5));
+    const long n = grid_.n[s];
+    const bool periodic = grid_.periodic[s];
+    if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
+    if (last < first) return false;
+    out.hold(static_cast<std::size_t>(last - first + 1));
+    long wrapped = periodic ? ((first % n) + n) % n : first; // (no division where bounded)
+    for (long k = first; k <= last; ++k) {
+      const auto m = static_cast<std::size_t>(k - first);
+      const double d = lo + (static_cast<double>(k) + 0.5) * h - x;
+      out.index[m] = static_cast<int>(wrapped);
+      out.d2[m] = d * d;
+      if (++wrapped == n) wrapped = 0;
+    }
+    if (function_->kind() == CgKind::gaussian)
+      fill_gaussian(out.d2.data(), out.gauss.data(), out.count, h);
+    else
+      std::fill_n(out.gauss.begin(), out.count, 1.0);
+    return true;
+  }
+  // exp(-d^2 / (2 w^2)) at offsets d spaced by h (d2 their squares, in order), by the ratio of
+  // neighbours, exp(-(2 d h + h^2) / (2 w^2)), whose own ratio is exp(-h^2 / w^2): two
+  // exponentials for the run, and a fresh one every 8 points to bound the rounding (the
+  // Greengard-Lee "fast Gaussian gridding" recurrence, SIAM Review 46:443, 2004).
+  void fill_gaussian(const double* d2, double* gauss, std::size_t count, double h) const {
+    const double inv_2w2 = 0.5 / (function_->width() * function_->width());
+    const double step_ratio = std::exp(-2.0 * h * h * inv_2w2);
+    double ratio = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (k % 8 == 0) {
+        gauss[k] = std::exp(-d2[k] * inv_2w2);
+        if (k + 1 < count) ratio = std::exp(-(d2[k + 1] - d2[k]) * inv_2w2);
+      } else {
+        gauss[k] = gauss[k - 1] * ratio;
+        ratio *= step_ratio;
+      }
+    }
+  }
+
   // Whether x lies within the span of every bounded averaged axis (the average is over that
   // span: a grain beside it does not count; along a periodic axis every grain does).
   bool within_averaged(const Vec3& x) const {
@@ -188,6 +287,7 @@ private:
 
   const CgGrid& grid_;
   double reach_;
+  mutable std::array<AxisReach, 3> axes_; // scratch of at_point
   std::optional<CgFunction> function_;
   double inverse_extent_ = 1.0, inverse_cell_ = 1.0;
 };
@@ -231,9 +331,39 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
   std::vector<double> sums(cg_sums_per_point * settings.grid.size(), 0.0);
   const auto at = [&](std::size_t p, std::size_t s) { return &sums[cg_sums_per_point * p + s]; };
 
+  // The contacts of grains known by their place: counted with the grain's own weights.
+  std::vector<double> grain_contacts, grain_fabric;
+  const auto known = [n_grains](std::int64_t g) {
+    if (g >= static_cast<std::int64_t>(n_grains))
+      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(g) +
+                                  " of " + std::to_string(n_grains));
+    return g >= 0;
+  };
+  const auto unit_branch = [](const CgContact& c) {
+    const double length = norm(c.branch);
+    return length > 0.0 ? c.branch / length : Vec3{};
+  };
+  for (const CgContact& c : contacts) {
+    const bool a = known(c.grain), b = !c.wall && known(c.grain_b);
+    if (!a && !b) continue;
+    if (grain_contacts.empty()) {
+      grain_contacts.assign(n_grains, 0.0);
+      grain_fabric.assign(9 * n_grains, 0.0);
+    }
+    const Vec3 unit = unit_branch(c);
+    const auto count = [&](std::int64_t g, double volume) {
+      const auto u = static_cast<std::size_t>(g);
+      grain_contacts[u] += 1.0;
+      add_outer(&grain_fabric[9 * u], unit, unit, volume);
+    };
+    if (a) count(c.grain, c.volume);
+    if (b) count(c.grain_b, c.volume_b);
+  }
+
   for (std::size_t i = 0; i < n_grains; ++i) {
     const double m = grains.mass[i], volume = grains.volume[i];
     const Vec3 v = grains.v[i];
+    const bool touched = !grain_contacts.empty() && grain_contacts[i] > 0.0;
     weights.at_point(grains.x[i], [&](std::size_t p, double w) {
       *at(p, Sum::mass) += m * w;
       *at(p, Sum::number) += w;
@@ -241,12 +371,15 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
       for (int a = 0; a < 3; ++a) at(p, Sum::momentum)[a] += m * v[a] * w;
       add_outer(at(p, Sum::momentum_flux), v, v, m * w);
       *at(p, Sum::kinetic) += 0.5 * m * norm2(v) * w;
+      if (touched) {
+        *at(p, Sum::contacts) += grain_contacts[i] * w;
+        for (int k = 0; k < 9; ++k) at(p, Sum::fabric)[k] += grain_fabric[9 * i + k] * w;
+      }
     });
   }
   for (const CgContact& c : contacts) {
     const Vec3 x_a = c.centre, from = x_a - c.branch;
-    const double length = norm(c.branch);
-    const Vec3 unit = length > 0.0 ? c.branch / length : Vec3{};
+    const Vec3 unit = unit_branch(c);
     // The branch, from b's centre or the wall's contact point to a's centre.
     weights.along(from, c.branch, [&](std::size_t p, double w) {
       add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
@@ -256,12 +389,14 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
       if (c.wall)
         for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
     });
-    // The contact counts for each grain it joins, where that grain stands.
-    weights.at_point(x_a, [&](std::size_t p, double w) {
-      *at(p, Sum::contacts) += w;
-      add_outer(at(p, Sum::fabric), unit, unit, c.volume * w);
-    });
-    if (!c.wall)
+    // The contact counts for each grain it joins, where that grain stands (counted above for
+    // the grains known by their place).
+    if (c.grain < 0)
+      weights.at_point(x_a, [&](std::size_t p, double w) {
+        *at(p, Sum::contacts) += w;
+        add_outer(at(p, Sum::fabric), unit, unit, c.volume * w);
+      });
+    if (!c.wall && c.grain_b < 0)
       weights.at_point(from, [&](std::size_t p, double w) {
         *at(p, Sum::contacts) += w;
         add_outer(at(p, Sum::fabric), unit, unit, c.volume_b * w);

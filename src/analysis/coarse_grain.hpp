@@ -39,6 +39,10 @@ struct CgContact {
                          // contact point on a wall, m
   Vec3 point;            // the contact point, m
   double elastic = 0.0;  // the contact's elastic energy, J
+  // a's and b's places among the grains (CgGrains), where known (-1: not among them, such as
+  // another rank's grain or an image): a grain's contacts then count in the coordination and
+  // fabric with that grain's own weights, one evaluation a grain rather than one a contact.
+  std::int64_t grain = -1, grain_b = -1;
 };
 
 struct CgSettings {

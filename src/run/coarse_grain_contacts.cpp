@@ -8,18 +8,28 @@
 
 namespace yuxi {
 
-std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
+namespace {
+
+// The contacts into `out` (cleared first, its storage kept).
+void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_of,
+                     std::vector<analysis::CgContact>& out) {
   const ContactRecord& rec = sim.contact_record();
   if (!rec.enabled)
     throw std::runtime_error("contacts are not recorded: call record_contacts(True), then step");
   const ParticleStore& p = sim.particles();
   const NeighborList& list = sim.neighbor_list();
-  std::vector<analysis::CgContact> out;
-  // A grain (centre x, radius r) touched with force f: by a grain of radius r_b whose centre is
-  // x - b, or by a wall at `at` (r_b < 0).
-  const auto add = [&](const Vec3& x, double r, const Vec3& f, const Vec3& b, const Vec3& at,
-                       double r_b, double e) {
-    out.push_back({x, ball_volume(r), r_b < 0, r_b < 0 ? 0.0 : ball_volume(r_b), f, b, at, e});
+  out.clear();
+  out.reserve(rec.wall.size() + list.planes.size() / 2 + list.partners.size() / 4);
+  const auto place = [&](std::size_t i) -> std::int64_t {
+    return i < grain_of.size() ? grain_of[i] : -1;
+  };
+  // Grain i (radius r) touched with force f: by a grain j of radius r_b whose centre is x_i - b,
+  // or by a wall at `at` (r_b < 0, j unused).
+  const auto add = [&](std::size_t i, double r, const Vec3& f, const Vec3& b, const Vec3& at,
+                       double r_b, std::size_t j, double e) {
+    const bool wall = r_b < 0;
+    out.push_back({p.x[i], ball_volume(r), wall, wall ? 0.0 : ball_volume(r_b), f, b, at, e,
+                   place(i), wall ? -1 : place(j)});
   };
   for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
     if (!ContactRecord::touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
@@ -31,9 +41,9 @@ std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
     const double dist = norm(d), overlap = p.radius[i] + p.radius[j] - dist;
     const Vec3 at = p.x[i] - d * ((p.radius[i] - 0.5 * overlap) / dist);
     if (p.is_grain(j))
-      add(p.x[i], p.radius[i], f, d, at, p.radius[j], rec.pair_elastic[k]);
+      add(i, p.radius[i], f, d, at, p.radius[j], j, rec.pair_elastic[k]);
     else
-      add(p.x[i], p.radius[i], f, p.x[i] - at, at, -1.0, rec.pair_elastic[k]);
+      add(i, p.radius[i], f, p.x[i] - at, at, -1.0, j, rec.pair_elastic[k]);
   }
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
     if (!ContactRecord::touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
@@ -41,14 +51,39 @@ std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim) {
     const PlaneWall& w = sim.planes()[pc.plane];
     const Vec3 x = p.x[pc.particle];
     const Vec3 at = x - w.normal * w.distance(x, sim.time());
-    add(x, p.radius[pc.particle], rec.plane_force[k], x - at, at, -1.0, rec.plane_elastic[k]);
+    add(pc.particle, p.radius[pc.particle], rec.plane_force[k], x - at, at, -1.0, 0,
+        rec.plane_elastic[k]);
   }
   for (const WallContactRecord& r : rec.wall) {
     const WallContactRef ref = list.walls[r.candidate];
     const Vec3 x = p.x[ref.particle];
-    add(x, p.radius[ref.particle], r.force, x - r.point, r.point, -1.0, r.elastic);
+    add(ref.particle, p.radius[ref.particle], r.force, x - r.point, r.point, -1.0, 0, r.elastic);
   }
+}
+
+} // namespace
+
+std::vector<analysis::CgContact> coarse_grain_contacts(const Simulation& sim,
+                                                       std::span<const std::int64_t> grain_of) {
+  std::vector<analysis::CgContact> out;
+  gather_contacts(sim, grain_of, out);
   return out;
+}
+
+void CoarseGrainInput::gather(const Simulation& sim) {
+  const ParticleStore& p = sim.particles();
+  x.clear(), v.clear(), mass.clear(), volume.clear();
+  grain_of.assign(p.n_owned(), -1);
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    if (!p.is_grain(i)) continue;
+    grain_of[i] = static_cast<std::int64_t>(x.size());
+    x.push_back(p.x[i]), v.push_back(p.v[i]), mass.push_back(p.mass[i]);
+    volume.push_back(ball_volume(p.radius[i]));
+  }
+  if (sim.contact_record().enabled)
+    gather_contacts(sim, grain_of, contacts);
+  else
+    contacts.clear();
 }
 
 } // namespace yuxi

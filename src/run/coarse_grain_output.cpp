@@ -1,12 +1,10 @@
 #include "run/coarse_grain_output.hpp"
 
-#include "core/ball_volume.hpp"
-#include "run/coarse_grain_contacts.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -78,28 +76,15 @@ bool CoarseGrainOutput::needs_contacts_at(std::int64_t step) const {
 
 void CoarseGrainOutput::sample(const Simulation& sim) {
   const std::int64_t step = sim.step_count();
-  std::vector<Vec3> x, v;
-  std::vector<double> mass, volume;
-  std::vector<analysis::CgContact> contacts;
   bool gathered = false;
   for (Table& t : tables_) {
     const bool write_now = step % t.every == 0, sample_now = step % t.sample == 0 || write_now;
     if (!sample_now) continue;
-    if (!gathered) {
-      const ParticleStore& p = sim.particles();
-      for (std::size_t i = 0; i < p.n_owned(); ++i) {
-        if (!p.is_grain(i)) continue;
-        x.push_back(p.x[i]), v.push_back(p.v[i]), mass.push_back(p.mass[i]);
-        volume.push_back(ball_volume(p.radius[i]));
-      }
-      if (sim.contact_record().enabled) contacts = coarse_grain_contacts(sim);
-      gathered = true;
-    }
-    const analysis::CgGrains grains{x, v, mass, volume};
+    if (!gathered) input_.gather(sim), gathered = true;
     const std::span<const analysis::CgContact> used =
-        t.spec.contacts ? std::span<const analysis::CgContact>(contacts)
+        t.spec.contacts ? std::span<const analysis::CgContact>(input_.contacts)
                         : std::span<const analysis::CgContact>();
-    const std::vector<double> sums = analysis::coarse_grain_sums(grains, used, t.settings);
+    const std::vector<double> sums = analysis::coarse_grain_sums(input_.grains(), used, t.settings);
     if (t.sums.empty()) t.sums.assign(sums.size(), 0.0);
     for (std::size_t k = 0; k < sums.size(); ++k) t.sums[k] += sums[k];
     ++t.samples;
@@ -113,8 +98,7 @@ void CoarseGrainOutput::sample(const Simulation& sim) {
   }
 }
 
-void CoarseGrainOutput::write(const Table& t, const analysis::CgFields& f,
-                              std::int64_t step) const {
+void CoarseGrainOutput::write(Table& t, const analysis::CgFields& f, std::int64_t step) const {
   const analysis::CgGrid& g = t.settings.grid;
   const std::string stem = fmt::format("{}_{:09d}", t.spec.name, step);
   // The table's fields, in the order it names them (the reader checked the names).
@@ -124,55 +108,67 @@ void CoarseGrainOutput::write(const Table& t, const analysis::CgFields& f,
     columns.push_back(*std::find_if(
         all.begin(), all.end(), [&](const analysis::CgNamedField& c) { return c.name == name; }));
 
-  // CSV: the point (x fastest), then each field's components.
+  // CSV: the point (x fastest), then each field's components. Both files are formatted into
+  // one buffer each, without a string a value.
   {
-    std::ofstream csv(t.folder / (stem + ".csv"));
-    csv << "x,y,z";
+    fmt::memory_buffer out;
+    fmt::format_to(std::back_inserter(out), "x,y,z");
     for (std::size_t c = 0; c < columns.size(); ++c)
       for (const std::string& n : column_names(t.spec.fields[c], columns[c].components))
-        csv << ',' << n;
-    csv << '\n';
+        fmt::format_to(std::back_inserter(out), ",{}", n);
+    out.push_back('\n');
     for (int k = 0; k < g.n[2]; ++k)
       for (int j = 0; j < g.n[1]; ++j)
         for (int i = 0; i < g.n[0]; ++i) {
           const std::size_t p = g.index(i, j, k);
-          csv << fmt::format("{:.10g},{:.10g},{:.10g}", g.coordinate(0, i), g.coordinate(1, j),
-                             g.coordinate(2, k));
+          fmt::format_to(std::back_inserter(out), "{:.10g},{:.10g},{:.10g}", g.coordinate(0, i),
+                         g.coordinate(1, j), g.coordinate(2, k));
           for (const analysis::CgNamedField& col : columns)
             for (int q = 0; q < col.components; ++q)
-              csv << fmt::format(",{:.10g}", (*col.values)[p * col.components + q]);
-          csv << '\n';
+              fmt::format_to(std::back_inserter(out), ",{:.10g}",
+                             (*col.values)[p * col.components + q]);
+          out.push_back('\n');
         }
+    std::ofstream(t.folder / (stem + ".csv"))
+        .write(out.data(), static_cast<std::streamsize>(out.size()));
   }
   // VTK image data: the points at the cells' centres, x fastest.
   {
-    std::ofstream vti(t.folder / (stem + ".vti"));
+    fmt::memory_buffer out;
     const auto extent = fmt::format("0 {} 0 {} 0 {}", g.n[0] - 1, g.n[1] - 1, g.n[2] - 1);
-    vti << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-        << fmt::format("<ImageData WholeExtent=\"{}\" Origin=\"{:.10g} {:.10g} {:.10g}\" "
-                       "Spacing=\"{:.10g} {:.10g} {:.10g}\">\n",
-                       extent, g.coordinate(0, 0), g.coordinate(1, 0), g.coordinate(2, 0),
-                       g.spacing(0), g.spacing(1), g.spacing(2))
-        << fmt::format("<Piece Extent=\"{}\">\n<PointData>\n", extent);
+    fmt::format_to(std::back_inserter(out),
+                   "<?xml version=\"1.0\"?>\n"
+                   "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+                   "<ImageData WholeExtent=\"{}\" Origin=\"{:.10g} {:.10g} {:.10g}\" "
+                   "Spacing=\"{:.10g} {:.10g} {:.10g}\">\n<Piece Extent=\"{}\">\n<PointData>\n",
+                   extent, g.coordinate(0, 0), g.coordinate(1, 0), g.coordinate(2, 0), g.spacing(0),
+                   g.spacing(1), g.spacing(2), extent);
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      vti << fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
-                         "format=\"ascii\">\n",
-                         t.spec.fields[c], columns[c].components);
-      for (const double value : *columns[c].values) vti << fmt::format("{:.10g} ", value);
-      vti << "\n</DataArray>\n";
+      fmt::format_to(std::back_inserter(out),
+                     "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
+                     "format=\"ascii\">\n",
+                     t.spec.fields[c], columns[c].components);
+      for (const double value : *columns[c].values)
+        fmt::format_to(std::back_inserter(out), "{:.10g} ", value);
+      fmt::format_to(std::back_inserter(out), "\n</DataArray>\n");
     }
-    vti << "</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n";
+    fmt::format_to(std::back_inserter(out), "</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n");
+    std::ofstream(t.folder / (stem + ".vti"))
+        .write(out.data(), static_cast<std::streamsize>(out.size()));
   }
-  // The series: every sample of the folder, by step.
-  std::vector<std::int64_t> steps;
-  for (const auto& entry : std::filesystem::directory_iterator(t.folder)) {
-    const std::string file = entry.path().filename().string();
+  // The series: every sample of the folder, by step (the files of an earlier run that this one
+  // resumes included: the folder is read once, at the first write).
+  if (!t.listed) {
     const std::string prefix = t.spec.name + "_";
-    if (entry.path().extension() == ".vti" && file.rfind(prefix, 0) == 0)
-      steps.push_back(std::stoll(file.substr(prefix.size(), 9)));
+    for (const auto& entry : std::filesystem::directory_iterator(t.folder)) {
+      const std::string file = entry.path().filename().string();
+      if (entry.path().extension() == ".vti" && file.rfind(prefix, 0) == 0)
+        t.written.insert(std::stoll(file.substr(prefix.size(), 9)));
+    }
+    t.listed = true;
   }
-  std::sort(steps.begin(), steps.end());
+  t.written.insert(step);
+  const std::set<std::int64_t>& steps = t.written;
   std::ofstream pvd(t.folder / (t.spec.name + ".pvd"));
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n";
   for (const std::int64_t s : steps)

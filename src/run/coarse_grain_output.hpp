@@ -7,11 +7,13 @@
 #pragma once
 
 #include "analysis/coarse_grain.hpp"
+#include "run/coarse_grain_contacts.hpp"
 #include "scene/coarse_grain_spec.hpp"
 #include "sim/simulation.hpp"
 
 #include <cstdint>
 #include <filesystem>
+#include <set>
 #include <vector>
 
 namespace yuxi {
@@ -40,9 +42,12 @@ private:
     std::filesystem::path folder;
     std::vector<double> sums; // this rank's, since the last write
     std::int64_t samples = 0;
+    std::set<std::int64_t> written; // the steps of the folder's files (rank 0)
+    bool listed = false;            // whether the folder was read for them
   };
-  void write(const Table& t, const analysis::CgFields& f, std::int64_t step) const;
+  void write(Table& t, const analysis::CgFields& f, std::int64_t step) const;
   std::vector<Table> tables_;
+  CoarseGrainInput input_; // the grains and contacts of a sample
   double dt_;
   bool root_;
 };

@@ -8,6 +8,7 @@
 #include "core/random.hpp"
 #include "scene/coarse_grain_spec.hpp"
 
+#include <array>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
@@ -63,6 +64,24 @@ TEST(CoarseGrainFunction, LineIntegralIsTheQuadratureOfTheFunction) {
     }
 }
 
+TEST(CoarseGrainFunction, LineIntegralAlongOneAxisIsTheQuadratureOfTheFunction) {
+  Random random(11);
+  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy}) {
+    const double w = 0.5;
+    const CgFunction phi(kind, w, 3.0 * w, 1);
+    for (int trial = 0; trial < 200; ++trial) {
+      const double q = random.uniform(-2, 2);
+      const double b = trial % 10 == 0 ? 0.0 : random.uniform(-2, 2);
+      const double brute =
+          simpson([&](double s) { return phi.at((q - b * s) * (q - b * s)); }, 0.0, 1.0, 200000);
+      EXPECT_NEAR(phi.along_axis(q, b), brute, 1e-9 * (1.0 + std::abs(brute)))
+          << to_string(kind) << ", trial " << trial;
+      EXPECT_NEAR(phi.along_axis(q, b), phi.along({q, 0, 0}, {b, 0, 0}), 1e-12)
+          << to_string(kind) << ", trial " << trial;
+    }
+  }
+}
+
 TEST(CoarseGrainFunction, RefusesImpossibleSettings) {
   EXPECT_THROW(CgFunction(CgKind::gaussian, 0.0, 1.0, 3), std::invalid_argument);
   EXPECT_THROW(CgFunction(CgKind::lucy, 1.0, -1.0, 3), std::invalid_argument);
@@ -102,6 +121,57 @@ double grid_sum(const std::vector<double>& field, const CgGrid& grid) {
   double s = 0.0;
   for (const double f : field) s += f;
   return s * grid.cell_volume();
+}
+
+// The weights on a grid, made axis by axis (the Gaussian's exponentials by a recurrence), are the
+// function at each point's distance, periodic images included, on grids of 1, 2 and 3 axes.
+TEST(CoarseGrain, AGrainWeighsOnEveryPointByTheFunctionAtItsDistance) {
+  Random random(5);
+  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy})
+    for (int resolved = 1; resolved <= 3; ++resolved)
+      for (const bool periodic : {false, true}) {
+        CgSettings s;
+        s.kind = kind;
+        s.width = 0.3;
+        s.cutoff = kind == CgKind::gaussian ? 9.0 * s.width : 3.0 * s.width;
+        s.grid = {{0, 0, 0}, {4, 4, 4}, {13, 7, 16}, {false, false, false}, {}};
+        for (int a = resolved; a < 3; ++a) {
+          s.grid.averaged[static_cast<std::size_t>(a)] = true;
+          s.grid.n[static_cast<std::size_t>(a)] = 1;
+        }
+        for (int a = 0; a < resolved; ++a) s.grid.periodic[static_cast<std::size_t>(a)] = periodic;
+        const CgFunction phi(kind, s.width, s.cutoff, resolved);
+        const Vec3 x{random.uniform(0, 4), random.uniform(0, 4), random.uniform(0, 4)};
+        const std::vector<Vec3> xs{x}, vs{{0, 0, 0}};
+        const std::vector<double> mass{1.0}, volume{0.0};
+        const CgFields f = coarse_grain({xs, vs, mass, volume}, {}, s);
+        double largest = 0.0;
+        for (const double d : f.density) largest = std::max(largest, d);
+        for (int k = 0; k < s.grid.n[2]; ++k)
+          for (int j = 0; j < s.grid.n[1]; ++j)
+            for (int i = 0; i < s.grid.n[0]; ++i) {
+              const std::array<int, 3> at{i, j, k};
+              double expected = 0.0;
+              // Every image within reach on a periodic axis (the box is 4 long).
+              for (int ix = periodic ? -3 : 0; ix <= (periodic ? 3 : 0); ++ix)
+                for (int iy = periodic && resolved > 1 ? -3 : 0;
+                     iy <= (periodic && resolved > 1 ? 3 : 0); ++iy)
+                  for (int iz = periodic && resolved > 2 ? -3 : 0;
+                       iz <= (periodic && resolved > 2 ? 3 : 0); ++iz) {
+                    const std::array<int, 3> image{ix, iy, iz};
+                    double r2 = 0.0;
+                    for (int a = 0; a < resolved; ++a) {
+                      const auto u = static_cast<std::size_t>(a);
+                      const double d = s.grid.coordinate(a, at[u]) - (x[a] + 4.0 * image[u]);
+                      r2 += d * d;
+                    }
+                    expected += phi.at(r2);
+                  }
+              expected /= s.grid.averaged_extent();
+              EXPECT_NEAR(f.density[s.grid.index(i, j, k)], expected, 1e-13 * largest)
+                  << to_string(kind) << ", " << resolved << " axes, periodic " << periodic;
+            }
+      }
 }
 
 TEST(CoarseGrain, MassOnABinGridOverAPeriodicBoxIsTheGrainsMass) {
