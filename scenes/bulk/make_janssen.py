@@ -99,7 +99,14 @@ def scene(name, diameter, silos, rate, settle, comment, lowered=None, coulomb=Tr
                 "[[measure]]", f'name = "{tag}_floor"', 'quantity = "wall_force"',
                 f'wall = "{tag}_floor"',
                 "[[measure]]", f'name = "{tag}_side"', 'quantity = "wall_force"',
-                f'wall = "{tag}_side"', ""]
+                f'wall = "{tag}_side"', "",
+                # the column's profile at the end: density, stress and the walls' force
+                # density along z, averaged over the square about the silo
+                "[[coarse_grain]]", f'name = "{tag}_column"', "width = 1.0",
+                f"lo = [{x - radius}, {y - radius}, 0.0]",
+                f"hi = [{x + radius}, {y + radius}, {math.ceil(top)}]",
+                'average = "xy"', f"n = [1, 1, {2 * math.ceil(top)}]", f"interval = {t_end}",
+                'fields = ["density", "stress", "wall_force_density"]', ""]
     out += ["[[measure]]", 'name = "ke"', 'quantity = "kinetic_per_grain"', ""]
     return "\n".join(out)
 

@@ -169,6 +169,41 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
     add_range(res, "settled: kinetic energy per grain [m g d] (< 1e-5)", m.last("ke"), 0.0, 1e-5);
   add_books(res, energies, 0.03);
 
+  // Each silo's column coarse-grained at the end (scenes/bulk/make_janssen.py: density, stress
+  // and the walls' force density along z, averaged over the square about the silo). At rest the
+  // momentum balance -d sigma_zz / dz - rho g + t_z = 0 makes sigma_zz(z) the weight above less
+  // what the side wall holds above: the integral of rho g - t_z from z up. Checked from 3 d
+  // above the floor (the function's reach) to 3 d below the surface, against the stress there.
+  for (const Silo& s : silos) {
+    const std::filesystem::path dir = folder / "coarse_grain" / (s.tag + "_column");
+    std::filesystem::path last;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (entry.path().extension() == ".csv" && entry.path() > last) last = entry.path();
+    if (last.empty()) throw std::runtime_error(dir.string() + ": no coarse-grained profile");
+    const CsvTable profile = read_csv(last);
+    const auto& z = profile.column("z");
+    const auto& rho = profile.column("density");
+    const auto& szz = profile.column("stress_zz");
+    const auto& tz = profile.column("wall_force_density_z");
+    std::vector<double> above(z.size() + 1, 0.0);
+    for (std::size_t k = z.size(); k-- > 0;) {
+      const double here = rho[k] - tz[k]; // g = 1
+      const double next = k + 1 < z.size() ? rho[k + 1] - tz[k + 1] : 0.0;
+      const double h = k + 1 < z.size() ? z[k + 1] - z[k] : z[k] - z[k - 1];
+      above[k] = above[k + 1] + 0.5 * h * (here + next);
+    }
+    double worst = 0, scale = 0;
+    for (std::size_t k = 0; k < z.size(); ++k)
+      if (z[k] >= 3.0 && z[k] <= s.height - 3.0) {
+        scale = std::max(scale, std::abs(above[k]));
+        worst = std::max(worst, std::abs(szz[k] - above[k]));
+      }
+    res.add(fmt::format("{}: coarse-grained |sigma_zz - integral of (rho g - t_z) above| / "
+                        "sigma_zz at 3 d (< 0.005)",
+                        s.tag),
+            0.0, worst / scale, 0.005);
+  }
+
   std::vector<Silo> rough;
   for (const Silo& s : silos) {
     // Exact at rest: the bottom and the side carry the weight, sum F_z = -M g.
