@@ -1,9 +1,12 @@
 #include "py_coarse_grain.hpp"
 
+#include "analysis/cg_cylinder.hpp"
 #include "analysis/coarse_grain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -62,14 +65,15 @@ std::array<bool, 3> axes_named(const std::string& text, const std::string& key) 
 }
 
 // A field of the grid as an array indexed [i, j, k] over the resolved axes, then its components.
-py::array_t<double> field(const std::vector<double>& values, const analysis::CgGrid& grid,
-                          int components) {
+// (n: the points along the grid's three axes, first fastest; averaged: the axes left out.)
+py::array_t<double> field(const std::vector<double>& values, const std::array<int, 3>& n,
+                          const std::array<bool, 3>& averaged, int components) {
   std::vector<py::ssize_t> shape, strides;
   const auto c = static_cast<py::ssize_t>(components);
-  const py::ssize_t stride[3] = {c * 8, c * 8 * grid.n[0], c * 8 * grid.n[0] * grid.n[1]};
+  const py::ssize_t stride[3] = {c * 8, c * 8 * n[0], c * 8 * n[0] * n[1]};
   for (int a = 0; a < 3; ++a)
-    if (!grid.averaged[static_cast<std::size_t>(a)]) {
-      shape.push_back(grid.n[static_cast<std::size_t>(a)]);
+    if (!averaged[static_cast<std::size_t>(a)]) {
+      shape.push_back(n[static_cast<std::size_t>(a)]);
       strides.push_back(stride[a]);
     }
   if (components == 3) shape.push_back(3), strides.push_back(8);
@@ -81,19 +85,8 @@ py::array_t<double> field(const std::vector<double>& values, const analysis::CgG
   return py::array_t<double>(strided.attr("copy")());
 }
 
-py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
-                      const Doubles& volume, const py::object& contacts,
-                      const std::string& function, double width, std::optional<double> cutoff,
-                      const Doubles& lo, const Doubles& hi, const std::vector<int>& n,
-                      const std::string& average, const std::string& periodic,
-                      const py::object& reduce) {
-  const py::ssize_t grains = x.ndim() == 2 ? x.shape(0) : -1;
-  if (grains < 0) throw std::invalid_argument("coarse_grain: x must have shape (n, 3)");
-  const std::vector<Vec3> xs = vectors(x, grains, "x"), vs = vectors(v, grains, "v");
-  const std::vector<double> ms = scalars(mass, grains, "mass"),
-                            volumes = scalars(volume, grains, "volume");
-
-  // Contacts as analysis::CgContact's fields (yuxi/coarse_graining.py makes them).
+// Contacts as analysis::CgContact's fields (yuxi/coarse_graining.py makes them); none for None.
+std::vector<CgContact> contact_list(const py::object& contacts) {
   std::vector<CgContact> list;
   if (!contacts.is_none()) {
     const py::dict d = contacts.cast<py::dict>();
@@ -121,14 +114,64 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
       list.push_back(
           {centre[k], va[k], wall[k] != 0.0, vb[k], force[k], branch[k], point[k], elastic[k]});
   }
+  return list;
+}
 
-  CgSettings settings;
-  settings.kind = kind_named(function);
-  settings.width = width;
-  settings.cutoff = cutoff.value_or(3.0 * width);
-  if (settings.kind != CgKind::bins && !(width > 0.0))
+// The sums of this rank, added over the ranks where `reduce` is given (it sums a numpy array over
+// the ranks, in place): every rank then makes the fields of the whole.
+void reduce_sums(std::vector<double>& sums, const py::object& reduce) {
+  if (!reduce.is_none())
+    reduce(py::array_t<double>(static_cast<py::ssize_t>(sums.size()), sums.data(),
+                               py::capsule(sums.data(), [](void*) {})));
+}
+
+// What both grids take: the grains, the contacts and the function.
+struct Input {
+  std::vector<Vec3> x, v;
+  std::vector<double> mass, volume;
+  std::vector<CgContact> contacts;
+  CgKind kind = CgKind::gaussian;
+  double width = 0.0, cutoff = 0.0;
+  analysis::CgGrains grains() const { return {x, v, mass, volume}; }
+};
+
+Input input_of(const Doubles& x, const Doubles& v, const Doubles& mass, const Doubles& volume,
+               const py::object& contacts, const std::string& function, double width,
+               std::optional<double> cutoff) {
+  const py::ssize_t grains = x.ndim() == 2 ? x.shape(0) : -1;
+  if (grains < 0) throw std::invalid_argument("coarse_grain: x must have shape (n, 3)");
+  Input in{vectors(x, grains, "x"),
+           vectors(v, grains, "v"),
+           scalars(mass, grains, "mass"),
+           scalars(volume, grains, "volume"),
+           contact_list(contacts),
+           kind_named(function),
+           width,
+           cutoff.value_or(3.0 * width)};
+  if (in.kind != CgKind::bins && !(width > 0.0))
     throw std::invalid_argument("coarse_grain: width must be positive (got " +
                                 std::to_string(width) + ")");
+  return in;
+}
+
+// The coordinates of the points along an axis, as an array.
+py::array_t<double> coordinates(int n, const std::function<double(int)>& at) {
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) values[static_cast<std::size_t>(k)] = at(k);
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
+                      const Doubles& volume, const py::object& contacts,
+                      const std::string& function, double width, std::optional<double> cutoff,
+                      const Doubles& lo, const Doubles& hi, const std::vector<int>& n,
+                      const std::string& average, const std::string& periodic,
+                      const py::object& reduce) {
+  const Input in = input_of(x, v, mass, volume, contacts, function, width, cutoff);
+  CgSettings settings;
+  settings.kind = in.kind;
+  settings.width = in.width;
+  settings.cutoff = in.cutoff;
   if (lo.size() != 3 || hi.size() != 3 || n.size() != 3)
     throw std::invalid_argument("coarse_grain: lo, hi and n take three values (x, y, z)");
   settings.grid.lo = {lo.data()[0], lo.data()[1], lo.data()[2]};
@@ -137,30 +180,80 @@ py::dict coarse_grain(const Doubles& x, const Doubles& v, const Doubles& mass,
   settings.grid.periodic = axes_named(periodic, "periodic");
   for (std::size_t a = 0; a < 3; ++a) settings.grid.n[a] = settings.grid.averaged[a] ? 1 : n[a];
 
-  const analysis::CgGrains g{xs, vs, ms, volumes};
   std::vector<double> sums;
   {
     py::gil_scoped_release release;
-    sums = analysis::coarse_grain_sums(g, list, settings);
+    sums = analysis::coarse_grain_sums(in.grains(), in.contacts, settings);
   }
-  // The ranks' sums added up (reduce sums a numpy array over the ranks, in place): every rank
-  // then makes the fields of the whole.
-  if (!reduce.is_none())
-    reduce(py::array_t<double>(static_cast<py::ssize_t>(sums.size()), sums.data(),
-                               py::capsule(sums.data(), [](void*) {})));
+  reduce_sums(sums, reduce);
   const CgFields f = analysis::coarse_grain_fields(sums, settings.grid);
   const analysis::CgGrid& grid = settings.grid;
   py::dict out;
   static constexpr const char* axis_names[] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) {
-    if (grid.averaged[static_cast<std::size_t>(a)]) continue;
-    std::vector<double> at(static_cast<std::size_t>(grid.n[static_cast<std::size_t>(a)]));
-    for (std::size_t k = 0; k < at.size(); ++k) at[k] = grid.coordinate(a, static_cast<int>(k));
-    out[axis_names[a]] = py::array_t<double>(static_cast<py::ssize_t>(at.size()), at.data());
-  }
+  for (int a = 0; a < 3; ++a)
+    if (!grid.averaged[static_cast<std::size_t>(a)])
+      out[axis_names[a]] = coordinates(grid.n[static_cast<std::size_t>(a)],
+                                       [&](int k) { return grid.coordinate(a, k); });
   for (const analysis::CgNamedField& named : analysis::named_fields(f))
-    out[py::str(std::string(named.name))] = field(*named.values, grid, named.components);
+    out[py::str(std::string(named.name))] =
+        field(*named.values, grid.n, grid.averaged, named.components);
   out["cell_volume"] = grid.cell_volume();
+  return out;
+}
+
+// On a cylindrical grid (analysis/cg_cylinder.hpp): the axis (x0, y0), lo = (r_lo, z_lo), hi =
+// (r_hi, z_hi), n = (n_r, n_theta, n_z); average names "theta", "z" or both.
+py::dict coarse_grain_cylinder(const Doubles& x, const Doubles& v, const Doubles& mass,
+                               const Doubles& volume, const py::object& contacts,
+                               const std::string& function, double width,
+                               std::optional<double> cutoff, const Doubles& axis, const Doubles& lo,
+                               const Doubles& hi, const std::vector<int>& n,
+                               const std::string& average, const py::object& reduce) {
+  const Input in = input_of(x, v, mass, volume, contacts, function, width, cutoff);
+  analysis::CgCylinderSettings settings;
+  settings.kind = in.kind;
+  settings.width = in.width;
+  settings.cutoff = in.cutoff;
+  if (axis.size() != 2 || lo.size() != 2 || hi.size() != 2 || n.size() != 3)
+    throw std::invalid_argument("coarse_grain: on a cylindrical grid, axis takes (x, y), lo and "
+                                "hi take (r, z), n takes (n_r, n_theta, n_z)");
+  std::string rest = average;
+  const auto take = [&rest](const std::string& word) {
+    const auto at = rest.find(word);
+    if (at == std::string::npos) return false;
+    rest.erase(at, word.size());
+    return true;
+  };
+  const bool theta_averaged = take("theta"), z_averaged = take("z");
+  if (rest.find_first_not_of(" ,") != std::string::npos)
+    throw std::invalid_argument("coarse_grain: on a cylindrical grid, average names \"theta\", "
+                                "\"z\" or both (got \"" +
+                                average + "\")");
+  settings.grid = {axis.data()[0],
+                   axis.data()[1],
+                   lo.data()[0],
+                   hi.data()[0],
+                   lo.data()[1],
+                   hi.data()[1],
+                   {n[0], theta_averaged ? 1 : n[1], z_averaged ? 1 : n[2]},
+                   theta_averaged,
+                   z_averaged};
+  std::vector<double> sums;
+  {
+    py::gil_scoped_release release;
+    sums = analysis::coarse_grain_sums(in.grains(), in.contacts, settings);
+  }
+  reduce_sums(sums, reduce);
+  const CgFields f = analysis::coarse_grain_fields(sums, settings.grid.size());
+  const analysis::CgCylinder& g = settings.grid;
+  py::dict out;
+  out["r"] = coordinates(g.n[0], [&](int k) { return g.r(k); });
+  if (!theta_averaged) out["theta"] = coordinates(g.n[1], [&](int k) { return g.theta(k); });
+  if (!z_averaged) out["z"] = coordinates(g.n[2], [&](int k) { return g.z(k); });
+  const std::array<bool, 3> averaged{false, theta_averaged, z_averaged};
+  for (const analysis::CgNamedField& named : analysis::named_fields(f))
+    out[py::str(std::string(named.name))] = field(*named.values, g.n, averaged, named.components);
+  out["cell_volume"] = coordinates(g.n[0], [&](int k) { return g.cell_volume(k); });
   return out;
 }
 
@@ -170,6 +263,9 @@ void bind_coarse_grain(py::module_& m) {
   m.def("coarse_grain", &coarse_grain, "x"_a, "v"_a, "mass"_a, "volume"_a, "contacts"_a,
         "function"_a, "width"_a, "cutoff"_a, "lo"_a, "hi"_a, "n"_a, "average"_a, "periodic"_a,
         "reduce"_a = py::none());
+  m.def("coarse_grain_cylinder", &coarse_grain_cylinder, "x"_a, "v"_a, "mass"_a, "volume"_a,
+        "contacts"_a, "function"_a, "width"_a, "cutoff"_a, "axis"_a, "lo"_a, "hi"_a, "n"_a,
+        "average"_a, "reduce"_a = py::none());
 }
 
 } // namespace yuxi::python

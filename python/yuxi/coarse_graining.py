@@ -12,7 +12,7 @@ CONTACT_FIELDS = ("contact_stress", "wall_force_density", "coordination", "fabri
 
 
 def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, lo=None, hi=None,
-                 average="", contacts=True):
+                 average="", contacts=True, axis=None):
     """Coarse-grained fields of a simulation's grains now, or of arrays saved from one.
 
     ``source`` is a :class:`yuxi.Simulation` (its grains, and the contacts of its last step: call
@@ -29,6 +29,13 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     by default one point per width); ``average`` names the axes averaged over ("xy" for a
     profile along z). With ``contacts=False`` only the kinetic fields are computed.
 
+    With ``axis`` = (x0, y0) the grid is cylindrical, about the vertical line through that point:
+    ``lo`` = (r_lo, z_lo) and ``hi`` = (r_hi, z_hi) (by default from the axis to the box's farthest
+    corner, and the box's height), ``n`` = (n_r, n_theta, n_z), and ``average`` names "theta",
+    "z" or both (a profile in r and z: "theta"). Its arrays are indexed [i, j, k] over r, theta
+    and z (the resolved ones), with coordinates ``r``, ``theta``, ``z``; vectors and tensors are
+    in the local basis (e_r, e_theta, e_z); ``cell_volume`` is then an array over r.
+
     Returns a dict of numpy arrays indexed [i, j, k] over the resolved axes (then a vector's or
     tensor's components): the points' coordinates ``x``, ``y``, ``z`` (resolved axes only),
     ``density``, ``number_density``, ``volume_fraction``, ``momentum``, ``velocity``,
@@ -39,17 +46,14 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     arrays = _from_simulation(source, contacts) if hasattr(source, "_core") else \
         _from_dict(source, contacts)
     box = arrays["box"]
+    if axis is not None:
+        return _cylinder(arrays, width, function, cutoff, n, lo, hi, average, axis)
     lo = np.asarray(box["lo"] if lo is None else lo, dtype=float)
     hi = np.asarray(box["hi"] if hi is None else hi, dtype=float)
     if lo.shape != (3,) or hi.shape != (3,):
         raise ValueError("coarse_grain: lo and hi take three values (x, y, z)")
-    if function != "bins":
-        if width is None:
-            raise ValueError(f"coarse_grain: the {function} function needs a width")
-        if not width > 0:
-            raise ValueError(f"coarse_grain: width must be positive (got {width})")
-        if n is None:
-            n = [max(1, math.ceil((h - l) / width)) for l, h in zip(lo, hi)]
+    if _needs_points(function, width, n):
+        n = [max(1, math.ceil((h - l) / width)) for l, h in zip(lo, hi)]
     elif n is None:
         raise ValueError("coarse_grain: plain bins need n, the number of cells along each axis")
     n = [int(k) for k in n]
@@ -61,6 +65,44 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     return _yuxi.coarse_grain(arrays["x"], arrays["v"], arrays["mass"], arrays["volume"],
                               arrays["contacts"], function, float(width or 0.0), cutoff, lo, hi,
                               n, average, periodic, arrays.get("reduce"))
+
+
+def _needs_points(function, width, n):
+    """Checks a function's width; whether n is to be chosen from it (one point per width)."""
+    if function == "bins":
+        return False
+    if width is None:
+        raise ValueError(f"coarse_grain: the {function} function needs a width")
+    if not width > 0:
+        raise ValueError(f"coarse_grain: width must be positive (got {width})")
+    return n is None
+
+
+def _cylinder(arrays, width, function, cutoff, n, lo, hi, average, axis):
+    box = arrays["box"]
+    axis = np.asarray(axis, dtype=float)
+    if axis.shape != (2,):
+        raise ValueError("coarse_grain: axis takes two values (x, y)")
+    if lo is None:
+        lo = (0.0, box["lo"][2])
+    if hi is None:
+        corners = [(x, y) for x in (box["lo"][0], box["hi"][0]) for y in (box["lo"][1], box["hi"][1])]
+        hi = (max(math.hypot(x - axis[0], y - axis[1]) for x, y in corners), box["hi"][2])
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    if lo.shape != (2,) or hi.shape != (2,):
+        raise ValueError("coarse_grain: on a cylindrical grid lo and hi take two values (r, z)")
+    if _needs_points(function, width, n):
+        n = [max(1, math.ceil((hi[0] - lo[0]) / width)),
+             max(1, math.ceil(2 * math.pi * hi[0] / width)),
+             max(1, math.ceil((hi[1] - lo[1]) / width))]
+    elif n is None:
+        raise ValueError("coarse_grain: plain bins need n, the number of cells along r, theta, z")
+    n = [int(k) for k in n]
+    if len(n) != 3:
+        raise ValueError("coarse_grain: on a cylindrical grid n takes three values (r, theta, z)")
+    return _yuxi.coarse_grain_cylinder(arrays["x"], arrays["v"], arrays["mass"], arrays["volume"],
+                                       arrays["contacts"], function, float(width or 0.0), cutoff,
+                                       axis, lo, hi, n, average, arrays.get("reduce"))
 
 
 def _from_dict(d, contacts):

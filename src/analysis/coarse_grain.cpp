@@ -1,5 +1,7 @@
 #include "analysis/coarse_grain.hpp"
 
+#include "analysis/cg_accumulate.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -292,121 +294,24 @@ private:
   double inverse_extent_ = 1.0, inverse_cell_ = 1.0;
 };
 
-void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) t[3 * r + c] += a[r] * b[c] * w;
-}
-
 } // namespace
-
-namespace {
-// Where each sum sits among a point's cg_sums_per_point.
-struct Sum {
-  enum : std::size_t {
-    mass = 0,            // sum m phi
-    number = 1,          // sum phi
-    volume = 2,          // sum V phi
-    momentum = 3,        // sum m v phi (3)
-    momentum_flux = 6,   // sum m v v phi (9)
-    contact_stress = 15, // sum f b psi (9)
-    wall_force = 24,     // sum over wall contacts f phi (3)
-    contacts = 27,       // sum over contacts (phi_a + phi_b): sum z phi
-    fabric = 28,         // sum over contacts (V_a phi_a + V_b phi_b) n n (9)
-    kinetic = 37,        // sum m v^2 / 2 phi
-    elastic = 38,        // sum over contacts E phi(r - c)
-  };
-};
-} // namespace
-static_assert(cg_sums_per_point == Sum::elastic + 1);
 
 std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const CgContact> contacts,
                                       const CgSettings& settings) {
   settings.grid.check();
-  const std::size_t n_grains = grains.x.size();
-  if (grains.v.size() != n_grains || grains.mass.size() != n_grains ||
-      grains.volume.size() != n_grains)
-    throw std::invalid_argument("coarse-graining: the grains' positions, velocities, masses and "
-                                "volumes differ in number");
   const Weights weights(settings);
   std::vector<double> sums(cg_sums_per_point * settings.grid.size(), 0.0);
-  const auto at = [&](std::size_t p, std::size_t s) { return &sums[cg_sums_per_point * p + s]; };
-
-  // The contacts of grains known by their place: counted with the grain's own weights.
-  std::vector<double> grain_contacts, grain_fabric;
-  const auto known = [n_grains](std::int64_t g) {
-    if (g >= static_cast<std::int64_t>(n_grains))
-      throw std::invalid_argument("coarse-graining: a contact names grain " + std::to_string(g) +
-                                  " of " + std::to_string(n_grains));
-    return g >= 0;
-  };
-  const auto unit_branch = [](const CgContact& c) {
-    const double length = norm(c.branch);
-    return length > 0.0 ? c.branch / length : Vec3{};
-  };
-  for (const CgContact& c : contacts) {
-    const bool a = known(c.grain), b = !c.wall && known(c.grain_b);
-    if (!a && !b) continue;
-    if (grain_contacts.empty()) {
-      grain_contacts.assign(n_grains, 0.0);
-      grain_fabric.assign(9 * n_grains, 0.0);
-    }
-    const Vec3 unit = unit_branch(c);
-    const auto count = [&](std::int64_t g, double volume) {
-      const auto u = static_cast<std::size_t>(g);
-      grain_contacts[u] += 1.0;
-      add_outer(&grain_fabric[9 * u], unit, unit, volume);
-    };
-    if (a) count(c.grain, c.volume);
-    if (b) count(c.grain_b, c.volume_b);
-  }
-
-  for (std::size_t i = 0; i < n_grains; ++i) {
-    const double m = grains.mass[i], volume = grains.volume[i];
-    const Vec3 v = grains.v[i];
-    const bool touched = !grain_contacts.empty() && grain_contacts[i] > 0.0;
-    weights.at_point(grains.x[i], [&](std::size_t p, double w) {
-      *at(p, Sum::mass) += m * w;
-      *at(p, Sum::number) += w;
-      *at(p, Sum::volume) += volume * w;
-      for (int a = 0; a < 3; ++a) at(p, Sum::momentum)[a] += m * v[a] * w;
-      add_outer(at(p, Sum::momentum_flux), v, v, m * w);
-      *at(p, Sum::kinetic) += 0.5 * m * norm2(v) * w;
-      if (touched) {
-        *at(p, Sum::contacts) += grain_contacts[i] * w;
-        for (int k = 0; k < 9; ++k) at(p, Sum::fabric)[k] += grain_fabric[9 * i + k] * w;
-      }
-    });
-  }
-  for (const CgContact& c : contacts) {
-    const Vec3 x_a = c.centre, from = x_a - c.branch;
-    const Vec3 unit = unit_branch(c);
-    // The branch, from b's centre or the wall's contact point to a's centre.
-    weights.along(from, c.branch, [&](std::size_t p, double w) {
-      add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
-    });
-    weights.at_point(c.point, [&](std::size_t p, double w) {
-      *at(p, Sum::elastic) += c.elastic * w;
-      if (c.wall)
-        for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
-    });
-    // The contact counts for each grain it joins, where that grain stands (counted above for
-    // the grains known by their place).
-    if (c.grain < 0)
-      weights.at_point(x_a, [&](std::size_t p, double w) {
-        *at(p, Sum::contacts) += w;
-        add_outer(at(p, Sum::fabric), unit, unit, c.volume * w);
-      });
-    if (!c.wall && c.grain_b < 0)
-      weights.at_point(from, [&](std::size_t p, double w) {
-        *at(p, Sum::contacts) += w;
-        add_outer(at(p, Sum::fabric), unit, unit, c.volume_b * w);
-      });
-  }
+  detail::add_sums(grains, contacts, weights, sums);
   return sums;
 }
 
 CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid) {
-  const std::size_t points = grid.size();
+  return coarse_grain_fields(sums, grid.size());
+}
+
+CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points) {
+  using detail::add_outer;
+  using detail::Sum;
   if (sums.size() != cg_sums_per_point * points)
     throw std::invalid_argument("coarse-graining: the sums do not fit the grid");
   CgFields out;

@@ -91,8 +91,9 @@ inline constexpr std::size_t cg_sums_per_point = 39;
 // settings (naming the setting) or inconsistent inputs.
 std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const CgContact> contacts,
                                       const CgSettings& settings);
-// The fields from the (summed) sums on `grid`.
+// The fields from the (summed) sums on `grid`, or at `points` points.
 CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid);
+CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points);
 
 // Both: the fields of `grains` and `contacts` on settings.grid.
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,

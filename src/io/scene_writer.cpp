@@ -186,12 +186,20 @@ void write_coarse_grains(const Scene& s, toml::table& doc) {
       t.insert("width", c.width);
       t.insert("cutoff", c.cutoff);
     }
-    t.insert("lo", vec(c.lo));
-    t.insert("hi", vec(c.hi));
-    t.insert("n", toml::array{c.n[0], c.n[1], c.n[2]});
     std::string average;
-    for (int a = 0; a < 3; ++a)
-      if (c.averaged[static_cast<std::size_t>(a)]) average += static_cast<char>('x' + a);
+    if (c.cylindrical) {
+      t.insert("axis", toml::array{c.axis_x, c.axis_y});
+      t.insert("lo", toml::array{c.lo.x, c.lo.z});
+      t.insert("hi", toml::array{c.hi.x, c.hi.z});
+      if (c.averaged[1]) average = "theta";
+      if (c.averaged[2]) average += average.empty() ? "z" : " z";
+    } else {
+      t.insert("lo", vec(c.lo));
+      t.insert("hi", vec(c.hi));
+      for (int a = 0; a < 3; ++a)
+        if (c.averaged[static_cast<std::size_t>(a)]) average += static_cast<char>('x' + a);
+    }
+    t.insert("n", toml::array{c.n[0], c.n[1], c.n[2]});
     t.insert("average", average);
     t.insert("interval", c.interval);
     if (c.average_every > 0) t.insert("average_every", c.average_every);

@@ -1,11 +1,13 @@
 // The [[coarse_grain]] tables of a run (scene/coarse_grain_spec.hpp): every `interval`, each
 // rank adds the coarse-graining sums of its grains and of the contacts it lists, the sums are
 // added over the ranks, and rank 0 writes the fields into coarse_grain/<name>/: a CSV and a VTK
-// image (.vti, for ParaView, with a .pvd series) per write (docs/coarse-graining.md, "In a
+// file (an image, .vti, on a Cartesian grid; a structured grid, .vts, on a cylindrical one; for
+// ParaView, with a .pvd series) per write (docs/coarse-graining.md, "In a
 // run"). With average_every = k, the sums of every k-th step since the last write are averaged:
 // the fields of the mean sums (a time average; the ranks add theirs at the write only).
 #pragma once
 
+#include "analysis/cg_cylinder.hpp"
 #include "analysis/coarse_grain.hpp"
 #include "run/coarse_grain_contacts.hpp"
 #include "scene/coarse_grain_spec.hpp"
@@ -13,7 +15,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace yuxi {
@@ -36,7 +40,9 @@ public:
 private:
   struct Table {
     CoarseGrainSpec spec;
-    analysis::CgSettings settings;
+    analysis::CgSettings settings;                        // a Cartesian grid's
+    std::optional<analysis::CgCylinderSettings> cylinder; // or a cylindrical one
+    std::size_t points() const { return cylinder ? cylinder->grid.size() : settings.grid.size(); }
     std::int64_t every = 1;  // steps between writes
     std::int64_t sample = 1; // steps between samples (every, or average_every)
     std::filesystem::path folder;
@@ -45,6 +51,7 @@ private:
     std::set<std::int64_t> written; // the steps of the folder's files (rank 0)
     bool listed = false;            // whether the folder was read for them
   };
+  static std::string extension(const Table& t); // of its VTK files
   void write(Table& t, const analysis::CgFields& f, std::int64_t step) const;
   std::vector<Table> tables_;
   CoarseGrainInput input_; // the grains and contacts of a sample

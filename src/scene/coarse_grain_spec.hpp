@@ -19,6 +19,11 @@ struct CoarseGrainSpec {
   Vec3 lo, hi;                       // the grid's corners (the box by default)
   std::array<int, 3> n{1, 1, 1};     // points along x, y, z (1 on averaged axes)
   std::array<bool, 3> averaged{false, false, false};
+  // A cylindrical grid (analysis/cg_cylinder.hpp) about the vertical line through axis_x,
+  // axis_y: lo and hi then hold r and z (lo.x = r_lo, lo.z = z_lo; y unused), n and averaged
+  // are along r, theta, z.
+  bool cylindrical = false;
+  double axis_x = 0.0, axis_y = 0.0;
   double interval = 0.0;           // between writes
   int average_every = 0;           // > 0: each write is the mean over every k-th step since the
                                    // last (a time average); 0: the state at the write
