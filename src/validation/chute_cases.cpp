@@ -1,8 +1,10 @@
 // The LAMMPS chute benchmark (docs/models/validation.md section 3): C1, 100 steps of data.chute
 // against LAMMPS itself (reference output and the command that made it: tests/validation/data); C2,
 // steady flow of a slice of it down a 24 degree incline (Silbert et al. 2001).
+#include "analysis/coarse_grain.hpp"
 #include "core/units.hpp"
 #include "io/scene_reader.hpp"
+#include "run/coarse_grain_contacts.hpp"
 #include "run/scene_builder.hpp"
 #include "validation/validation_case.hpp"
 
@@ -112,32 +114,52 @@ CaseResult chute_c1(const Paths& paths) {
   return res;
 }
 
-// C2: steady chute flow (Silbert et al. 2001) on a 20 d x 10 d periodic slice of the LAMMPS
-// chute (about 7,800 flowing spheres over 228 frozen base spheres), tilted to 24 degrees, run for
-// YUXI_C2_TAU tau (default 1000) and averaged over its last fifth. Exact momentum balance in
-// steady flow: normal force on the base = N m g cos(theta) (0.5 %), basal shear / normal force =
-// tan(theta) (1 %), and sigma_xz / sigma_zz = tan(theta) at every depth of the bulk (2 %, 3 d
-// clear of base and surface); from the paper's ranges: packing fraction flat within 0.01 in the
-// bulk, a Bagnold velocity profile v_x ~ H^1.5 - (H - z)^1.5 (fit R^2 > 0.99), and steady flow
-// (kinetic energy within +-2 % over the second half). YUXI_C2_PROFILE=file.csv writes the
-// layer profiles.
-CaseResult chute_c2(const Paths& paths) {
-  CaseResult res;
+// A steady flow down the chute: a periodic lx x ly slice of the LAMMPS chute (its frozen base
+// and the grains above it, about 39 grains per d^2), tilted to `degrees`, run for `total` tau,
+// its fields coarse-grained along z (docs/coarse-graining.md; a Gaussian of width d / 2, the
+// slice averaged over x and y) and averaged over the last fifth, sampled every 0.1 tau.
+struct SteadyChute {
+  double theta = 0.0; // rad
+  analysis::CgGrid grid;
+  analysis::CgFields fields;
+  Vec3 base_force;                // the mean contact force on the frozen base
+  double grain_mass = 0.0;        // the grains' mean total mass
+  std::vector<double> window_ke;  // kinetic energy per grain in windows of the second half
+  std::vector<double> mass_above; // at each point, per unit area: the integral of rho above
+  double total = 0.0;             // tau
+};
+
+SteadyChute run_steady_chute(const Paths& paths, const std::string& label, double degrees,
+                             double lx, double ly, double total) {
   Scene scene = read_scene_file((paths.scenes / "chute-lammps.toml").string());
-  const double theta = 24.0 * pi / 180;
+  SteadyChute out;
+  out.theta = degrees * pi / 180;
+  out.total = total;
+  const double theta = out.theta;
   scene.sim.gravity = {std::sin(theta), 0.0, -std::cos(theta)};
-  scene.sim.box.hi.x = 20.0;
-  scene.sim.box.hi.y = 10.0;
+  scene.sim.box.hi.x = lx;
+  scene.sim.box.hi.y = ly;
+  // The slice's particles, less the grains that would overlap another particle across the
+  // slice's new periodic sides by more than 1 % of a diameter (the LAMMPS packing repeats every
+  // 40 d x 20 d: its 20 d x 10 d slice loses none; the frozen base is kept whole).
   std::vector<ParticleSpec> slice;
   for (const auto& p : scene.particles)
-    if (p.position.x < 20.0 && p.position.y < 10.0) slice.push_back(p);
+    if (p.kind != Kind::grain && p.position.x < lx && p.position.y < ly) slice.push_back(p);
+  for (const auto& p : scene.particles) {
+    if (p.kind != Kind::grain || !(p.position.x < lx && p.position.y < ly)) continue;
+    const bool overlaps = std::any_of(slice.begin(), slice.end(), [&](const ParticleSpec& q) {
+      Vec3 d = p.position - q.position;
+      d.x -= lx * std::round(d.x / lx);
+      d.y -= ly * std::round(d.y / ly);
+      const double touch = 0.99 * (p.radius + q.radius);
+      return norm2(d) < touch * touch;
+    });
+    if (!overlaps) slice.push_back(p);
+  }
   scene.particles = slice;
   scene.n_lammps_atoms = slice.size();
   scene.sim.on_escape = EscapePolicy::remove;
   auto sim = build_simulation(scene, false);
-  const char* env = std::getenv("YUXI_C2_TAU");
-  const double total = env ? std::atof(env) : 1000.0;
-  if (!(total > 0)) throw std::runtime_error("YUXI_C2_TAU must be a positive number of tau");
   const double dt = scene.sim.dt;
   // Kinetic energy of the flowing grains per grain, in windows of total / 20 over the second
   // half of the run: steady flow keeps it within +-2 %
@@ -149,13 +171,14 @@ CaseResult chute_c2(const Paths& paths) {
       if (s.is_grain(i)) ke += 0.5 * s.mass[i] * dot(s.v[i], s.v[i]), n += 1;
     return ke / n;
   };
-  const auto report = [&sim, total](double ke) {
-    fmt::print(stderr, "C2: t = {:.0f} tau of {:.0f}, kinetic energy per grain {:.4g}\n",
-               sim->time(), total, ke);
+  const auto report = [&](double ke) {
+    fmt::print(stderr,
+               "{} at {} degrees: t = {:.0f} tau of {:.0f}, kinetic energy per grain {:.4g}\n",
+               label, degrees, sim->time(), total, ke);
   };
   const int windows = 10;
   const double window = 0.5 * total / windows;
-  std::vector<double> window_ke;
+  std::vector<double>& window_ke = out.window_ke;
   while (sim->time() < 0.5 * total - 0.5 * dt) {
     sim->run(std::llround(window / dt));
     report(grain_kinetic());
@@ -172,21 +195,25 @@ CaseResult chute_c2(const Paths& paths) {
     report(window_ke.back());
   }
 
-  // Averages over the last fifth, sampled every 0.1 tau.
-  const double area = 20.0 * 10.0, layer = 1.0;
-  const int n_layers = 60;
-  std::vector<double> sxz(n_layers), szz(n_layers), volume_frac(n_layers), vx(n_layers),
-      count(n_layers);
-  Vec3 base_force;
-  double samples = 0, grains_weight = 0, last_fifth_ke = 0;
+  // The last fifth.
+  analysis::CgSettings cg;
+  cg.kind = analysis::CgKind::gaussian;
+  cg.width = 0.5;
+  cg.cutoff = 3.0 * cg.width;
+  cg.grid.lo = {0.0, 0.0, 0.0};
+  cg.grid.hi = {lx, ly, 60.0};
+  cg.grid.n = {1, 1, 120};
+  cg.grid.averaged = {true, true, false};
+  cg.grid.periodic = {true, true, false};
+  std::vector<double> sums(analysis::cg_sums_per_point * cg.grid.size(), 0.0);
+  CoarseGrainInput input;
+  double samples = 0, last_fifth_ke = 0;
   std::int64_t samples_in_window = 0;
   while (sim->time() < total) {
     sim->run(std::llround(0.1 / dt) - 1);
     sim->record_contacts(true); // only for the sampled step
     sim->step();
-    sim->record_contacts(false);
     const auto& s = sim->particles();
-    const auto& list = sim->neighbor_list();
     samples += 1;
     last_fifth_ke += grain_kinetic();
     if (++samples_in_window == std::llround(window / 0.1)) {
@@ -196,98 +223,220 @@ CaseResult chute_c2(const Paths& paths) {
     }
     // Force on the base: contact forces on the frozen wall particles (gravity is not applied
     // to them).
-    double weight = 0;
     for (std::size_t i = 0; i < s.n_owned(); ++i) {
-      if (!s.is_grain(i)) {
-        base_force += s.f[i];
-        continue;
-      }
-      weight += s.mass[i];
-      const int k = static_cast<int>(s.x[i].z / layer);
-      if (k < 0 || k >= n_layers) continue;
-      const double r = s.radius[i];
-      volume_frac[static_cast<std::size_t>(k)] += 4.0 / 3.0 * pi * r * r * r / (area * layer);
-      vx[static_cast<std::size_t>(k)] += s.v[i].x;
-      count[static_cast<std::size_t>(k)] += 1;
+      if (!s.is_grain(i))
+        out.base_force += s.f[i];
+      else
+        out.grain_mass += s.mass[i];
     }
-    grains_weight += weight;
-    // Method of planes: contact forces acting across the plane z_k, on the material above it.
-    for (std::size_t i = 0; i + 1 < list.offsets.size(); ++i)
-      for (auto p = list.offsets[i]; p < list.offsets[i + 1]; ++p) {
-        const std::size_t j = list.partners[p];
-        const Vec3 f = sim->contact_record().pair_force[p]; // on i
-        if (f == Vec3{}) continue;
-        const double hi = std::max(s.x[i].z, s.x[j].z), lo = std::min(s.x[i].z, s.x[j].z);
-        const Vec3 on_upper = s.x[i].z >= s.x[j].z ? f : -f;
-        for (int k = static_cast<int>(std::ceil(lo / layer)); k <= static_cast<int>(hi / layer);
-             ++k)
-          if (k >= 0 && k < n_layers) {
-            // traction on the material below from the material above: -on_upper
-            sxz[static_cast<std::size_t>(k)] += -on_upper.x / area;
-            szz[static_cast<std::size_t>(k)] += -on_upper.z / area;
-          }
-      }
+    input.gather(*sim);
+    sim->record_contacts(false);
+    const std::vector<double> now = analysis::coarse_grain_sums(input.grains(), input.contacts, cg);
+    for (std::size_t k = 0; k < sums.size(); ++k) sums[k] += now[k];
   }
-  const double g = 1.0, m_over_n = grains_weight / samples;
-  base_force = base_force / samples;
-  res.add_relative("normal force on the base / (N m g cos theta)", 1.0,
-                   -base_force.z / (m_over_n * g * std::cos(theta)), 0.005);
-  // The grains push the base down (-z) and drag it downhill (+x).
-  res.add_relative("basal shear / normal force = tan theta", std::tan(theta),
-                   -base_force.x / base_force.z, 0.01);
-  // Bulk: layers with grains, 3 d clear of the base and the surface.
-  int top = 0;
-  for (int k = 0; k < n_layers; ++k)
-    if (count[static_cast<std::size_t>(k)] / samples > 1.0) top = k;
-  double phi_min = 1, phi_max = 0, worst_ratio = 0;
-  std::vector<std::pair<double, double>> profile;
-  for (int k = 4; k <= top - 3; ++k) {
+  for (double& sum : sums) sum /= samples;
+  out.base_force = out.base_force / samples;
+  out.grain_mass /= samples;
+  out.grid = cg.grid;
+  out.fields = analysis::coarse_grain_fields(sums, cg.grid);
+  // The mass above each point per unit area (the trapezoidal rule on the grid, the density zero
+  // beyond it).
+  const int n_points = cg.grid.n[2];
+  const double h = cg.grid.spacing(2);
+  out.mass_above.assign(static_cast<std::size_t>(n_points) + 1, 0.0);
+  for (int k = n_points - 1; k >= 0; --k) {
     const auto u = static_cast<std::size_t>(k);
-    // Traction on the material below from the material above: compressive (-z) and dragged
-    // downhill (+x), so sigma_xz / sigma_zz = -tan(theta) in the tension-positive convention.
-    // Kinetic (streaming) stress is left out: in this dense flow it is three orders of
-    // magnitude below the contact stress in the bulk (Silbert et al. 2001).
-    const double ratio = -sxz[u] / szz[u];
-    worst_ratio = std::max(worst_ratio, std::abs(ratio / std::tan(theta) - 1));
-    phi_min = std::min(phi_min, volume_frac[u] / samples);
-    phi_max = std::max(phi_max, volume_frac[u] / samples);
-    profile.emplace_back((k + 0.5) * layer, vx[u] / count[u]);
+    const double next = k + 1 < n_points ? out.fields.density[u + 1] : 0.0;
+    out.mass_above[u] = out.mass_above[u + 1] + 0.5 * h * (out.fields.density[u] + next);
   }
-  res.add("bulk: largest |sigma_xz / (sigma_zz tan theta) - 1|", 0.0, worst_ratio, 0.02);
-  res.add("bulk: packing fraction spread (max - min)", 0.0, phi_max - phi_min, 0.02);
-  res.add("bulk: mean packing fraction (Silbert: 0.55-0.60)", 0.575, 0.5 * (phi_max + phi_min),
-          0.03);
-  // Bagnold fit v = A (H^1.5 - (H - z)^1.5) + v0, H = top of the flow.
-  const double h = top + 1.0;
+  return out;
+}
+
+// The bulk of a steady chute flow, 4 d above the floor to 3 d below the surface (the highest
+// point where the packing fraction is above 0.3). Steady flow: -d sigma_xz / dz + rho g
+// sin(theta) = 0 and -d sigma_zz / dz - rho g cos(theta) = 0 (stresses positive in compression),
+// so sigma_zz is the weight above and mu = -sigma_xz / sigma_zz = tan(theta) at every depth. The
+// inertial number I = gamma_dot d / sqrt(P / rho_p) (GDR MiDi 2004), P = sigma_zz, rho_p = 6 /
+// pi (m = d = 1, g = 1).
+struct ChuteBulk {
+  double worst_ratio = 0, worst_weight = 0;       // |mu / tan(theta) - 1|, |sigma_zz / weight - 1|
+  double phi_min = 1, phi_max = 0, phi_mean = 0;  // packing fraction
+  double i_min = 1e300, i_max = 0, i_mean = 0;    // inertial number
+  double mu_mean = 0;                             // -sigma_xz / sigma_zz
+  double surface = 0;                             // z, d
+  std::vector<std::pair<double, double>> profile; // (z, v_x)
+};
+
+ChuteBulk chute_bulk(const SteadyChute& c) {
+  const analysis::CgFields& f = c.fields;
+  const int n_points = c.grid.n[2];
+  const double h = c.grid.spacing(2), g = 1.0, rho_p = 6.0 / pi;
+  ChuteBulk b;
+  for (int k = 0; k < n_points; ++k)
+    if (f.volume_fraction[static_cast<std::size_t>(k)] > 0.3) b.surface = c.grid.coordinate(2, k);
+  double points = 0;
+  for (int k = 1; k + 1 < n_points; ++k) {
+    const double z = c.grid.coordinate(2, k);
+    if (z < 4.0 || z > b.surface - 3.0) continue;
+    const auto u = static_cast<std::size_t>(k);
+    const double sxz = f.stress[9 * u + 2], szz = f.stress[9 * u + 8];
+    const double mu = -sxz / szz;
+    b.worst_ratio = std::max(b.worst_ratio, std::abs(mu / std::tan(c.theta) - 1));
+    const double weight = g * std::cos(c.theta) * c.mass_above[u];
+    b.worst_weight = std::max(b.worst_weight, std::abs(szz / weight - 1));
+    const double phi = f.volume_fraction[u];
+    b.phi_min = std::min(b.phi_min, phi), b.phi_max = std::max(b.phi_max, phi);
+    const double shear = (f.velocity[3 * (u + 1)] - f.velocity[3 * (u - 1)]) / (2 * h);
+    const double inertial = shear * 1.0 / std::sqrt(szz / rho_p);
+    b.i_min = std::min(b.i_min, inertial), b.i_max = std::max(b.i_max, inertial);
+    b.i_mean += inertial, b.phi_mean += phi, b.mu_mean += mu, points += 1;
+    b.profile.emplace_back(z, f.velocity[3 * u]);
+  }
+  b.i_mean /= points, b.phi_mean /= points, b.mu_mean /= points;
+  return b;
+}
+
+// R^2 of the Bagnold fit v = A (H^1.5 - (H - z)^1.5) + v0, H = the surface.
+double bagnold_r2(const ChuteBulk& b) {
+  const double top = b.surface;
   double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-  for (auto [z, v] : profile) {
-    const double x = std::pow(h, 1.5) - std::pow(std::max(h - z, 0.0), 1.5);
+  for (auto [z, v] : b.profile) {
+    const double x = std::pow(top, 1.5) - std::pow(std::max(top - z, 0.0), 1.5);
     sx += x, sy += v, sxx += x * x, sxy += x * v, n += 1;
   }
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx), icpt = (sy - slope * sx) / n;
   double ss_res = 0, ss_tot = 0;
-  for (auto [z, v] : profile) {
-    const double x = std::pow(h, 1.5) - std::pow(std::max(h - z, 0.0), 1.5);
+  for (auto [z, v] : b.profile) {
+    const double x = std::pow(top, 1.5) - std::pow(std::max(top - z, 0.0), 1.5);
     ss_res += (v - slope * x - icpt) * (v - slope * x - icpt);
     ss_tot += (v - sy / n) * (v - sy / n);
   }
-  res.add("Bagnold profile fit R^2 (> 0.99)", 1.0, 1 - ss_res / ss_tot, 0.01);
-  const auto [ke_min, ke_max] = std::minmax_element(window_ke.begin(), window_ke.end());
-  const double ke_mean = std::accumulate(window_ke.begin(), window_ke.end(), 0.0) /
-                         static_cast<double>(window_ke.size());
+  return 1 - ss_res / ss_tot;
+}
+
+// The spread (max - min) of the windows' kinetic energy over their mean.
+double kinetic_spread(const SteadyChute& c) {
+  const auto [lo, hi] = std::minmax_element(c.window_ke.begin(), c.window_ke.end());
+  const double mean = std::accumulate(c.window_ke.begin(), c.window_ke.end(), 0.0) /
+                      static_cast<double>(c.window_ke.size());
+  return (*hi - *lo) / mean;
+}
+
+double env_tau(const char* name, double fallback) {
+  const char* env = std::getenv(name);
+  const double total = env ? std::atof(env) : fallback;
+  if (!(total > 0))
+    throw std::runtime_error(fmt::format("{} must be a positive number of tau", name));
+  return total;
+}
+
+// C2: steady chute flow (Silbert et al. 2001) on a 20 d x 10 d slice (about 7,800 flowing
+// spheres over 228 frozen base spheres) at 24 degrees, run for YUXI_C2_TAU tau (default 1000).
+// Exact momentum balance in steady flow: normal force on the base = N m g cos(theta) (0.5 %),
+// basal shear / normal force = tan(theta) (1 %), and at every depth of the bulk sigma_xz /
+// sigma_zz = tan(theta) and sigma_zz = the weight above (2 %); from the rheology (GDR MiDi
+// 2004), a uniform inertial number in the bulk; from the paper's ranges: packing fraction flat
+// within 0.02 in the bulk, a Bagnold velocity profile v_x ~ H^1.5 - (H - z)^1.5 (fit R^2 >
+// 0.99), and steady flow (kinetic energy within +-2 % over the second half).
+// YUXI_C2_PROFILE=file.csv writes the profiles.
+CaseResult chute_c2(const Paths& paths) {
+  CaseResult res;
+  const SteadyChute c =
+      run_steady_chute(paths, "C2", 24.0, 20.0, 10.0, env_tau("YUXI_C2_TAU", 1000.0));
+  const double theta = c.theta, g = 1.0;
+  res.add_relative("normal force on the base / (N m g cos theta)", 1.0,
+                   -c.base_force.z / (c.grain_mass * g * std::cos(theta)), 0.005);
+  // The grains push the base down (-z) and drag it downhill (+x).
+  res.add_relative("basal shear / normal force = tan theta", std::tan(theta),
+                   -c.base_force.x / c.base_force.z, 0.01);
+  const ChuteBulk b = chute_bulk(c);
+  res.add("bulk: largest |sigma_xz / (sigma_zz tan theta) - 1| (coarse-grained)", 0.0,
+          b.worst_ratio, 0.02);
+  res.add("bulk: largest |sigma_zz / (weight above) - 1| (coarse-grained)", 0.0, b.worst_weight,
+          0.02);
+  res.add("bulk: packing fraction spread (max - min)", 0.0, b.phi_max - b.phi_min, 0.02);
+  res.add("bulk: mean packing fraction (Silbert: 0.55-0.60)", 0.575, b.phi_mean, 0.03);
+  // mu(I) = tan(theta) everywhere makes I uniform through the bulk (GDR MiDi 2004).
+  res.add("bulk: inertial number spread (max - min) / mean (uniform: mu(I) = tan theta)", 0.0,
+          (b.i_max - b.i_min) / b.i_mean, 0.3);
+  res.add("Bagnold profile fit R^2 (> 0.99)", 1.0, bagnold_r2(b), 0.01);
   res.add(fmt::format("steady flow: kinetic energy spread over the last {:.0f} tau / mean",
-                      0.5 * total),
-          0.0, (*ke_max - *ke_min) / ke_mean, 0.04);
+                      0.5 * c.total),
+          0.0, kinetic_spread(c), 0.04);
   if (const char* out = std::getenv("YUXI_C2_PROFILE")) {
+    const analysis::CgFields& f = c.fields;
     std::ofstream csv(out);
-    // Layer k holds the grains with k d <= z < (k + 1) d; the stresses act across its floor.
-    csv << "z_floor,z_centre,packing_fraction,vx,grains,sigma_xz_floor,sigma_zz_floor\n";
-    for (int k = 0; k <= top; ++k) {
+    csv << "z,density,packing_fraction,vx,sigma_xz,sigma_zz,sigma_xx,sigma_yy,kinetic_zz,"
+           "weight_above,temperature,coordination\n";
+    for (int k = 0; k < c.grid.n[2]; ++k) {
       const auto u = static_cast<std::size_t>(k);
-      csv << fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k * layer, (k + 0.5) * layer,
-                         volume_frac[u] / samples, count[u] > 0 ? vx[u] / count[u] : 0.0,
-                         count[u] / samples, sxz[u] / samples, szz[u] / samples);
+      csv << fmt::format("{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                         "{:.6g}\n",
+                         c.grid.coordinate(2, k), f.density[u], f.volume_fraction[u],
+                         f.velocity[3 * u], f.stress[9 * u + 2], f.stress[9 * u + 8],
+                         f.stress[9 * u], f.stress[9 * u + 4], f.kinetic_stress[9 * u + 8],
+                         g * std::cos(theta) * c.mass_above[u], f.temperature[u],
+                         f.coordination[u]);
     }
+    if (!csv) throw std::runtime_error(fmt::format("cannot write {}", out));
+  }
+  return res;
+}
+
+// C3: the rheology mu(I), phi(I) of the chute (GDR MiDi, Eur. Phys. J. E 14:341, 2004): the
+// steady flows of a 10 d x 5 d slice (1,663 grains, about 33 d deep) at 22 to 26 degrees, each
+// run for YUXI_C3_TAU tau (default 1000). Each angle gives one point (I, mu, phi), the bulk's
+// means. Checks: each flow steady and balanced (mu = tan(theta) within 2 %); I rises with the
+// angle (mu(I) increasing); phi falls as I rises; the straight lines through the points, mu =
+// mu_0 + b I (da Cruz et al., PRE 72:021309, 2005) and phi = phi_0 - a I, meet I = 0 at mu_0
+// within tan(17 to 21.5 degrees) (thick layers stop at 19.5-20.5 degrees: Silbert et al. 2001,
+// Pouliquen 1999) and at phi_0 within 0.57-0.63 (the packing at which frictional spheres stop
+// flowing, da Cruz et al. 2005: 0.60). YUXI_C3_POINTS=file.csv writes the points.
+CaseResult chute_c3(const Paths& paths) {
+  CaseResult res;
+  const double total = env_tau("YUXI_C3_TAU", 1000.0);
+  struct Point {
+    double degrees, inertial, mu, phi;
+  };
+  std::vector<Point> points;
+  for (const double degrees : {22.0, 23.0, 24.0, 25.0, 26.0}) {
+    const SteadyChute c = run_steady_chute(paths, "C3", degrees, 10.0, 5.0, total);
+    const ChuteBulk b = chute_bulk(c);
+    res.add(fmt::format("{} degrees: kinetic energy spread over the last {:.0f} tau / mean",
+                        degrees, 0.5 * total),
+            0.0, kinetic_spread(c), 0.04);
+    res.add(fmt::format("{} degrees: bulk, largest |mu / tan theta - 1|", degrees), 0.0,
+            b.worst_ratio, 0.02);
+    points.push_back({degrees, b.i_mean, b.mu_mean, b.phi_mean});
+  }
+  bool rising = true, falling = true;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    rising = rising && points[k].inertial > points[k - 1].inertial;
+    falling = falling && points[k].phi < points[k - 1].phi;
+  }
+  res.add("I rises with the angle (1 = yes)", 1.0, rising ? 1.0 : 0.0, 0.0);
+  res.add("phi falls as I rises (1 = yes)", 1.0, falling ? 1.0 : 0.0, 0.0);
+  // Least-squares lines y = y0 + slope I.
+  const auto line = [&points](auto y) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+    for (const Point& p : points)
+      sx += p.inertial, sy += y(p), sxx += p.inertial * p.inertial, sxy += p.inertial * y(p),
+          n += 1;
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    return std::pair{(sy - slope * sx) / n, slope};
+  };
+  const auto [mu_0, mu_slope] = line([](const Point& p) { return p.mu; });
+  const auto [phi_0, phi_slope] = line([](const Point& p) { return p.phi; });
+  const double lo = std::tan(17.0 * pi / 180), hi = std::tan(21.5 * pi / 180);
+  res.add(fmt::format("mu(I) = mu_0 + b I: mu_0 in tan(17-21.5 deg) (b = {:.3g})", mu_slope),
+          0.5 * (lo + hi), mu_0, 0.5 * (hi - lo));
+  res.add(fmt::format("phi(I) = phi_0 - a I: phi_0 in 0.57-0.63 (a = {:.3g})", -phi_slope), 0.60,
+          phi_0, 0.03);
+  if (const char* out = std::getenv("YUXI_C3_POINTS")) {
+    std::ofstream csv(out);
+    csv << "degrees,inertial_number,mu,packing_fraction\n";
+    for (const Point& p : points)
+      csv << fmt::format("{},{:.6g},{:.6g},{:.6g}\n", p.degrees, p.inertial, p.mu, p.phi);
     if (!csv) throw std::runtime_error(fmt::format("cannot write {}", out));
   }
   return res;
@@ -300,7 +449,11 @@ std::vector<Case> chute_cases() {
            "LAMMPS 29 Sep 2021 (Debian 20220106) on the same file, tests/validation/data", false,
            chute_c1},
           {"C2", "steady chute flow at 24 degrees: momentum balance, packing, Bagnold profile",
-           "exact momentum balance; Silbert et al., PRE 64, 051302 (2001)", true, chute_c2}};
+           "exact momentum balance; Silbert et al., PRE 64, 051302 (2001)", true, chute_c2},
+          {"C3", "chute rheology: mu(I) and phi(I) from steady flows at 22 to 26 degrees",
+           "GDR MiDi, EPJE 14:341 (2004); da Cruz et al., PRE 72:021309 (2005); Silbert et al. "
+           "2001",
+           true, chute_c3}};
 }
 
 } // namespace yuxi::validation
