@@ -386,8 +386,8 @@ CaseResult chute_c2(const Paths& paths) {
 // C3: the rheology mu(I), phi(I) of the chute (GDR MiDi, Eur. Phys. J. E 14:341, 2004): the
 // steady flows of a 10 d x 5 d slice (1,663 grains, about 33 d deep) at 22 to 26 degrees, each
 // run for YUXI_C3_TAU tau (default 1000). Each angle gives one point (I, mu, phi), the bulk's
-// means. Checks: each flow steady and balanced (mu = tan(theta) within 2 %); I rises with the
-// angle (mu(I) increasing); phi falls as I rises; the straight lines through the points, mu =
+// means. Checks: each flow steady and balanced (below); I rises with the angle (mu(I)
+// increasing); phi falls as I rises; the straight lines through the points, mu =
 // mu_0 + b I (da Cruz et al., PRE 72:021309, 2005) and phi = phi_0 - a I, meet I = 0 at mu_0
 // within tan(17 to 21.5 degrees) (thick layers stop at 19.5-20.5 degrees: Silbert et al. 2001,
 // Pouliquen 1999) and at phi_0 within 0.57-0.63 (the packing at which frictional spheres stop
@@ -402,11 +402,18 @@ CaseResult chute_c3(const Paths& paths) {
   for (const double degrees : {22.0, 23.0, 24.0, 25.0, 26.0}) {
     const SteadyChute c = run_steady_chute(paths, "C3", degrees, 10.0, 5.0, total);
     const ChuteBulk b = chute_bulk(c);
+    // Steady: no drift beyond the windows' noise, which in 1,663 grains is about sqrt(7,772 /
+    // 1,663) = 2.2 times C2's (its +-2 %): +-6 %. An accelerating or stopping flow changes by
+    // far more over 500 tau.
     res.add(fmt::format("{} degrees: kinetic energy spread over the last {:.0f} tau / mean",
                         degrees, 0.5 * total),
-            0.0, kinetic_spread(c), 0.04);
+            0.0, kinetic_spread(c), 0.12);
+    // Balanced: the bulk's mean mu is tan(theta) (1 %); its worst point, noisier than C2's in
+    // the smaller slice, within 4 %.
+    res.add_relative(fmt::format("{} degrees: bulk mean mu / tan theta", degrees), 1.0,
+                     b.mu_mean / std::tan(c.theta), 0.01);
     res.add(fmt::format("{} degrees: bulk, largest |mu / tan theta - 1|", degrees), 0.0,
-            b.worst_ratio, 0.02);
+            b.worst_ratio, 0.04);
     points.push_back({degrees, b.i_mean, b.mu_mean, b.phi_mean});
   }
   bool rising = true, falling = true;
