@@ -113,6 +113,17 @@ std::pair<double, double> janssen_fit(const std::vector<Silo>& silos) {
   return {m_sat, 1 - sse(m_sat) / total};
 }
 
+// A silo's column profile at the end: the last CSV of its [[coarse_grain]] table "<tag>_column"
+// (density, stress and the walls' force density along z, averaged over the square about it).
+CsvTable column_profile(const std::filesystem::path& folder, const std::string& tag) {
+  const std::filesystem::path dir = folder / "coarse_grain" / (tag + "_column");
+  std::filesystem::path last;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().extension() == ".csv" && entry.path() > last) last = entry.path();
+  if (last.empty()) throw std::runtime_error(dir.string() + ": no coarse-grained profile");
+  return read_csv(last);
+}
+
 CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
   BulkRun run = run_bulk(paths, name, full);
   // The full case measures the settled silos after their floors were lowered (scenes/bulk/
@@ -175,12 +186,7 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
   // what the side wall holds above: the integral of rho g - t_z from z up. Checked from 3 d
   // above the floor (the function's reach) to 3 d below the surface, against the stress there.
   for (const Silo& s : silos) {
-    const std::filesystem::path dir = folder / "coarse_grain" / (s.tag + "_column");
-    std::filesystem::path last;
-    for (const auto& entry : std::filesystem::directory_iterator(dir))
-      if (entry.path().extension() == ".csv" && entry.path() > last) last = entry.path();
-    if (last.empty()) throw std::runtime_error(dir.string() + ": no coarse-grained profile");
-    const CsvTable profile = read_csv(last);
+    const CsvTable profile = column_profile(folder, s.tag);
     const auto& z = profile.column("z");
     const auto& rho = profile.column("density");
     const auto& szz = profile.column("stress_zz");
@@ -233,6 +239,28 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
           "{},{},{},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.8g},{:.6g}\n", s.tag,
           s.smooth ? 0.0 : 0.5, s.diameter, s.height, s.mass, s.apparent(), s.floor_z, s.side_z,
           m_sat, lambda, rho_b, r2);
+  }
+  // Each rough silo's column against Janssen's form with that lambda: the mean vertical stress
+  // over the cross-section, rho_b g lambda (1 - exp(-(H - z) / lambda)), and the wall's shear
+  // stress, D / (4 lambda) times it (Janssen's balance of a slice). Measured: the coarse-grained
+  // sigma_zz over the square about the silo, times 4 / pi for the disc's mean, and the walls'
+  // vertical force density times D^2 / (pi D) (docs/results/bulk/README.md, B2).
+  {
+    std::ofstream csv(folder / "janssen_profile.csv");
+    csv << "silo,z,sigma_zz,sigma_zz_janssen,wall_shear,wall_shear_janssen\n";
+    for (const Silo& s : rough) {
+      const CsvTable profile = column_profile(folder, s.tag);
+      const auto& z = profile.column("z");
+      const auto& szz = profile.column("stress_zz");
+      const auto& tz = profile.column("wall_force_density_z");
+      for (std::size_t k = 0; k < z.size(); ++k) {
+        if (z[k] > s.height) break;
+        const double janssen_stress = rho_b * lambda * -std::expm1(-(s.height - z[k]) / lambda);
+        csv << fmt::format("{},{:.6g},{:.8g},{:.8g},{:.8g},{:.8g}\n", s.tag, z[k],
+                           szz[k] * 4.0 / pi, janssen_stress, tz[k] * diameter / pi,
+                           diameter / (4.0 * lambda) * janssen_stress);
+      }
+    }
   }
   if (full && rough.size() >= 3) {
     const Silo& tallest = rough.back();
