@@ -7,7 +7,7 @@ import pytest
 
 from conftest import REPO
 
-EXAMPLES = ["restitution.py", "servo_silo.py", "basin_sweep.py"]
+EXAMPLES = ["restitution.py", "servo_silo.py", "basin_sweep.py", "silo_stress.py"]
 
 
 @pytest.mark.parametrize("example", EXAMPLES)
