@@ -69,44 +69,49 @@ CgCylinderSettings about_the_grains(CgKind kind, std::array<int, 3> n, bool thet
   return s;
 }
 
+// (With z averaged over [0.5, 2.5], against a Cartesian grid averaged over the same span.)
 TEST(CoarseGrainCylinder, FieldsAtEachPointAreTheCartesianFieldsThereInItsBasis) {
   const System sys = random_system(3);
-  for (const CgKind kind : {CgKind::gaussian, CgKind::lucy}) {
-    const CgCylinderSettings s = about_the_grains(kind, {5, 7, 4}, false);
-    const CgFields cyl = coarse_grain(sys.view(), sys.contacts, s);
-    double largest = 0.0;
-    for (const double d : cyl.contact_stress) largest = std::max(largest, std::abs(d));
-    for (int k = 0; k < s.grid.n[2]; ++k)
-      for (int j = 0; j < s.grid.n[1]; ++j)
-        for (int i = 0; i < s.grid.n[0]; ++i) {
-          const double t = s.grid.theta(j), r = s.grid.r(i);
-          const Vec3 p{2 + r * std::cos(t), 2 + r * std::sin(t), s.grid.z(k)};
-          // A Cartesian grid of one point, at p.
-          CgSettings c;
-          c.kind = kind;
-          c.width = s.width;
-          c.cutoff = s.cutoff;
-          c.grid = {p - Vec3{0.01, 0.01, 0.01}, p + Vec3{0.01, 0.01, 0.01}, {1, 1, 1}, {}, {}};
-          const CgFields cart = coarse_grain(sys.view(), sys.contacts, c);
-          const std::size_t q = s.grid.index(i, j, k);
-          const auto e = basis(t);
-          EXPECT_NEAR(cyl.density[q], cart.density[0], 1e-12 * (1 + cart.density[0]));
-          EXPECT_NEAR(cyl.coordination[q], cart.coordination[0], 1e-12);
-          EXPECT_NEAR(cyl.elastic_energy[q], cart.elastic_energy[0], 1e-12);
-          for (int a = 0; a < 3; ++a) {
-            const Vec3 momentum{cart.momentum[0], cart.momentum[1], cart.momentum[2]};
-            EXPECT_NEAR(cyl.momentum[3 * q + a], dot(e[a], momentum), 1e-12);
-            for (int b = 0; b < 3; ++b) {
-              double turned = 0.0;
-              for (int m = 0; m < 3; ++m)
-                for (int n = 0; n < 3; ++n)
-                  turned += e[a][m] * cart.contact_stress[3 * m + n] * e[b][n];
-              EXPECT_NEAR(cyl.contact_stress[9 * q + 3 * a + b], turned, 1e-12 * largest)
-                  << to_string(kind) << " at point " << q;
+  for (const bool z_averaged : {false, true})
+    for (const CgKind kind : {CgKind::gaussian, CgKind::lucy}) {
+      CgCylinderSettings s = about_the_grains(kind, {5, 7, 4}, false);
+      if (z_averaged)
+        s.grid.z_lo = 0.5, s.grid.z_hi = 2.5, s.grid.n[2] = 1, s.grid.z_averaged = true;
+      const CgFields cyl = coarse_grain(sys.view(), sys.contacts, s);
+      double largest = 0.0;
+      for (const double d : cyl.contact_stress) largest = std::max(largest, std::abs(d));
+      for (int k = 0; k < s.grid.n[2]; ++k)
+        for (int j = 0; j < s.grid.n[1]; ++j)
+          for (int i = 0; i < s.grid.n[0]; ++i) {
+            const double t = s.grid.theta(j), r = s.grid.r(i);
+            const Vec3 p{2 + r * std::cos(t), 2 + r * std::sin(t), s.grid.z(k)};
+            // A Cartesian grid of one point, at p.
+            CgSettings c;
+            c.kind = kind;
+            c.width = s.width;
+            c.cutoff = s.cutoff;
+            c.grid = {p - Vec3{0.01, 0.01, 0.01}, p + Vec3{0.01, 0.01, 0.01}, {1, 1, 1}, {}, {}};
+            if (z_averaged) c.grid.lo.z = 0.5, c.grid.hi.z = 2.5, c.grid.averaged[2] = true;
+            const CgFields cart = coarse_grain(sys.view(), sys.contacts, c);
+            const std::size_t q = s.grid.index(i, j, k);
+            const auto e = basis(t);
+            EXPECT_NEAR(cyl.density[q], cart.density[0], 1e-12 * (1 + cart.density[0]));
+            EXPECT_NEAR(cyl.coordination[q], cart.coordination[0], 1e-12);
+            EXPECT_NEAR(cyl.elastic_energy[q], cart.elastic_energy[0], 1e-12);
+            for (int a = 0; a < 3; ++a) {
+              const Vec3 momentum{cart.momentum[0], cart.momentum[1], cart.momentum[2]};
+              EXPECT_NEAR(cyl.momentum[3 * q + a], dot(e[a], momentum), 1e-12);
+              for (int b = 0; b < 3; ++b) {
+                double turned = 0.0;
+                for (int m = 0; m < 3; ++m)
+                  for (int n = 0; n < 3; ++n)
+                    turned += e[a][m] * cart.contact_stress[3 * m + n] * e[b][n];
+                EXPECT_NEAR(cyl.contact_stress[9 * q + 3 * a + b], turned, 1e-12 * largest)
+                    << to_string(kind) << " at point " << q;
+              }
             }
           }
-        }
-  }
+    }
 }
 
 TEST(CoarseGrainCylinder, MeanAroundTheCircleIsTheFunctionsMean) {
@@ -139,33 +144,43 @@ TEST(CoarseGrainCylinder, MeanAroundTheCircleIsTheFunctionsMean) {
   }
 }
 
-TEST(CoarseGrainCylinder, BinsHoldTheMassAndTheVirial) {
+TEST(CoarseGrainCylinder, BinsHoldTheMassAndTheVirial) { // theta and z resolved or averaged
   const System sys = random_system(5);
   double mass = 0.0, trace = 0.0, zz = 0.0;
   for (const double m : sys.mass) mass += m;
   for (const CgContact& c : sys.contacts)
     trace += dot(c.force, c.branch), zz += c.force.z * c.branch.z;
-  for (const bool theta_averaged : {false, true}) {
-    CgCylinderSettings s;
-    s.kind = CgKind::bins;
-    s.grid = {2.0, 2.0, 0.0, 2.5, -0.5, 3.5, {7, theta_averaged ? 1 : 9, 6}, theta_averaged, false};
-    const CgFields f = coarse_grain(sys.view(), sys.contacts, s);
-    double grid_mass = 0.0, grid_trace = 0.0, grid_zz = 0.0;
-    for (int k = 0; k < s.grid.n[2]; ++k)
-      for (int j = 0; j < s.grid.n[1]; ++j)
-        for (int i = 0; i < s.grid.n[0]; ++i) {
-          const std::size_t q = s.grid.index(i, j, k);
-          const double volume = s.grid.cell_volume(i);
-          grid_mass += f.density[q] * volume;
-          grid_trace += (f.contact_stress[9 * q] + f.contact_stress[9 * q + 4] +
-                         f.contact_stress[9 * q + 8]) *
-                        volume;
-          grid_zz += f.contact_stress[9 * q + 8] * volume;
-        }
-    EXPECT_NEAR(grid_mass, mass, 1e-12 * mass) << "theta averaged " << theta_averaged;
-    EXPECT_NEAR(grid_trace, trace, 1e-12 * std::abs(trace)) << "theta averaged " << theta_averaged;
-    EXPECT_NEAR(grid_zz, zz, 1e-12 * std::abs(zz)) << "theta averaged " << theta_averaged;
-  }
+  for (const bool theta_averaged : {false, true})
+    for (const bool z_averaged : {false, true}) {
+      CgCylinderSettings s;
+      s.kind = CgKind::bins;
+      s.grid = {2.0,
+                2.0,
+                0.0,
+                2.5,
+                -0.5,
+                3.5,
+                {7, theta_averaged ? 1 : 9, z_averaged ? 1 : 6},
+                theta_averaged,
+                z_averaged};
+      const CgFields f = coarse_grain(sys.view(), sys.contacts, s);
+      double grid_mass = 0.0, grid_trace = 0.0, grid_zz = 0.0;
+      for (int k = 0; k < s.grid.n[2]; ++k)
+        for (int j = 0; j < s.grid.n[1]; ++j)
+          for (int i = 0; i < s.grid.n[0]; ++i) {
+            const std::size_t q = s.grid.index(i, j, k);
+            const double volume = s.grid.cell_volume(i);
+            grid_mass += f.density[q] * volume;
+            grid_trace += (f.contact_stress[9 * q] + f.contact_stress[9 * q + 4] +
+                           f.contact_stress[9 * q + 8]) *
+                          volume;
+            grid_zz += f.contact_stress[9 * q + 8] * volume;
+          }
+      EXPECT_NEAR(grid_mass, mass, 1e-12 * mass) << "theta averaged " << theta_averaged;
+      EXPECT_NEAR(grid_trace, trace, 1e-12 * std::abs(trace))
+          << "theta averaged " << theta_averaged;
+      EXPECT_NEAR(grid_zz, zz, 1e-12 * std::abs(zz)) << "theta averaged " << theta_averaged;
+    }
 }
 
 TEST(CoarseGrainCylinder, RefusesImpossibleGrids) {
