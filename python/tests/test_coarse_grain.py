@@ -332,3 +332,62 @@ def test_a_table_averages_over_a_window(box_scene, tmp_path):
                        atol=1e-9 * np.abs(stress).max())
     assert np.abs(stress).max() > 0
     sim.close()
+
+
+def _two_contacts(model):
+    """Grains a and b meeting head-on, and grain c landing on the floor, without gravity: both
+    contacts start at t = 0.025, and at 0.027 neither has ended (the thermodynamic law's, the
+    shorter, last about 0.007)."""
+    scene = {
+        "materials": ["grain", "wall"],
+        "run": {"name": "two-contacts", "dt": 2.0e-4, "t_end": 0.05},
+        "output": {"energy_interval": 0.01, "snapshot_interval": 0.0},
+        "domain": {"lo": [0.0, 0.0, 0.0], "hi": [8.0, 8.0, 8.0], "gravity": [0.0, 0.0, 0.0],
+                   "boundary": ["wall", "wall", "wall"], "wall_material": "wall"},
+        "particle": [
+            {"position": [3.0, 4.0, 5.0], "velocity": [1.0, 0.1, 0.0], "radius": 0.5,
+             "density": 1.909859317, "material": "grain"},
+            {"position": [4.05, 4.0, 5.0], "velocity": [-1.0, 0.0, 0.0], "radius": 0.5,
+             "density": 1.909859317, "material": "grain"},
+            {"position": [6.0, 6.0, 0.525], "velocity": [0.3, 0.0, -1.0], "radius": 0.5,
+             "density": 1.909859317, "material": "grain"}],
+    }
+    if model == "linear":
+        pair = {"k_n": 2.0e4, "k_t": 5.7e3, "gamma_n": 60.0, "gamma_t": 20.0, "mu_s": 0.5,
+                "mu_d": 0.5}
+        scene["material"] = {"grain": {"density": 1.909859317}}
+        scene["contact"] = {"model": "linear",
+                            "pair": [dict(pair, materials=["grain", "grain"]),
+                                     dict(pair, materials=["grain", "wall"])]}
+    else:
+        scene["material"] = {"grain": {"youngs_modulus": 4.55e6, "poisson_ratio": 0.3},
+                             "wall": {"youngs_modulus": 1.82e7, "poisson_ratio": 0.3}}
+        scene["contact"] = {"model": "thermodynamic", "pair": [
+            {"materials": ["grain", "grain"], "friction": 0.5, "eta_hat": 0.3,
+             "eta_power": 0.5, "lambda_hat": 10.0, "tau_hat": 5.0},
+            {"materials": ["grain", "wall"], "friction": 0.5}]}
+    return scene
+
+
+@pytest.mark.parametrize("model", ["linear", "thermodynamic"])
+def test_dissipation_and_relaxation_densities_hold_the_books(model, tmp_path):
+    """Over bins that cover the box, the dissipation rate density integrates to the energy the
+    books dissipate over the step, divided by it, and the relaxation energy density to the
+    books' relaxation energy (two contacts, neither ending in the step)."""
+    sim = yuxi.Simulation(_two_contacts(model), output=tmp_path / "run", progress=False)
+    sim.run(t_end=0.027)
+    before = sim.energies()
+    sim.record_contacts(True)
+    sim.step()
+    after = sim.energies()
+    assert after["contacts"] == 2
+    f = yuxi.coarse_grain(sim, function="bins", n=(4, 4, 4))
+    volume = f["cell_volume"]
+    rate = (after["dissipated"] - before["dissipated"]) / sim.dt
+    assert rate > 0
+    assert f["dissipation_rate_density"].sum() * volume == pytest.approx(rate, rel=1e-9)
+    relaxation = f["relaxation_energy_density"].sum() * volume
+    assert relaxation == pytest.approx(after["relaxation"], rel=1e-9, abs=1e-300)
+    if model == "thermodynamic":
+        assert after["relaxation"] > 0
+    sim.close()

@@ -8,7 +8,8 @@ from . import _yuxi
 
 # The fields that need the contacts.
 CONTACT_FIELDS = ("contact_stress", "wall_force_density", "coordination", "fabric",
-                  "elastic_energy_density")
+                  "elastic_energy_density", "dissipation_rate_density",
+                  "relaxation_energy_density")
 
 
 def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, lo=None, hi=None,
@@ -41,7 +42,8 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     ``density``, ``number_density``, ``volume_fraction``, ``momentum``, ``velocity``,
     ``kinetic_stress``, ``contact_stress``, ``stress`` (positive in compression),
     ``wall_force_density``, ``temperature``, ``coordination``, ``fabric``,
-    ``kinetic_energy_density``, ``elastic_energy_density``, and ``cell_volume``.
+    ``kinetic_energy_density``, ``elastic_energy_density``, ``dissipation_rate_density``,
+    ``relaxation_energy_density``, and ``cell_volume``.
     """
     arrays = _from_simulation(source, contacts) if hasattr(source, "_core") else \
         _from_dict(source, contacts)
@@ -138,7 +140,7 @@ def _indexed_contacts(table, x, volume):
                                 for k in ("force", "branch", "point"))
     except KeyError as e:
         raise ValueError(f"coarse_grain: contacts need the key {e} (a, b, force, branch, point; "
-                         "elastic optional)") from None
+                         "elastic, dissipation, relaxation optional)") from None
     n = len(x)
     if a.ndim != 1 or b.shape != a.shape or np.any((a < 0) | (a >= n)) or np.any(b >= n):
         raise ValueError(f"coarse_grain: contacts' a and b must be grain indices below {n} "
@@ -147,7 +149,8 @@ def _indexed_contacts(table, x, volume):
     return {"centre": x[a], "volume": volume[a], "wall": wall.astype(float),
             "volume_b": np.where(wall, 0.0, volume[np.where(wall, 0, b)]), "force": force,
             "branch": branch, "point": point,
-            "elastic": np.asarray(table.get("elastic", np.zeros(len(a))), dtype=float)}
+            **{key: np.asarray(table.get(key, np.zeros(len(a))), dtype=float)
+               for key in ("elastic", "dissipation", "relaxation")}}
 
 
 def _from_simulation(sim, contacts):

@@ -28,9 +28,11 @@ struct Sum {
     fabric = 28,         // sum over contacts (V_a phi_a + V_b phi_b) n n (9)
     kinetic = 37,        // sum m v^2 / 2 phi
     elastic = 38,        // sum over contacts E phi(r - c)
+    dissipation = 39,    // sum over contacts P phi(r - c)
+    relaxation = 40,     // sum over contacts E_R phi(r - c)
   };
 };
-static_assert(cg_sums_per_point == Sum::elastic + 1);
+static_assert(cg_sums_per_point == Sum::relaxation + 1);
 
 // t += a b^T w (row-major 3 x 3).
 inline void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
@@ -105,6 +107,8 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
     });
     weights.at_point(c.point, [&](std::size_t p, double w) {
       *at(p, Sum::elastic) += c.elastic * w;
+      *at(p, Sum::dissipation) += c.dissipation * w;
+      *at(p, Sum::relaxation) += c.relaxation * w;
       if (c.wall)
         for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
     });

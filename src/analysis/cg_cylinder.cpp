@@ -311,7 +311,8 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
         const double* in = &samples[cg_sums_per_point * weights.index(i, j, k)];
         double* out = &sums[cg_sums_per_point * g.index(i, g.theta_averaged ? 0 : j, k)];
         for (const std::size_t scalar :
-             {Sum::mass, Sum::number, Sum::volume, Sum::contacts, Sum::kinetic, Sum::elastic})
+             {Sum::mass, Sum::number, Sum::volume, Sum::contacts, Sum::kinetic, Sum::elastic,
+              Sum::dissipation, Sum::relaxation})
           out[scalar] += share * in[scalar];
         for (const std::size_t vector : {Sum::momentum, Sum::wall_force})
           for (int a = 0; a < 3; ++a)

@@ -316,7 +316,8 @@ CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points) {
     throw std::invalid_argument("coarse-graining: the sums do not fit the grid");
   CgFields out;
   for (auto* scalar : {&out.density, &out.number_density, &out.volume_fraction, &out.temperature,
-                       &out.coordination, &out.kinetic_energy, &out.elastic_energy})
+                       &out.coordination, &out.kinetic_energy, &out.elastic_energy,
+                       &out.dissipation, &out.relaxation})
     scalar->assign(points, 0.0);
   for (auto* vector : {&out.momentum, &out.velocity, &out.wall_force})
     vector->assign(3 * points, 0.0);
@@ -330,6 +331,8 @@ CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points) {
     out.volume_fraction[p] = s[Sum::volume];
     out.kinetic_energy[p] = s[Sum::kinetic];
     out.elastic_energy[p] = s[Sum::elastic];
+    out.dissipation[p] = s[Sum::dissipation];
+    out.relaxation[p] = s[Sum::relaxation];
     out.coordination[p] = number > 0.0 ? s[Sum::contacts] / number : 0.0;
     Vec3 velocity;
     for (int a = 0; a < 3; ++a) {
@@ -366,7 +369,9 @@ std::vector<CgNamedField> named_fields(const CgFields& f) {
           {"coordination", &f.coordination, 1},
           {"fabric", &f.fabric, 9},
           {"kinetic_energy_density", &f.kinetic_energy, 1},
-          {"elastic_energy_density", &f.elastic_energy, 1}};
+          {"elastic_energy_density", &f.elastic_energy, 1},
+          {"dissipation_rate_density", &f.dissipation, 1},
+          {"relaxation_energy_density", &f.relaxation, 1}};
 }
 
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,

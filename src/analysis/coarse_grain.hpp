@@ -43,6 +43,8 @@ struct CgContact {
   // another rank's grain or an image): a grain's contacts then count in the coordination and
   // fabric with that grain's own weights, one evaluation a grain rather than one a contact.
   std::int64_t grain = -1, grain_b = -1;
+  double dissipation = 0.0; // the power it turns to heat: the energy dissipated in a step / dt, W
+  double relaxation = 0.0;  // the energy in its relaxation buffer (thermodynamic model), J
 };
 
 struct CgSettings {
@@ -69,6 +71,8 @@ struct CgFields {
   std::vector<double> fabric;          // sum V_i phi_i sum_c n_c n_c
   std::vector<double> kinetic_energy;  // sum m_i v_i^2 / 2 phi_i, J/m^3
   std::vector<double> elastic_energy;  // sum over contacts E phi(r - c), J/m^3
+  std::vector<double> dissipation;     // sum over contacts P phi(r - c), W/m^3
+  std::vector<double> relaxation;      // sum over contacts E_R phi(r - c), J/m^3
 };
 
 // A field by its name in the files and in Python (scene/coarse_grain_spec.hpp lists the same
@@ -85,7 +89,7 @@ std::vector<CgNamedField> named_fields(const CgFields& f);
 // temperature, coordination) or subtract (the kinetic stress's rho V V) are made from the sums
 // at the end. The sums of several parts (the ranks' grains and contacts, each contact on one
 // rank) add up to the sums of the whole: reduce them, then make the fields once.
-inline constexpr std::size_t cg_sums_per_point = 39;
+inline constexpr std::size_t cg_sums_per_point = 41;
 
 // The sums at every point (cg_sums_per_point a point). Throws std::invalid_argument for bad
 // settings (naming the setting) or inconsistent inputs.

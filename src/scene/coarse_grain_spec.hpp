@@ -45,7 +45,9 @@ struct CoarseGrainSpec {
                                                 "coordination",
                                                 "fabric",
                                                 "kinetic_energy_density",
-                                                "elastic_energy_density"};
+                                                "elastic_energy_density",
+                                                "dissipation_rate_density",
+                                                "relaxation_energy_density"};
     return names;
   }
 };

@@ -77,9 +77,11 @@ public:
     set_ = set;
     if (record.enabled && set != PairSet::owned) {
       record.pair_force.assign(list.n_pairs(), Vec3{});
-      record.pair_elastic.assign(list.n_pairs(), 0.0);
+      for (auto* v : {&record.pair_elastic, &record.pair_dissipated, &record.pair_relaxation})
+        v->assign(list.n_pairs(), 0.0);
       record.plane_force.assign(list.planes.size(), Vec3{});
-      record.plane_elastic.assign(list.planes.size(), 0.0);
+      for (auto* v : {&record.plane_elastic, &record.plane_dissipated, &record.plane_relaxation})
+        v->assign(list.planes.size(), 0.0);
       record.wall.clear();
     }
     bool batched = false;
@@ -195,7 +197,8 @@ public:
         s.f[i] += r.force;
         s.torque[i] += r.torque_i;
         book(r, tally);
-        book_wall_contact(s, site, r.force, r.elastic, g.overlap, dt, books);
+        book_wall_contact(s, site, r.force, r.elastic, g.overlap, dt, books, r.dissipated,
+                          r.relaxation);
         if (deep > 0.0)
           deep_starts.add(r.elastic, t, s.gid[i], ref.wall, touch.element, deep, approach);
       }
@@ -263,7 +266,8 @@ private:
   // What follows the force on the grain and the energies: the wall's work, load and element
   // force, the record and the deepest overlap.
   static void book_wall_contact(const ParticleView& s, const WallSite& site, const Vec3& force,
-                                double elastic, double overlap, double dt, WallBooks& books) {
+                                double elastic, double overlap, double dt, WallBooks& books,
+                                double dissipated, double relaxation) {
     const WallTouch& touch = *site.touch;
     const double work = dot(force, touch.velocity) * dt;
     books.tally.wall_work += work;
@@ -273,8 +277,8 @@ private:
     load.work += work;
     ++load.contacts;
     books.elements.push_back({site.wall, touch.element, -force});
-    books.record.keep_wall(
-        {site.k, site.c, touch.element, touch.point, touch.normal, force, elastic, overlap});
+    books.record.keep_wall({site.k, site.c, touch.element, touch.point, touch.normal, force,
+                            elastic, overlap, dissipated, relaxation});
     track_overlap(overlap, s.radius[site.i], site.i, books.tally);
   }
 
@@ -317,7 +321,7 @@ private:
       touch.velocity = q.velocity;
       touch.element = q.element;
       book_wall_contact(s, {q.i, q.wall, q.k, q.c, &touch, q.deep, q.approach}, force,
-                        lanes.elastic[k], lanes.overlap[k], dt, books);
+                        lanes.elastic[k], lanes.overlap[k], dt, books, lanes.dissipated[k], 0.0);
       if (q.deep > 0.0)
         deep_starts.add(lanes.elastic[k], books.t, s.gid[q.i], q.wall, q.element, q.deep,
                         q.approach);
@@ -428,7 +432,7 @@ private:
             s.torque[i] += r.torque_i;
             s.torque[j] += r.torque_j;
             book(r, tally);
-            record.keep_pair(p, r.force, r.elastic);
+            record.keep_pair(p, r.force, r.elastic, r.dissipated, r.relaxation);
             book_wall_work(s, i, j, r.force, dt, tally);
             track_overlap(g.overlap, std::min(ai, aj), i, tally);
           });
@@ -498,7 +502,7 @@ private:
       tally.elastic += lanes.elastic[k];
       tally.dissipated += lanes.dissipated[k];
       ++tally.touching;
-      record.keep_pair(p, force, lanes.elastic[k]);
+      record.keep_pair(p, force, lanes.elastic[k], lanes.dissipated[k], 0.0);
       book_wall_work(s, i, j, force, dt, tally);
       track_overlap(lanes.overlap[k], std::min(lanes.a_i[k], lanes.a_j[k]), i, tally);
       lanes.save_state(k, history.state_of(p));
@@ -530,7 +534,7 @@ private:
       s.f[i] += r.force;
       s.torque[i] += r.torque_i;
       book(r, tally);
-      record.keep_plane(k, r.force, r.elastic);
+      record.keep_plane(k, r.force, r.elastic, r.dissipated, r.relaxation);
       tally.wall_work += dot(r.force, v_wall) * dt;
       WallLoad& load = plane_loads[plane_index];
       load.force -= r.force;

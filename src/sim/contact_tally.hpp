@@ -75,29 +75,40 @@ struct WallContactRecord {
   Vec3 force;                  // on the grain [force]
   double elastic = 0;          // energy stored in the contact [energy]
   double overlap = 0;          // [length]
+  double dissipated = 0;       // energy the contact turned to heat this step [energy]
+  double relaxation = 0;       // energy in its relaxation buffer (thermodynamic model) [energy]
 };
 
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
 // energy analyses): aligned with NeighborList::partners and NeighborList::planes, and the
 // contacts with shaped walls as a list. A contact that does not touch has zero force and
 // energy.
+// (The energy that a contact's ending releases is booked as dissipated by the engine, not
+// recorded at a contact: the record holds the contacts that touch after the step.)
 struct ContactRecord {
   bool enabled = false;
   std::vector<Vec3> pair_force;     // force on the row particle i from its partner j
   std::vector<double> pair_elastic; // energy stored in the contact
-  std::vector<Vec3> plane_force;    // force on the grain from the flat wall
-  std::vector<double> plane_elastic;
+  std::vector<double> pair_dissipated, pair_relaxation; // as WallContactRecord's
+  std::vector<Vec3> plane_force;                        // force on the grain from the flat wall
+  std::vector<double> plane_elastic, plane_dissipated, plane_relaxation;
   std::vector<WallContactRecord> wall;
 
-  void keep_pair(std::size_t p, const Vec3& force, double elastic) {
+  void keep_pair(std::size_t p, const Vec3& force, double elastic, double dissipated,
+                 double relaxation) {
     if (!enabled) return;
     pair_force[p] = force;
     pair_elastic[p] = elastic;
+    pair_dissipated[p] = dissipated;
+    pair_relaxation[p] = relaxation;
   }
-  void keep_plane(std::size_t k, const Vec3& force, double elastic) {
+  void keep_plane(std::size_t k, const Vec3& force, double elastic, double dissipated,
+                  double relaxation) {
     if (!enabled) return;
     plane_force[k] = force;
     plane_elastic[k] = elastic;
+    plane_dissipated[k] = dissipated;
+    plane_relaxation[k] = relaxation;
   }
   void keep_wall(const WallContactRecord& r) {
     if (enabled) wall.push_back(r);
