@@ -402,9 +402,9 @@ CaseResult chute_c3(const Paths& paths) {
   for (const double degrees : {22.0, 23.0, 24.0, 25.0, 26.0}) {
     const SteadyChute c = run_steady_chute(paths, "C3", degrees, 10.0, 5.0, total);
     const ChuteBulk b = chute_bulk(c);
-    // Steady: no drift beyond the windows' noise, which in 1,663 grains is about sqrt(7,772 /
-    // 1,663) = 2.2 times C2's (its +-2 %): +-6 %. An accelerating or stopping flow changes by
-    // far more over 500 tau.
+    // Steady: within +-6 % over the second half. The windows' noise in 1,663 grains is about
+    // sqrt(7,772 / 1,663) = 2.2 times C2's (its +-2 %); an accelerating or stopping flow changes
+    // by far more over 500 tau.
     res.add(fmt::format("{} degrees: kinetic energy spread over the last {:.0f} tau / mean",
                         degrees, 0.5 * total),
             0.0, kinetic_spread(c), 0.12);
