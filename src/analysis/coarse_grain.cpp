@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -98,8 +99,7 @@ public:
       int a = 0;
       while (grid_.averaged[static_cast<std::size_t>(a)]) ++a;
       const double h = grid_.spacing(a), lo = grid_.lo[a];
-      const auto first = static_cast<long>(std::ceil((low[a] - reach_ - lo) / h - 0.5));
-      const auto last = static_cast<long>(std::floor((high[a] + reach_ - lo) / h - 0.5));
+      const auto [first, last] = within_reach(a, low[a], high[a]);
       for (long k = first; k <= last; ++k) {
         const std::optional<int> at = wrap(a, k);
         if (!at) continue;
@@ -131,13 +131,18 @@ private:
       if (index.size() < n) index.resize(n), d2.resize(n), gauss.resize(n);
     }
   };
+  // The points along axis a (unwrapped, unclamped indices) within reach of [low, high].
+  std::pair<long, long> within_reach(int a, double low, double high) const {
+    const double h = grid_.spacing(a), lo = grid_.lo[a];
+    return {static_cast<long>(std::ceil((low - reach_ - lo) / h - 0.5)),
+            static_cast<long>(std::floor((high + reach_ - lo) / h - 0.5))};
+  }
   // Fills `out` for coordinate x along axis a; false where no point is within reach.
   bool reach_along(int a, double x, AxisReach& out) const {
     const auto s = static_cast<std::size_t>(a);
     if (grid_.averaged[s]) return true;
     const double h = grid_.spacing(a), lo = grid_.lo[a];
-    auto first = static_cast<long>(std::ceil((x - reach_ - lo) / h - 0.5));
-    auto last = static_cast<long>(std::floor((x + reach_ - lo) / h - 0.5));
+    auto [first, last] = within_reach(a, x, x);
     const long n = grid_.n[s];
     const bool periodic = grid_.periodic[s];
     if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
@@ -242,13 +247,9 @@ private:
   // periodic axis every image, its coordinate unwrapped; on an averaged axis, low's).
   template <class G> void each_point(const Vec3& low, const Vec3& high, G&& g) const {
     std::array<long, 3> first{}, last{};
-    for (int a = 0; a < 3; ++a) {
-      const double h = grid_.spacing(a);
-      first[static_cast<std::size_t>(a)] =
-          static_cast<long>(std::ceil((low[a] - reach_ - grid_.lo[a]) / h - 0.5));
-      last[static_cast<std::size_t>(a)] =
-          static_cast<long>(std::floor((high[a] + reach_ - grid_.lo[a]) / h - 0.5));
-    }
+    for (int a = 0; a < 3; ++a)
+      std::tie(first[static_cast<std::size_t>(a)], last[static_cast<std::size_t>(a)]) =
+          within_reach(a, low[a], high[a]);
     each_index(first, last, [&](std::size_t index, const std::array<long, 3>& k) {
       Vec3 p = low;
       for (int a = 0; a < 3; ++a)

@@ -185,8 +185,9 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
   // momentum balance -d sigma_zz / dz - rho g + t_z = 0 makes sigma_zz(z) the weight above less
   // what the side wall holds above: the integral of rho g - t_z from z up. Checked from 3 d
   // above the floor (the function's reach) to 3 d below the surface, against the stress there.
+  std::map<std::string, CsvTable> columns; // each silo's profile, by its tag
   for (const Silo& s : silos) {
-    const CsvTable profile = column_profile(folder, s.tag);
+    const CsvTable& profile = columns.emplace(s.tag, column_profile(folder, s.tag)).first->second;
     const auto& z = profile.column("z");
     const auto& rho = profile.column("density");
     const auto& szz = profile.column("stress_zz");
@@ -249,7 +250,7 @@ CaseResult janssen(const Paths& paths, const std::string& name, bool full) {
     std::ofstream csv(folder / "janssen_profile.csv");
     csv << "silo,z,sigma_zz,sigma_zz_janssen,wall_shear,wall_shear_janssen\n";
     for (const Silo& s : rough) {
-      const CsvTable profile = column_profile(folder, s.tag);
+      const CsvTable& profile = columns.at(s.tag);
       const auto& z = profile.column("z");
       const auto& szz = profile.column("stress_zz");
       const auto& tz = profile.column("wall_force_density_z");

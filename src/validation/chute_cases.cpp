@@ -2,6 +2,7 @@
 // against LAMMPS itself (reference output and the command that made it: tests/validation/data); C2,
 // steady flow of a slice of it down a 24 degree incline (Silbert et al. 2001).
 #include "analysis/coarse_grain.hpp"
+#include "analysis/line_fit.hpp"
 #include "core/units.hpp"
 #include "io/scene_reader.hpp"
 #include "run/coarse_grain_contacts.hpp"
@@ -298,20 +299,12 @@ ChuteBulk chute_bulk(const SteadyChute& c) {
 
 // R^2 of the Bagnold fit v = A (H^1.5 - (H - z)^1.5) + v0, H = the surface.
 double bagnold_r2(const ChuteBulk& b) {
-  const double top = b.surface;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-  for (auto [z, v] : b.profile) {
-    const double x = std::pow(top, 1.5) - std::pow(std::max(top - z, 0.0), 1.5);
-    sx += x, sy += v, sxx += x * x, sxy += x * v, n += 1;
+  std::vector<double> x, v;
+  for (auto [z, vx] : b.profile) {
+    x.push_back(std::pow(b.surface, 1.5) - std::pow(std::max(b.surface - z, 0.0), 1.5));
+    v.push_back(vx);
   }
-  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx), icpt = (sy - slope * sx) / n;
-  double ss_res = 0, ss_tot = 0;
-  for (auto [z, v] : b.profile) {
-    const double x = std::pow(top, 1.5) - std::pow(std::max(top - z, 0.0), 1.5);
-    ss_res += (v - slope * x - icpt) * (v - slope * x - icpt);
-    ss_tot += (v - sy / n) * (v - sy / n);
-  }
-  return 1 - ss_res / ss_tot;
+  return analysis::fit_line(x, v).r2;
 }
 
 // The spread (max - min) of the windows' kinetic energy over their mean.
@@ -424,16 +417,13 @@ CaseResult chute_c3(const Paths& paths) {
   res.add("I rises with the angle (1 = yes)", 1.0, rising ? 1.0 : 0.0, 0.0);
   res.add("phi falls as I rises (1 = yes)", 1.0, falling ? 1.0 : 0.0, 0.0);
   // Least-squares lines y = y0 + slope I.
-  const auto line = [&points](auto y) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-    for (const Point& p : points)
-      sx += p.inertial, sy += y(p), sxx += p.inertial * p.inertial, sxy += p.inertial * y(p),
-          n += 1;
-    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-    return std::pair{(sy - slope * sx) / n, slope};
-  };
-  const auto [mu_0, mu_slope] = line([](const Point& p) { return p.mu; });
-  const auto [phi_0, phi_slope] = line([](const Point& p) { return p.phi; });
+  std::vector<double> inertial, mu, phi;
+  for (const Point& p : points)
+    inertial.push_back(p.inertial), mu.push_back(p.mu), phi.push_back(p.phi);
+  const analysis::LineFit mu_line = analysis::fit_line(inertial, mu);
+  const analysis::LineFit phi_line = analysis::fit_line(inertial, phi);
+  const double mu_0 = mu_line.intercept, mu_slope = mu_line.slope;
+  const double phi_0 = phi_line.intercept, phi_slope = phi_line.slope;
   const double lo = std::tan(17.0 * pi / 180), hi = std::tan(21.5 * pi / 180);
   res.add(fmt::format("mu(I) = mu_0 + b I: mu_0 in tan(17-21.5 deg) (b = {:.3g})", mu_slope),
           0.5 * (lo + hi), mu_0, 0.5 * (hi - lo));
