@@ -110,16 +110,18 @@ std::vector<CgContact> contact_list(const py::object& contacts) {
                               elastic =
                                   scalars(d["elastic"].cast<Doubles>(), count, "contacts' elastic"),
                               wall = scalars(d["wall"].cast<Doubles>(), count, "contacts' wall");
-    // Optional: the power each dissipates (W) and the energy in its relaxation buffer (J).
+    // Optional: the power each dissipates (W), the energy in its relaxation buffer (J) and the
+    // power of a moving wall on its grain (W).
     const auto optional = [&](const char* key, const std::string& name) {
       return d.contains(key) ? scalars(d[key].cast<Doubles>(), count, name)
                              : std::vector<double>(static_cast<std::size_t>(count), 0.0);
     };
     const std::vector<double> dissipation = optional("dissipation", "contacts' dissipation"),
-                              relaxation = optional("relaxation", "contacts' relaxation");
+                              relaxation = optional("relaxation", "contacts' relaxation"),
+                              wall_power = optional("wall_power", "contacts' wall_power");
     for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k)
       list.push_back({centre[k], va[k], wall[k] != 0.0, vb[k], force[k], branch[k], point[k],
-                      elastic[k], -1, -1, dissipation[k], relaxation[k]});
+                      elastic[k], -1, -1, dissipation[k], relaxation[k], wall_power[k]});
   }
   return list;
 }

@@ -112,7 +112,7 @@ py::dict contact_arrays(const Simulation& sim) {
 py::dict cg_contact_arrays(const Simulation& sim) {
   const std::vector<analysis::CgContact> contacts = coarse_grain_contacts(sim);
   std::vector<double> centre, volume, wall, volume_b, force, branch, point, elastic, dissipation,
-      relaxation;
+      relaxation, wall_power;
   const auto vec = [](std::vector<double>& c, const Vec3& v) {
     c.insert(c.end(), {v.x, v.y, v.z});
   };
@@ -121,6 +121,7 @@ py::dict cg_contact_arrays(const Simulation& sim) {
     volume.push_back(c.volume), wall.push_back(c.wall ? 1.0 : 0.0);
     volume_b.push_back(c.volume_b), elastic.push_back(c.elastic);
     dissipation.push_back(c.dissipation), relaxation.push_back(c.relaxation);
+    wall_power.push_back(c.wall_power);
   }
   const auto n = static_cast<py::ssize_t>(volume.size());
   py::dict d;
@@ -133,6 +134,7 @@ py::dict cg_contact_arrays(const Simulation& sim) {
   d["point"] = rows_of(point, n, 3);
   d["elastic"] = rows_of(elastic, n, 1);
   d["dissipation"] = rows_of(dissipation, n, 1);
+  d["wall_power"] = rows_of(wall_power, n, 1);
   d["relaxation"] = rows_of(relaxation, n, 1);
   return d;
 }

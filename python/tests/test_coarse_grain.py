@@ -391,3 +391,44 @@ def test_dissipation_and_relaxation_densities_hold_the_books(model, tmp_path):
     if model == "thermodynamic":
         assert after["relaxation"] > 0
     sim.close()
+
+
+def test_wall_power_density_holds_the_books(tmp_path):
+    """Over bins that cover the box, the walls' power density integrates to the work the books
+    credit to the moving walls over the step, divided by it: a floor that oscillates along its
+    normal under two grains, one of them also pressed against a turning cylinder (a shaped wall
+    whose surface slides past it)."""
+    pair = {"k_n": 2.0e4, "k_t": 5.7e3, "gamma_n": 60.0, "gamma_t": 20.0, "mu_s": 0.5,
+            "mu_d": 0.5}
+    grain = {"radius": 0.5, "density": 1.909859317, "material": "grain"}
+    scene = {
+        "materials": ["grain", "wall"],
+        "run": {"name": "wall-power", "dt": 1.0e-4, "t_end": 0.05},
+        "output": {"energy_interval": 0.01, "snapshot_interval": 0.0},
+        "domain": {"lo": [0.0, 0.0, 0.0], "hi": [10.0, 10.0, 4.0], "gravity": [0.0, 0.0, -10.0],
+                   "boundary": ["open", "open", "open"]},
+        "material": {"grain": {"density": 1.909859317}},
+        "contact": {"model": "linear", "pair": [dict(pair, materials=["grain", "grain"]),
+                                                dict(pair, materials=["grain", "wall"])]},
+        "plane": [{"point": [0.0, 0.0, 0.5], "normal": [0.0, 0.0, 1.0], "material": "wall",
+                   "amplitude": 0.001, "omega": 50.0}],
+        "cylinder": [{"center": [5.0, 5.0, 0.0], "radius": 2.0, "omega": 5.0,
+                      "material": "wall"}],
+        "particle": [dict(grain, position=[5.0, 5.0, 0.9995]),
+                     dict(grain, position=[6.505, 5.0, 0.9995])],
+    }
+    sim = yuxi.Simulation(scene, output=tmp_path / "run", progress=False)
+    sim.run(t_end=0.002)
+    before = sim.energies()
+    sim.record_contacts(True)
+    sim.step()
+    after = sim.energies()
+    assert after["contacts"] == 3
+    f = yuxi.coarse_grain(sim, function="bins", n=(10, 10, 16))
+    power = (after["wall_work"] - before["wall_work"]) / sim.dt
+    assert power != 0
+    assert f["wall_power_density"].sum() * f["cell_volume"] == pytest.approx(power, rel=1e-9)
+    # The turning cylinder's share: its contact point lies at z = 1, the floor's at z = 0.5.
+    cylinder = f["wall_power_density"][:, :, 3].sum() * f["cell_volume"]
+    assert cylinder > 0  # friction drags the grain along the sliding surface
+    sim.close()

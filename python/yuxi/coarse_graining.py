@@ -8,7 +8,7 @@ from . import _yuxi
 
 # The fields that need the contacts.
 CONTACT_FIELDS = ("contact_stress", "wall_force_density", "coordination", "fabric",
-                  "elastic_energy_density", "dissipation_rate_density",
+                  "elastic_energy_density", "dissipation_rate_density", "wall_power_density",
                   "relaxation_energy_density")
 
 
@@ -21,7 +21,8 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     rank getting the fields of the whole) or a dict of arrays: ``x``, ``v`` (n, 3),
     ``mass`` (n,), ``radius`` or ``volume`` (n,), and optionally ``contacts`` (a dict with ``a``,
     ``b`` (grain indices, b = -1 for a wall), ``force`` on a, ``branch`` to a's centre from b's
-    centre or from the wall's contact point, ``point``, ``elastic``) and ``box`` (``lo``, ``hi``,
+    centre or from the wall's contact point, ``point``; optionally ``elastic``, ``dissipation``,
+    ``relaxation``, ``wall_power``) and ``box`` (``lo``, ``hi``,
     ``periodic``, such as "xy").
 
     ``function`` is "gaussian" (standard deviation ``width``, cut off at ``cutoff``, 3 width by
@@ -43,7 +44,7 @@ def coarse_grain(source, width=None, function="gaussian", cutoff=None, n=None, l
     ``kinetic_stress``, ``contact_stress``, ``stress`` (positive in compression),
     ``wall_force_density``, ``temperature``, ``coordination``, ``fabric``,
     ``kinetic_energy_density``, ``elastic_energy_density``, ``dissipation_rate_density``,
-    ``relaxation_energy_density``, and ``cell_volume``.
+    ``relaxation_energy_density``, ``wall_power_density`` and ``cell_volume``.
     """
     arrays = _from_simulation(source, contacts) if hasattr(source, "_core") else \
         _from_dict(source, contacts)
@@ -140,7 +141,7 @@ def _indexed_contacts(table, x, volume):
                                 for k in ("force", "branch", "point"))
     except KeyError as e:
         raise ValueError(f"coarse_grain: contacts need the key {e} (a, b, force, branch, point; "
-                         "elastic, dissipation, relaxation optional)") from None
+                         "elastic, dissipation, relaxation, wall_power optional)") from None
     n = len(x)
     if a.ndim != 1 or b.shape != a.shape or np.any((a < 0) | (a >= n)) or np.any(b >= n):
         raise ValueError(f"coarse_grain: contacts' a and b must be grain indices below {n} "
@@ -150,7 +151,7 @@ def _indexed_contacts(table, x, volume):
             "volume_b": np.where(wall, 0.0, volume[np.where(wall, 0, b)]), "force": force,
             "branch": branch, "point": point,
             **{key: np.asarray(table.get(key, np.zeros(len(a))), dtype=float)
-               for key in ("elastic", "dissipation", "relaxation")}}
+               for key in ("elastic", "dissipation", "relaxation", "wall_power")}}
 
 
 def _from_simulation(sim, contacts):

@@ -30,9 +30,10 @@ struct Sum {
     elastic = 38,        // sum over contacts E phi(r - c)
     dissipation = 39,    // sum over contacts P phi(r - c)
     relaxation = 40,     // sum over contacts E_R phi(r - c)
+    wall_power = 41,     // sum over wall contacts f . u_w phi(r - c)
   };
 };
-static_assert(cg_sums_per_point == Sum::relaxation + 1);
+static_assert(cg_sums_per_point == Sum::wall_power + 1);
 
 // t += a b^T w (row-major 3 x 3).
 inline void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
@@ -109,8 +110,10 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
       *at(p, Sum::elastic) += c.elastic * w;
       *at(p, Sum::dissipation) += c.dissipation * w;
       *at(p, Sum::relaxation) += c.relaxation * w;
-      if (c.wall)
+      if (c.wall) {
         for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
+        *at(p, Sum::wall_power) += c.wall_power * w;
+      }
     });
     // The contact counts for each grain it joins, where that grain stands (counted above for
     // the grains known by their place).

@@ -312,7 +312,7 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
         double* out = &sums[cg_sums_per_point * g.index(i, g.theta_averaged ? 0 : j, k)];
         for (const std::size_t scalar :
              {Sum::mass, Sum::number, Sum::volume, Sum::contacts, Sum::kinetic, Sum::elastic,
-              Sum::dissipation, Sum::relaxation})
+              Sum::dissipation, Sum::relaxation, Sum::wall_power})
           out[scalar] += share * in[scalar];
         for (const std::size_t vector : {Sum::momentum, Sum::wall_force})
           for (int a = 0; a < 3; ++a)

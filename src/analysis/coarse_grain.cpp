@@ -318,7 +318,7 @@ CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points) {
   CgFields out;
   for (auto* scalar : {&out.density, &out.number_density, &out.volume_fraction, &out.temperature,
                        &out.coordination, &out.kinetic_energy, &out.elastic_energy,
-                       &out.dissipation, &out.relaxation})
+                       &out.dissipation, &out.relaxation, &out.wall_power})
     scalar->assign(points, 0.0);
   for (auto* vector : {&out.momentum, &out.velocity, &out.wall_force})
     vector->assign(3 * points, 0.0);
@@ -334,6 +334,7 @@ CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points) {
     out.elastic_energy[p] = s[Sum::elastic];
     out.dissipation[p] = s[Sum::dissipation];
     out.relaxation[p] = s[Sum::relaxation];
+    out.wall_power[p] = s[Sum::wall_power];
     out.coordination[p] = number > 0.0 ? s[Sum::contacts] / number : 0.0;
     Vec3 velocity;
     for (int a = 0; a < 3; ++a) {
@@ -372,7 +373,8 @@ std::vector<CgNamedField> named_fields(const CgFields& f) {
           {"kinetic_energy_density", &f.kinetic_energy, 1},
           {"elastic_energy_density", &f.elastic_energy, 1},
           {"dissipation_rate_density", &f.dissipation, 1},
-          {"relaxation_energy_density", &f.relaxation, 1}};
+          {"relaxation_energy_density", &f.relaxation, 1},
+          {"wall_power_density", &f.wall_power, 1}};
 }
 
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,

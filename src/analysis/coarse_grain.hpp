@@ -45,6 +45,7 @@ struct CgContact {
   std::int64_t grain = -1, grain_b = -1;
   double dissipation = 0.0; // the power it turns to heat: the energy dissipated in a step / dt, W
   double relaxation = 0.0;  // the energy in its relaxation buffer (thermodynamic model), J
+  double wall_power = 0.0;  // with a moving wall: the power of its motion on a, f . u_wall, W
 };
 
 struct CgSettings {
@@ -73,6 +74,7 @@ struct CgFields {
   std::vector<double> elastic_energy;  // sum over contacts E phi(r - c), J/m^3
   std::vector<double> dissipation;     // sum over contacts P phi(r - c), W/m^3
   std::vector<double> relaxation;      // sum over contacts E_R phi(r - c), J/m^3
+  std::vector<double> wall_power;      // sum over wall contacts f . u_w phi(r - c), W/m^3
 };
 
 // A field by its name in the files and in Python (scene/coarse_grain_spec.hpp lists the same
@@ -89,7 +91,7 @@ std::vector<CgNamedField> named_fields(const CgFields& f);
 // temperature, coordination) or subtract (the kinetic stress's rho V V) are made from the sums
 // at the end. The sums of several parts (the ranks' grains and contacts, each contact on one
 // rank) add up to the sums of the whole: reduce them, then make the fields once.
-inline constexpr std::size_t cg_sums_per_point = 41;
+inline constexpr std::size_t cg_sums_per_point = 42;
 
 // The sums at every point (cg_sums_per_point a point). Throws std::invalid_argument for bad
 // settings (naming the setting) or inconsistent inputs.

@@ -25,13 +25,13 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
   };
   // Grain i (radius r) touched with force f: by a grain j of radius r_b whose centre is x_i - b,
   // or by a wall at `at` (r_b < 0, j unused); e its elastic energy, q the energy it dissipated
-  // in the step, e_r its relaxation energy.
+  // in the step, e_r its relaxation energy, u the work of a moving wall on i in the step.
   const double per_second = 1.0 / sim.config().dt;
   const auto add = [&](std::size_t i, double r, const Vec3& f, const Vec3& b, const Vec3& at,
-                       double r_b, std::size_t j, double e, double q, double e_r) {
+                       double r_b, std::size_t j, double e, double q, double e_r, double u) {
     const bool wall = r_b < 0;
     out.push_back({p.x[i], ball_volume(r), wall, wall ? 0.0 : ball_volume(r_b), f, b, at, e,
-                   place(i), wall ? -1 : place(j), q * per_second, e_r});
+                   place(i), wall ? -1 : place(j), q * per_second, e_r, u * per_second});
   };
   for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
     if (!ContactRecord::touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
@@ -44,10 +44,10 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
     const Vec3 at = p.x[i] - d * ((p.radius[i] - 0.5 * overlap) / dist);
     if (p.is_grain(j))
       add(i, p.radius[i], f, d, at, p.radius[j], j, rec.pair_elastic[k], rec.pair_dissipated[k],
-          rec.pair_relaxation[k]);
+          rec.pair_relaxation[k], 0.0);
     else
       add(i, p.radius[i], f, p.x[i] - at, at, -1.0, j, rec.pair_elastic[k], rec.pair_dissipated[k],
-          rec.pair_relaxation[k]);
+          rec.pair_relaxation[k], rec.pair_wall_work[k]);
   }
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
     if (!ContactRecord::touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
@@ -56,13 +56,14 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
     const Vec3 x = p.x[pc.particle];
     const Vec3 at = x - w.normal * w.distance(x, sim.time());
     add(pc.particle, p.radius[pc.particle], rec.plane_force[k], x - at, at, -1.0, 0,
-        rec.plane_elastic[k], rec.plane_dissipated[k], rec.plane_relaxation[k]);
+        rec.plane_elastic[k], rec.plane_dissipated[k], rec.plane_relaxation[k],
+        rec.plane_wall_work[k]);
   }
   for (const WallContactRecord& r : rec.wall) {
     const WallContactRef ref = list.walls[r.candidate];
     const Vec3 x = p.x[ref.particle];
     add(ref.particle, p.radius[ref.particle], r.force, x - r.point, r.point, -1.0, 0, r.elastic,
-        r.dissipated, r.relaxation);
+        r.dissipated, r.relaxation, r.wall_work);
   }
 }
 

@@ -47,7 +47,8 @@ struct CoarseGrainSpec {
                                                 "kinetic_energy_density",
                                                 "elastic_energy_density",
                                                 "dissipation_rate_density",
-                                                "relaxation_energy_density"};
+                                                "relaxation_energy_density",
+                                                "wall_power_density"};
     return names;
   }
 };

@@ -77,10 +77,12 @@ public:
     set_ = set;
     if (record.enabled && set != PairSet::owned) {
       record.pair_force.assign(list.n_pairs(), Vec3{});
-      for (auto* v : {&record.pair_elastic, &record.pair_dissipated, &record.pair_relaxation})
+      for (auto* v : {&record.pair_elastic, &record.pair_dissipated, &record.pair_relaxation,
+                      &record.pair_wall_work})
         v->assign(list.n_pairs(), 0.0);
       record.plane_force.assign(list.planes.size(), Vec3{});
-      for (auto* v : {&record.plane_elastic, &record.plane_dissipated, &record.plane_relaxation})
+      for (auto* v : {&record.plane_elastic, &record.plane_dissipated, &record.plane_relaxation,
+                      &record.plane_wall_work})
         v->assign(list.planes.size(), 0.0);
       record.wall.clear();
     }
@@ -278,7 +280,7 @@ private:
     ++load.contacts;
     books.elements.push_back({site.wall, touch.element, -force});
     books.record.keep_wall({site.k, site.c, touch.element, touch.point, touch.normal, force,
-                            elastic, overlap, dissipated, relaxation});
+                            elastic, overlap, dissipated, relaxation, work});
     track_overlap(overlap, s.radius[site.i], site.i, books.tally);
   }
 
@@ -347,13 +349,16 @@ private:
     }
   }
 
-  // Work of a wall particle's prescribed motion on its partner (force on i, -force on j); none
-  // while the walls are still (the sum would only add zeros).
-  void book_wall_work(const ParticleView& s, std::uint32_t i, std::uint32_t j, const Vec3& force,
-                      double dt, ContactTally& tally) const {
-    if (walls_still_) return;
-    if (s.kind[j] == Kind::wall) tally.wall_work += dot(force, s.v[j]) * dt;
-    if (s.kind[i] == Kind::wall) tally.wall_work -= dot(force, s.v[i]) * dt;
+  // Work of a wall particle's prescribed motion on its partner (force on i, -force on j), booked
+  // and returned; none while the walls are still (the sum would only add zeros).
+  double book_wall_work(const ParticleView& s, std::uint32_t i, std::uint32_t j, const Vec3& force,
+                        double dt, ContactTally& tally) const {
+    if (walls_still_) return 0.0;
+    double work = 0.0;
+    if (s.kind[j] == Kind::wall) work += dot(force, s.v[j]) * dt;
+    if (s.kind[i] == Kind::wall) work -= dot(force, s.v[i]) * dt;
+    tally.wall_work += work;
+    return work;
   }
 
   static void book(const ContactResult& r, ContactTally& tally) {
@@ -432,8 +437,8 @@ private:
             s.torque[i] += r.torque_i;
             s.torque[j] += r.torque_j;
             book(r, tally);
-            record.keep_pair(p, r.force, r.elastic, r.dissipated, r.relaxation);
-            book_wall_work(s, i, j, r.force, dt, tally);
+            record.keep_pair(p, r.force, r.elastic, r.dissipated, r.relaxation,
+                             book_wall_work(s, i, j, r.force, dt, tally));
             track_overlap(g.overlap, std::min(ai, aj), i, tally);
           });
   }
@@ -502,8 +507,8 @@ private:
       tally.elastic += lanes.elastic[k];
       tally.dissipated += lanes.dissipated[k];
       ++tally.touching;
-      record.keep_pair(p, force, lanes.elastic[k], lanes.dissipated[k], 0.0);
-      book_wall_work(s, i, j, force, dt, tally);
+      record.keep_pair(p, force, lanes.elastic[k], lanes.dissipated[k], 0.0,
+                       book_wall_work(s, i, j, force, dt, tally));
       track_overlap(lanes.overlap[k], std::min(lanes.a_i[k], lanes.a_j[k]), i, tally);
       lanes.save_state(k, history.state_of(p));
     }
@@ -534,11 +539,12 @@ private:
       s.f[i] += r.force;
       s.torque[i] += r.torque_i;
       book(r, tally);
-      record.keep_plane(k, r.force, r.elastic, r.dissipated, r.relaxation);
-      tally.wall_work += dot(r.force, v_wall) * dt;
+      const double work = dot(r.force, v_wall) * dt;
+      record.keep_plane(k, r.force, r.elastic, r.dissipated, r.relaxation, work);
+      tally.wall_work += work;
       WallLoad& load = plane_loads[plane_index];
       load.force -= r.force;
-      load.work += dot(r.force, v_wall) * dt;
+      load.work += work;
       ++load.contacts;
       track_overlap(g.overlap, ai, i, tally);
     }

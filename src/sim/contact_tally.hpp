@@ -77,6 +77,7 @@ struct WallContactRecord {
   double overlap = 0;          // [length]
   double dissipated = 0;       // energy the contact turned to heat this step [energy]
   double relaxation = 0;       // energy in its relaxation buffer (thermodynamic model) [energy]
+  double wall_work = 0;        // work of the wall's motion on the grain this step [energy]
 };
 
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
@@ -90,25 +91,28 @@ struct ContactRecord {
   std::vector<Vec3> pair_force;     // force on the row particle i from its partner j
   std::vector<double> pair_elastic; // energy stored in the contact
   std::vector<double> pair_dissipated, pair_relaxation; // as WallContactRecord's
-  std::vector<Vec3> plane_force;                        // force on the grain from the flat wall
-  std::vector<double> plane_elastic, plane_dissipated, plane_relaxation;
+  std::vector<double> pair_wall_work; // of a moving wall particle on its grain (0 between grains)
+  std::vector<Vec3> plane_force;      // force on the grain from the flat wall
+  std::vector<double> plane_elastic, plane_dissipated, plane_relaxation, plane_wall_work;
   std::vector<WallContactRecord> wall;
 
   void keep_pair(std::size_t p, const Vec3& force, double elastic, double dissipated,
-                 double relaxation) {
+                 double relaxation, double wall_work) {
     if (!enabled) return;
     pair_force[p] = force;
     pair_elastic[p] = elastic;
     pair_dissipated[p] = dissipated;
     pair_relaxation[p] = relaxation;
+    pair_wall_work[p] = wall_work;
   }
   void keep_plane(std::size_t k, const Vec3& force, double elastic, double dissipated,
-                  double relaxation) {
+                  double relaxation, double wall_work) {
     if (!enabled) return;
     plane_force[k] = force;
     plane_elastic[k] = elastic;
     plane_dissipated[k] = dissipated;
     plane_relaxation[k] = relaxation;
+    plane_wall_work[k] = wall_work;
   }
   void keep_wall(const WallContactRecord& r) {
     if (enabled) wall.push_back(r);
