@@ -12,9 +12,10 @@ message, and the report says so):
   analysis/velocity_t<T>.csv     s,z,vs,vz,vn       grains in the vertical plane through two
                                                     opposite antinodes
   analysis/elastic_map_t<T>.csv  x,y,<name>         elastic energy summed over z per column
-  analysis/period_sections.csv   section,z0,z1,x,y,grains,elastic,kinetic
-                                                    horizontal sections, averaged over the
-                                                    first excitation period
+  analysis/period_sections.csv   section,z0,z1,x,y,number_density,kinetic_energy_density,
+                                 elastic_energy_density
+                                                    horizontal sections, coarse-grained and
+                                                    averaged over the first excitation period
   analysis/pdf_kinetic.csv, pdf_elastic.csv, pdf_total.csv
                                  e_lo,e_hi,e_center,count,density,energy   (log bins)
   analysis/fits.csv              quantity,range,e_lo,e_hi,slope,intercept,slope_error,bins,
@@ -1029,7 +1030,8 @@ def fig9_sections(analysis, out):
     if not os.path.exists(path):
         raise Skip("no analysis/period_sections.csv")
     t = read_table(path)
-    need = ("section", "z0", "z1", "x", "y", "elastic", "kinetic")
+    names = {"elastic": "elastic_energy_density", "kinetic": "kinetic_energy_density"}
+    need = ("section", "z0", "z1", "x", "y", *names.values())
     if t is None or not all(k in t for k in need) or len(t["x"]) == 0:
         raise Skip(f"{path}: missing columns or rows")
     sections = sorted(set(t["section"].astype(int)))[:4]
@@ -1041,7 +1043,7 @@ def fig9_sections(analysis, out):
         grids = {}
         for q in ("elastic", "kinetic"):
             g = np.full((len(ys), len(xs)), np.nan)
-            g[j, i] = t[q][sel]
+            g[j, i] = t[names[q]][sel]
             grids[q] = g
         panels.append((s, t["z0"][sel][0], t["z1"][sel][0], xs, ys, grids))
     fig, axes = plt.subplots(len(panels), 2, figsize=(9, 4 * len(panels)), squeeze=False)
@@ -1057,16 +1059,18 @@ def fig9_sections(analysis, out):
                            interpolation="nearest")
             ax.set_title(f"{q}, {z0:g} <= z < {z1:g} sigma", fontsize=9)
             ax.tick_params(labelsize=7)
-            fig.colorbar(im, ax=ax, shrink=0.8, label=f"[{UNIT_E}] per cell")
-    fig.suptitle("Energies averaged over the first excitation period, horizontal sections\n"
-                 "(cf. Li & Cai 2008, Fig. 9)")
+            fig.colorbar(im, ax=ax, shrink=0.8, label=f"[{UNIT_E} / sigma^3]")
+    fig.suptitle("Energy densities averaged over the first excitation period, horizontal "
+                 "sections\n(coarse-grained; cf. Li & Cai 2008, Fig. 9)")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "fig9_sections.png"), dpi=120)
     plt.close(fig)
     return ("fig9_sections.png",
-            "Elastic and kinetic energy of the grains in each cell of "
-            + ", ".join(f"z in [{p[1]:g}, {p[2]:g})" for p in panels)
-            + ", averaged over the first excitation period (log colour scale).")
+            "Elastic and kinetic energy densities of the grains, coarse-grained over x and y "
+            "(the grid's cells, or a Gaussian: `section_width`) and averaged over z in "
+            + ", ".join(f"[{p[1]:g}, {p[2]:g})" for p in panels)
+            + " and over the first excitation period (log colour scale; each grain's energy "
+            "at its centre, half of each contact's elastic energy to each grain).")
 
 
 def fit_from_pdf(pdf, lo, hi):

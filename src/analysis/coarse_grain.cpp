@@ -306,6 +306,24 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
   return sums;
 }
 
+std::vector<double> coarse_grain_densities(std::span<const Vec3> x,
+                                           std::span<const std::span<const double>> quantities,
+                                           const CgSettings& settings) {
+  settings.grid.check();
+  for (const auto& q : quantities)
+    if (q.size() != x.size())
+      throw std::invalid_argument("coarse-graining: a quantity has " + std::to_string(q.size()) +
+                                  " values for " + std::to_string(x.size()) + " grains");
+  const Weights weights(settings);
+  const std::size_t n = quantities.size();
+  std::vector<double> out(n * settings.grid.size(), 0.0);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    weights.at_point(x[i], [&](std::size_t p, double w) {
+      for (std::size_t k = 0; k < n; ++k) out[n * p + k] += quantities[k][i] * w;
+    });
+  return out;
+}
+
 CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid) {
   return coarse_grain_fields(sums, grid.size());
 }

@@ -101,6 +101,14 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
 CgFields coarse_grain_fields(std::span<const double> sums, const CgGrid& grid);
 CgFields coarse_grain_fields(std::span<const double> sums, std::size_t points);
 
+// The coarse-grained densities of per-grain quantities: at each point p and for each quantity
+// q (a span of one value a grain), sum_i q_i phi(r_p - x_i), the quantity per m^3 (q = 1 gives
+// the number density, a grain's energy the energy density). Point after point, quantities.size()
+// values a point. Throws std::invalid_argument if a quantity's length is not x's.
+std::vector<double> coarse_grain_densities(std::span<const Vec3> x,
+                                           std::span<const std::span<const double>> quantities,
+                                           const CgSettings& settings);
+
 // Both: the fields of `grains` and `contacts` on settings.grid.
 CgFields coarse_grain(const CgGrains& grains, std::span<const CgContact> contacts,
                       const CgSettings& settings);

@@ -84,33 +84,4 @@ void write_column_sum_csv(const std::filesystem::path& path, const GridField& su
   write_grid_csv(path, sum.grid, std::span<const GridColumn>(&column, 1));
 }
 
-void write_sections_csv(const std::filesystem::path& path,
-                        std::span<const EnergySection> sections) {
-  for (const auto& s : sections) {
-    const auto& e = *s.elastic;
-    const auto& k = *s.kinetic;
-    if (e.grid().nx() != k.grid().nx() || e.grid().ny() != k.grid().ny() ||
-        !(e.grid().lo() == k.grid().lo()) || !(e.grid().hi() == k.grid().hi()) ||
-        e.z0() != k.z0() || e.z1() != k.z1() || e.snapshots() != k.snapshots())
-      throw std::invalid_argument("write_sections_csv: elastic and kinetic accumulators differ");
-    if (e.grid().size() != sections[0].elastic->grid().size())
-      throw std::invalid_argument("write_sections_csv: sections on grids of different sizes");
-  }
-  CsvWriter csv(path, {"section", "z0", "z1", "x", "y", "grains", "elastic", "kinetic"});
-  for (std::size_t n = 0; n < sections.size(); ++n) {
-    const auto& e = *sections[n].elastic;
-    const XYGrid& g = e.grid();
-    const GridField grains = e.time_mean_count();
-    const GridField elastic = e.time_mean();
-    const GridField kinetic = sections[n].kinetic->time_mean();
-    for (std::size_t j = 0; j < g.ny(); ++j)
-      for (std::size_t i = 0; i < g.nx(); ++i) {
-        const std::size_t c = g.index(i, j);
-        csv.row({static_cast<double>(n), e.z0(), e.z1(), g.x_center(i), g.y_center(j),
-                 grains.values[c], elastic.values[c], kinetic.values[c]});
-      }
-  }
-  csv.close();
-}
-
 } // namespace yuxi::analysis

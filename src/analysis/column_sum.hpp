@@ -4,18 +4,12 @@
 // elastic energy of Li & Cai (2008) Fig. 8 (energy in m sigma^2 / tau^2 per column).
 // ColumnAccumulator: sums and grain counts per column for the grains whose centres lie in a
 // horizontal slab z0 <= z < z1, accumulated over any number of snapshots; from them the time
-// average of the column's total (Fig. 9: energies averaged over the first excitation period, in
-// horizontal sections) and the mean per grain.
+// average of the column's total and the mean per grain. (Fig. 9's sections are coarse-grained:
+// section_energies.hpp.)
 //
 // CSV of a column sum (write_column_sum_csv), e.g. analysis/elastic_map_t10.25.csv:
 //   x,y,<name>          one row per column, x fastest (numpy: reshape(ny, nx)); <name> e.g.
 //                       "elastic"; 0 in empty columns.
-// CSV of sections (write_sections_csv), analysis/period_sections.csv:
-//   section,z0,z1,x,y,grains,elastic,kinetic
-//                       section = 0, 1, ... (one slab each, rows of a section x fastest);
-//                       grains = time-averaged number of grain centres in the cell;
-//                       elastic, kinetic = time-averaged total energy of those grains
-//                       (m sigma^2 / tau^2); 0 where no grain ever was.
 #pragma once
 
 #include "analysis/xy_grid.hpp"
@@ -75,16 +69,5 @@ private:
 
 void write_column_sum_csv(const std::filesystem::path& path, const GridField& sum,
                           const std::string& name);
-
-// One horizontal section of period_sections.csv: two accumulators (elastic and kinetic energy)
-// over the same grid and slab, fed with the same snapshots.
-struct EnergySection {
-  const ColumnAccumulator* elastic;
-  const ColumnAccumulator* kinetic;
-};
-
-// Throws std::invalid_argument if the two accumulators of a section differ in grid, slab or
-// snapshots, or if the sections' grids differ in size.
-void write_sections_csv(const std::filesystem::path& path, std::span<const EnergySection> sections);
 
 } // namespace yuxi::analysis

@@ -69,16 +69,17 @@ struct LammpsDataSpec {
 // What the fish-basin analysis computes during a run (docs/models/fish-basin.md section 7; the
 // figures are drawn by plots/plot_basin.py from the CSV files it writes into <run>/analysis/).
 struct AnalysisSettings {
-  std::array<int, 2> grid{48, 48};            // x-y cells of the maps over the domain
-  std::vector<double> surface_times;          // Fig. 5-6: free surface [time]
-  std::vector<double> velocity_times;         // Fig. 7: velocities in the vertical plane
-  double section_half_thickness = 1.5;        // of that plane [length]
-  double section_azimuth = 0.0;               // of that plane [rad]; 0 passes through antinodes
-  std::vector<double> elastic_map_times;      // Fig. 8: elastic energy summed over z
-  double period_start = -1;                   // Fig. 9-10: averaging window [time]; < 0: the
-  double period_length = -1;                  // basin's first excitation period
-  double sample_interval = 0.001;             // between samples in the window [time]
-  std::vector<double> section_heights;        // Fig. 9: z0, z1 of each horizontal slab, in pairs
+  std::array<int, 2> grid{48, 48};       // x-y cells of the maps over the domain
+  std::vector<double> surface_times;     // Fig. 5-6: free surface [time]
+  std::vector<double> velocity_times;    // Fig. 7: velocities in the vertical plane
+  double section_half_thickness = 1.5;   // of that plane [length]
+  double section_azimuth = 0.0;          // of that plane [rad]; 0 passes through antinodes
+  std::vector<double> elastic_map_times; // Fig. 8: elastic energy summed over z
+  double period_start = -1;              // Fig. 9-10: averaging window [time]; < 0: the
+  double period_length = -1;             // basin's first excitation period
+  double sample_interval = 0.001;        // between samples in the window [time]
+  std::vector<double> section_heights;   // Fig. 9: z0, z1 of each horizontal slab, in pairs
+  double section_width = 0.0; // Fig. 9's coarse-graining: 0 bins of the grid, else a Gaussian's w
   std::array<double, 2> pdf_range{1e-4, 1e6}; // Fig. 10: energies binned [energy]
   int bins_per_decade = 10;
   std::array<double, 2> fit_a{0.2, 2.0}; // the paper's two power-law ranges

@@ -168,6 +168,7 @@ void read_analysis(Scene& scene, TomlReader& root) {
       if (!(s.section_heights[k] < s.section_heights[k + 1]))
         a->fail("section_heights", "each slab needs z0 < z1");
   }
+  s.section_width = a->non_negative("section_width", s.section_width);
   s.pdf_range = read_range(*a, "pdf_range", s.pdf_range, true);
   s.bins_per_decade = static_cast<int>(a->integer("bins_per_decade", s.bins_per_decade, 1, 1000));
   s.fit_a = read_range(*a, "fit_a", s.fit_a, true);

@@ -426,6 +426,7 @@ std::string resolved_scene_toml(const Scene& s) {
                                        {"period_length", a.period_length},
                                        {"sample_interval", a.sample_interval},
                                        {"section_heights", list(a.section_heights)},
+                                       {"section_width", a.section_width},
                                        {"pdf_range", toml::array{a.pdf_range[0], a.pdf_range[1]}},
                                        {"bins_per_decade", a.bins_per_decade},
                                        {"fit_a", toml::array{a.fit_a[0], a.fit_a[1]}},

@@ -38,7 +38,8 @@ RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double d
             static_cast<std::size_t>(settings_.grid[1])),
       pdf_kinetic_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),
       pdf_elastic_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),
-      pdf_total_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade) {
+      pdf_total_(settings_.pdf_range[0], settings_.pdf_range[1], settings_.bins_per_decade),
+      sections_(grid_, settings_.section_heights, settings_.section_width) {
   const auto& s = settings_;
   const Box& box = scene.sim.box;
   axis_ = 0.5 * (box.lo + box.hi);
@@ -52,10 +53,6 @@ RunAnalysis::RunAnalysis(const Scene& scene, std::filesystem::path dir, double d
   period_first_ = step_of(s.period_start, dt);
   period_last_ = step_of(s.period_start + s.period_length, dt);
   period_every_ = std::max<std::int64_t>(1, step_of(s.sample_interval, dt));
-  for (std::size_t k = 0; k + 1 < s.section_heights.size(); k += 2) {
-    section_elastic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
-    section_kinetic_.emplace_back(grid_, s.section_heights[k], s.section_heights[k + 1]);
-  }
   sectors_ = {axis_, s.mode, s.sector_half_width * pi / 180.0, s.r_max};
   const auto every = [&](double from, double until, double interval) {
     return Every{step_of(from, dt), step_of(until, dt),
@@ -251,10 +248,7 @@ void RunAnalysis::write_elastic_map(Simulation& sim, const Grains& g) const {
 }
 
 void RunAnalysis::accumulate_period(const Grains& g) {
-  for (std::size_t k = 0; k < section_elastic_.size(); ++k) {
-    section_elastic_[k].add(g.x, g.elastic);
-    section_kinetic_[k].add(g.x, g.kinetic);
-  }
+  if (!sections_.empty()) sections_.add(g.x, g.kinetic, g.elastic);
   pdf_kinetic_.add(g.kinetic);
   pdf_elastic_.add(g.elastic);
   for (std::size_t i = 0; i < g.kinetic.size(); ++i) pdf_total_.add(g.kinetic[i] + g.elastic[i]);
@@ -283,17 +277,13 @@ void RunAnalysis::finish(Simulation& sim) {
   if (finished_ || pdf_kinetic_.samples() == 0) return;
   finished_ = true;
   const auto sum = [&](double* values, int n) { sim.comm().sum(values, n); };
-  for (auto& a : section_elastic_) a.combine(sum);
-  for (auto& a : section_kinetic_) a.combine(sum);
+  sections_.combine(sum);
   pdf_kinetic_.combine(sum);
   pdf_elastic_.combine(sum);
   pdf_total_.combine(sum);
   if (!sim.comm().root()) return;
   const auto folder = dir_ / "analysis";
-  std::vector<analysis::EnergySection> sections;
-  for (std::size_t k = 0; k < section_elastic_.size(); ++k)
-    sections.push_back({&section_elastic_[k], &section_kinetic_[k]});
-  if (!sections.empty()) analysis::write_sections_csv(folder / "period_sections.csv", sections);
+  if (!sections_.empty()) sections_.write_csv(folder / "period_sections.csv");
   std::vector<analysis::NamedFit> fits;
   const std::pair<const char*, const analysis::LogHistogram*> pdfs[] = {
       {"kinetic", &pdf_kinetic_}, {"elastic", &pdf_elastic_}, {"total", &pdf_total_}};

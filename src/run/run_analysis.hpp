@@ -1,18 +1,19 @@
 // The fish-basin analysis during a run (docs/models/fish-basin.md section 7), from the scene's
 // [analysis] table: at the requested times and over the first excitation period it computes, on
 // every rank from its own grains, the free surface (Figs. 5-6), the velocities in the vertical
-// plane through two antinodes (Fig. 7), the elastic energy summed over z (Fig. 8), the energies of
-// horizontal slabs averaged over the period (Fig. 9) and the densities of per-grain kinetic,
-// elastic and total energy with power-law fits (Fig. 10). Grids and histograms are reduced
-// over ranks (no particle is gathered), and rank 0 writes CSV files into <run>/analysis/;
-// plots/plot_basin.py draws the figures from them. At regular intervals it also follows the
-// surface's peaks and profiles along the antinodes and nodes (peaks.csv, surface_profile.csv),
-// the elastic energy's profiles (elastic_profile.csv), and saves every grain's energies
-// (grains/grains_t<time>.npy, which every rank writes its part of).
+// plane through two antinodes (Fig. 7), the elastic energy summed over z (Fig. 8), the energy
+// densities of horizontal slabs, coarse-grained and averaged over the period (Fig. 9) and the
+// densities of per-grain kinetic, elastic and total energy with power-law fits (Fig. 10). Grids and
+// histograms are reduced over ranks (no particle is gathered), and rank 0 writes CSV files into
+// <run>/analysis/; plots/plot_basin.py draws the figures from them. At regular intervals it also
+// follows the surface's peaks and profiles along the antinodes and nodes (peaks.csv,
+// surface_profile.csv), the elastic energy's profiles (elastic_profile.csv), and saves every
+// grain's energies (grains/grains_t<time>.npy, which every rank writes its part of).
 #pragma once
 
 #include "analysis/column_sum.hpp"
 #include "analysis/power_law.hpp"
+#include "analysis/section_energies.hpp"
 #include "analysis/sector_profile.hpp"
 #include "analysis/xy_grid.hpp"
 #include "io/energy_csv.hpp"
@@ -91,8 +92,8 @@ private:
   Vec3 axis_;
   std::set<std::int64_t> surface_steps_, velocity_steps_, elastic_steps_;
   std::int64_t period_first_ = 0, period_last_ = -1, period_every_ = 1;
-  std::vector<analysis::ColumnAccumulator> section_elastic_, section_kinetic_;
   analysis::LogHistogram pdf_kinetic_, pdf_elastic_, pdf_total_;
+  analysis::SectionEnergies sections_; // Fig. 9
   analysis::ModeSectors sectors_;
   Every track_, wave_, sample_;
   std::optional<std::int64_t> resume_after_;

@@ -6,6 +6,7 @@
 #include "analysis/free_surface.hpp"
 #include "analysis/grain_energy.hpp"
 #include "analysis/power_law.hpp"
+#include "analysis/section_energies.hpp"
 #include "analysis/velocity_section.hpp"
 #include "analysis/xy_grid.hpp"
 #include "core/random.hpp"
@@ -218,23 +219,60 @@ TEST(ColumnSum, SlabsTakeGrainsWithZ0UpToButNotZ1AndAverageOverTime) {
   EXPECT_DOUBLE_EQ(elastic.grain_mean().at(0, 0), 12.0 / 3);
   EXPECT_DOUBLE_EQ(elastic.sum().at(1, 0), 6.0);
   EXPECT_THROW(ColumnAccumulator(g, 4.0, 4.0), std::invalid_argument);
+}
 
+// Fig. 9 by coarse-graining: with bins each cell holds the paper's time-averaged cell totals
+// over the cell's volume; with a Gaussian the densities hold the grains' count and energies.
+TEST(SectionEnergies, BinsAreTheCellTotalsOverTheCellVolumeAndAGaussianHoldsTheTotals) {
+  const XYGrid g({0, 0, 0}, {2, 1, 0}, 2, 1);
+  const std::vector<Vec3> p{{0.5, 0.5, 2.0}, {0.5, 0.5, 3.9}, {0.5, 0.5, 4.5}, {0.5, 0.5, 1.99}};
+  const std::vector<Vec3> p2{{0.5, 0.5, 2.5}, {1.5, 0.5, 3.0}};
+  const std::vector<double> e{1.0, 3.0, 100.0, 1000.0}, e2{8.0, 6.0};
+  const std::vector<double> heights{2.0, 4.0, 4.0, 8.0};
+  SectionEnergies bins(g, heights, 0.0);
+  bins.add(p, std::vector<double>{5, 5, 5, 5}, e);
+  bins.add(p2, std::vector<double>{1, 1}, e2);
+  EXPECT_EQ(bins.snapshots(), 2u);
+  for (std::size_t section = 0; section < 2; ++section) {
+    ColumnAccumulator count(g, heights[2 * section], heights[2 * section + 1]), kinetic = count,
+                                                                                elastic = count;
+    count.add(p, std::vector<double>(4, 1.0)), count.add(p2, std::vector<double>(2, 1.0));
+    kinetic.add(p, std::vector<double>{5, 5, 5, 5}), kinetic.add(p2, std::vector<double>{1, 1});
+    elastic.add(p, e), elastic.add(p2, e2);
+    const double volume = 1.0 * 1.0 * (heights[2 * section + 1] - heights[2 * section]);
+    const std::vector<double> m = bins.means(section);
+    for (std::size_t c = 0; c < g.size(); ++c) {
+      EXPECT_DOUBLE_EQ(m[3 * c] * volume, count.time_mean().values[c]) << section << " " << c;
+      EXPECT_DOUBLE_EQ(m[3 * c + 1] * volume, kinetic.time_mean().values[c]);
+      EXPECT_DOUBLE_EQ(m[3 * c + 2] * volume, elastic.time_mean().values[c]);
+    }
+  }
   const auto dir = temp_dir("sections");
-  ColumnAccumulator upper_e(g, 4.0, 8.0), upper_k(g, 4.0, 8.0);
-  upper_e.add(p, e);
-  upper_k.add(p, e);
-  upper_e.add(p2, std::vector<double>{8.0, 6.0});
-  upper_k.add(p2, std::vector<double>{8.0, 6.0});
-  const std::vector<EnergySection> sections{{&elastic, &kinetic}, {&upper_e, &upper_k}};
-  write_sections_csv(dir / "period_sections.csv", sections);
+  bins.write_csv(dir / "period_sections.csv");
   const auto lines = lines_of(dir / "period_sections.csv");
   ASSERT_EQ(lines.size(), 1u + 2 * g.size());
-  EXPECT_EQ(lines[0], "section,z0,z1,x,y,grains,elastic,kinetic");
-  EXPECT_EQ(numbers_of(lines[1]), (std::vector<double>{0, 2, 4, 0.5, 0.5, 1.5, 6.0, 5.5}));
-  EXPECT_EQ(numbers_of(lines[3]), (std::vector<double>{1, 4, 8, 0.5, 0.5, 0.5, 50.0, 50.0}));
-  const std::vector<EnergySection> mismatched{{&elastic, &upper_k}};
-  EXPECT_THROW(write_sections_csv(dir / "bad.csv", mismatched), std::invalid_argument);
+  EXPECT_EQ(lines[0], "section,z0,z1,x,y,number_density,kinetic_energy_density,"
+                      "elastic_energy_density");
+  EXPECT_EQ(numbers_of(lines[1]), (std::vector<double>{0, 2, 4, 0.5, 0.5, 0.75, 2.75, 3.0}));
+  EXPECT_EQ(numbers_of(lines[3]), (std::vector<double>{1, 4, 8, 0.5, 0.5, 0.125, 0.625, 12.5}));
   fs::remove_all(dir);
+  EXPECT_THROW(SectionEnergies(g, std::vector<double>{4.0, 4.0}, 0.0), std::invalid_argument);
+  EXPECT_THROW(SectionEnergies(g, std::vector<double>{1.0}, 0.0), std::invalid_argument);
+  EXPECT_THROW(SectionEnergies(g, heights, -1.0), std::invalid_argument);
+
+  // A Gaussian of width 1 sampled every 0.5 over a grid that holds it: the densities integrate
+  // to the slab's grains and their energies.
+  const XYGrid wide({0, 0, 0}, {20, 20, 0}, 40, 40);
+  SectionEnergies smooth(wide, heights, 1.0);
+  const std::vector<Vec3> inside{{9.3, 10.1, 2.5}, {10.7, 8.2, 3.5}, {11.0, 11.0, 9.0}};
+  smooth.add(inside, std::vector<double>{2.0, 3.0, 4.0}, std::vector<double>{0.5, 0.25, 7.0});
+  const std::vector<double> m = smooth.means(0);
+  double totals[3] = {0, 0, 0};
+  for (std::size_t c = 0; c < wide.size(); ++c)
+    for (int k = 0; k < 3; ++k) totals[k] += m[3 * c + k] * 0.5 * 0.5 * 2.0;
+  EXPECT_NEAR(totals[0], 2.0, 2e-3);
+  EXPECT_NEAR(totals[1], 5.0, 5e-3);
+  EXPECT_NEAR(totals[2], 0.75, 1e-3);
 }
 
 // ---------------------------------------------------------------------------------------------
