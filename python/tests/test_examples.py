@@ -7,7 +7,8 @@ import pytest
 
 from conftest import REPO
 
-EXAMPLES = ["restitution.py", "servo_silo.py", "basin_sweep.py", "silo_stress.py"]
+EXAMPLES = ["restitution.py", "servo_silo.py", "basin_sweep.py", "silo_stress.py",
+            "basin_fields.py"]
 
 
 @pytest.mark.parametrize("example", EXAMPLES)
