@@ -50,7 +50,7 @@ py::dict contact_arrays(const Simulation& sim) {
   ContactColumns c;
   // Pairs: the normal points from the partner b to a; the point is the middle of the overlap.
   for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!ContactRecord::touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
+    if (!rec.holds_pair(k)) continue;
     const std::uint32_t i = list.rows[k], j = list.partners[k];
     const Vec3 d = p.x[i] - p.x[j];
     const double dist = norm(d);
@@ -62,7 +62,7 @@ py::dict contact_arrays(const Simulation& sim) {
   }
   // Flat walls: the normal points from the wall to the grain; the point is on the wall.
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
-    if (!ContactRecord::touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
+    if (!rec.holds_plane(k)) continue;
     const auto& pc = list.planes[k];
     const PlaneWall& w = sim.planes()[pc.plane];
     const double dist = w.distance(p.x[pc.particle], sim.time());

@@ -34,7 +34,7 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
                    place(i), wall ? -1 : place(j), q * per_second, e_r, u * per_second});
   };
   for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!ContactRecord::touched(rec.pair_force[k], rec.pair_elastic[k])) continue;
+    if (!rec.holds_pair(k)) continue;
     std::uint32_t i = list.rows[k], j = list.partners[k];
     Vec3 f = rec.pair_force[k];
     if (!p.is_grain(i)) std::swap(i, j), f = -f;
@@ -50,7 +50,7 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
           rec.pair_relaxation[k], rec.pair_wall_work[k]);
   }
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
-    if (!ContactRecord::touched(rec.plane_force[k], rec.plane_elastic[k])) continue;
+    if (!rec.holds_plane(k)) continue;
     const auto& pc = list.planes[k];
     const PlaneWall& w = sim.planes()[pc.plane];
     const Vec3 x = p.x[pc.particle];

@@ -14,10 +14,10 @@ std::vector<double> particle_elastic_energy(const Simulation& sim) {
   contacts.reserve(list.n_pairs() + list.planes.size());
   for (std::uint32_t i = 0; i + 1 < list.offsets.size(); ++i)
     for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p)
-      if (record.pair_elastic[p] != 0.0)
+      if (record.holds_pair(p) && record.pair_elastic[p] != 0.0)
         contacts.push_back({i, list.partners[p], record.pair_elastic[p]});
   for (std::size_t k = 0; k < list.planes.size(); ++k)
-    if (record.plane_elastic[k] != 0.0)
+    if (record.holds_plane(k) && record.plane_elastic[k] != 0.0)
       contacts.push_back(
           {list.planes[k].particle, analysis::wall_partner, record.plane_elastic[k]});
   // Pairs with a ghost were computed here once; the ghost's half goes back to its owner.

@@ -75,17 +75,7 @@ public:
     walls_still_ = walls_still;
     near_ = near && near->hold() ? near : nullptr;
     set_ = set;
-    if (record.enabled && set != PairSet::owned) {
-      record.pair_force.assign(list.n_pairs(), Vec3{});
-      for (auto* v : {&record.pair_elastic, &record.pair_dissipated, &record.pair_relaxation,
-                      &record.pair_wall_work})
-        v->assign(list.n_pairs(), 0.0);
-      record.plane_force.assign(list.planes.size(), Vec3{});
-      for (auto* v : {&record.plane_elastic, &record.plane_dissipated, &record.plane_relaxation,
-                      &record.plane_wall_work})
-        v->assign(list.planes.size(), 0.0);
-      record.wall.clear();
-    }
+    if (record.enabled && set != PairSet::owned) record.start(list.n_pairs(), list.planes.size());
     bool batched = false;
     if constexpr (BatchedModel<Model>) {
       if (batch_) {

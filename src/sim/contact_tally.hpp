@@ -3,6 +3,7 @@
 
 #include "core/vec3.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -83,7 +84,9 @@ struct WallContactRecord {
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
 // energy analyses): aligned with NeighborList::partners and NeighborList::planes, and the
 // contacts with shaped walls as a list. A contact that does not touch has zero force and
-// energy.
+// energy. Only the slots the step writes are stamped with its generation (holds_pair,
+// holds_plane): the others keep what an earlier record left, so that a record costs the
+// contacts it holds, not a clearing of every listed pair.
 // (The energy that a contact's ending releases is booked as dissipated by the engine, not
 // recorded at a contact: the record holds the contacts that touch after the step.)
 struct ContactRecord {
@@ -95,6 +98,33 @@ struct ContactRecord {
   std::vector<Vec3> plane_force;      // force on the grain from the flat wall
   std::vector<double> plane_elastic, plane_dissipated, plane_relaxation, plane_wall_work;
   std::vector<WallContactRecord> wall;
+  std::uint32_t generation = 0; // of the record now held
+  std::vector<std::uint32_t> pair_stamp, plane_stamp;
+
+  // A new record for `pairs` listed pairs and `planes` plane candidates.
+  void start(std::size_t pairs, std::size_t planes) {
+    if (++generation == 0) { // wrapped: no stale stamp may equal a new generation
+      std::fill(pair_stamp.begin(), pair_stamp.end(), 0u);
+      std::fill(plane_stamp.begin(), plane_stamp.end(), 0u);
+      generation = 1;
+    }
+    pair_force.resize(pairs), plane_force.resize(planes);
+    for (auto* v : {&pair_elastic, &pair_dissipated, &pair_relaxation, &pair_wall_work})
+      v->resize(pairs);
+    for (auto* v : {&plane_elastic, &plane_dissipated, &plane_relaxation, &plane_wall_work})
+      v->resize(planes);
+    pair_stamp.resize(pairs), plane_stamp.resize(planes);
+    wall.clear();
+  }
+  // Whether pair slot p (plane candidate k) holds a touching contact of this record.
+  bool holds_pair(std::size_t p) const {
+    return p < pair_stamp.size() && pair_stamp[p] == generation &&
+           touched(pair_force[p], pair_elastic[p]);
+  }
+  bool holds_plane(std::size_t k) const {
+    return k < plane_stamp.size() && plane_stamp[k] == generation &&
+           touched(plane_force[k], plane_elastic[k]);
+  }
 
   void keep_pair(std::size_t p, const Vec3& force, double elastic, double dissipated,
                  double relaxation, double wall_work) {
@@ -104,6 +134,7 @@ struct ContactRecord {
     pair_dissipated[p] = dissipated;
     pair_relaxation[p] = relaxation;
     pair_wall_work[p] = wall_work;
+    pair_stamp[p] = generation;
   }
   void keep_plane(std::size_t k, const Vec3& force, double elastic, double dissipated,
                   double relaxation, double wall_work) {
@@ -113,6 +144,7 @@ struct ContactRecord {
     plane_dissipated[k] = dissipated;
     plane_relaxation[k] = relaxation;
     plane_wall_work[k] = wall_work;
+    plane_stamp[k] = generation;
   }
   void keep_wall(const WallContactRecord& r) {
     if (enabled) wall.push_back(r);
