@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The cost of coarse-graining during a run: LAMMPS's chute (scenes/chute-lammps.toml, 32,000
-# grains) run plain, with a [[coarse_grain]] profile along z (Gaussian, contacts included)
-# written every 100 steps, with the same profile averaged over every step (average_every = 1),
-# and with a profile of plain bins averaged over every step. The runs alternate, REPEATS times
+# grains) run plain, with a [[coarse_grain]] profile along z (Gaussian, contacts included, every
+# field) written every 100 steps, with the same profile averaged over every step
+# (average_every = 1), with both of a flow's fields alone (density, velocity, stress,
+# temperature: no contact points, no fabric), and with a profile of plain bins averaged over
+# every step. The runs alternate, REPEATS times
 # each; the script prints the median step rates and the overheads against the plain run.
 # usage: bench/coarse_grain_cost.sh [YUXI] [STEPS] [REPEATS]
 set -euo pipefail
@@ -25,6 +27,11 @@ sed "s|\"\.\./data/|\"$(cd "$here/.." && pwd)/data/|" "$here/../scenes/chute-lam
 { cat "$work/plain.toml"; printf '\n%s\ninterval = 0.01\n' "$profile"; } > "$work/every100.toml"
 { cat "$work/plain.toml"; printf '\n%s\ninterval = 0.01\naverage_every = 1\n' "$profile"; } \
   > "$work/every_step.toml"
+flow='fields = ["density", "velocity", "stress", "temperature"]'
+{ cat "$work/plain.toml"; printf '\n%s\n%s\ninterval = 0.01\n' "$profile" "$flow"; } \
+  > "$work/flow_every100.toml"
+{ cat "$work/plain.toml"; printf '\n%s\n%s\ninterval = 0.01\naverage_every = 1\n' "$profile" "$flow"; } \
+  > "$work/flow_every_step.toml"
 {
   cat "$work/plain.toml"
   printf '\n[[coarse_grain]]\nname = "bins"\nfunction = "bins"\naverage = "xy"\n'
@@ -35,13 +42,13 @@ rate() { # SCENE: the run's steps per second of wall time (the log's "N steps in
     sed -n 's/.* \([0-9]*\) steps in \([0-9.]*\) s:.*/\1 \2/p' | awk '{ printf "%.6g", $1 / $2 }'
 }
 declare -A rates
-configs=(plain every100 every_step bins_every_step)
+configs=(plain every100 every_step flow_every100 flow_every_step bins_every_step)
 for ((k = 0; k < repeats; ++k)); do
   for c in "${configs[@]}"; do rates[$c]+=" $(rate "$work/$c.toml")"; done
 done
 p=$(median <<< "${rates[plain]}")
 echo "chute, $steps steps, $repeats repeats, median steps/s: plain $p"
-for c in every100 every_step bins_every_step; do
+for c in "${configs[@]:1}"; do
   r=$(median <<< "${rates[$c]}")
   awk -v c="$c" -v p="$p" -v r="$r" 'BEGIN { printf "  %-16s %8.4g steps/s, overhead %.1f %%\n", c, r, 100 * (p / r - 1) }'
   echo "    run by run against plain: $(run_by_run "${rates[plain]}" "${rates[$c]}" 1 %.3f)"

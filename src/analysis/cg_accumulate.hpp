@@ -43,10 +43,11 @@ inline void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
 
 // Adds the grains' and contacts' sums into `sums` (cg_sums_per_point a point) with the weights
 // of `weights`: at_point(x, f) calls f(point, phi) for the points a position weighs on,
-// along(from, b, f) f(point, psi) for the segment from `from` to from + b.
+// along(from, b, f) f(point, psi) for the segment from `from` to from + b. The contacts' parts
+// left out of `parts` are not added.
 template <class Weights>
 void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const Weights& weights,
-              std::vector<double>& sums) {
+              std::vector<double>& sums, const CgParts& parts = {}) {
   const std::size_t n_grains = grains.x.size();
   if (grains.v.size() != n_grains || grains.mass.size() != n_grains ||
       grains.volume.size() != n_grains)
@@ -65,7 +66,9 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
     const double length = norm(c.branch);
     return length > 0.0 ? c.branch / length : Vec3{};
   };
+  if (!parts.any()) contacts = {};
   for (const CgContact& c : contacts) {
+    if (!parts.fabric) break;
     const bool a = known(c.grain), b = !c.wall && known(c.grain_b);
     if (!a && !b) continue;
     if (grain_contacts.empty()) {
@@ -101,22 +104,25 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
   }
   for (const CgContact& c : contacts) {
     const Vec3 x_a = c.centre, from = x_a - c.branch;
-    const Vec3 unit = unit_branch(c);
     // The branch, from b's centre or the wall's contact point to a's centre.
-    weights.along(from, c.branch, [&](std::size_t p, double w) {
-      add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
-    });
-    weights.at_point(c.point, [&](std::size_t p, double w) {
-      *at(p, Sum::elastic) += c.elastic * w;
-      *at(p, Sum::dissipation) += c.dissipation * w;
-      *at(p, Sum::relaxation) += c.relaxation * w;
-      if (c.wall) {
-        for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
-        *at(p, Sum::wall_power) += c.wall_power * w;
-      }
-    });
+    if (parts.branches)
+      weights.along(from, c.branch, [&](std::size_t p, double w) {
+        add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
+      });
+    if (parts.contact_points)
+      weights.at_point(c.point, [&](std::size_t p, double w) {
+        *at(p, Sum::elastic) += c.elastic * w;
+        *at(p, Sum::dissipation) += c.dissipation * w;
+        *at(p, Sum::relaxation) += c.relaxation * w;
+        if (c.wall) {
+          for (int a = 0; a < 3; ++a) at(p, Sum::wall_force)[a] += c.force[a] * w;
+          *at(p, Sum::wall_power) += c.wall_power * w;
+        }
+      });
     // The contact counts for each grain it joins, where that grain stands (counted above for
     // the grains known by their place).
+    if (!parts.fabric) continue;
+    const Vec3 unit = unit_branch(c);
     if (c.grain < 0)
       weights.at_point(x_a, [&](std::size_t p, double w) {
         *at(p, Sum::contacts) += w;

@@ -295,7 +295,7 @@ std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const Cg
   g.check();
   const CylinderWeights weights(settings);
   std::vector<double> samples(cg_sums_per_point * weights.size(), 0.0);
-  detail::add_sums(grains, contacts, weights, samples);
+  detail::add_sums(grains, contacts, weights, samples, settings.parts);
   // Each sample's vectors and tensors in its local basis (e_r, e_theta, e_z), then the samples
   // around an averaged circle averaged into its point.
   using detail::Sum;

@@ -48,6 +48,7 @@ struct CgCylinderSettings {
   CgKind kind = CgKind::gaussian;
   double width = 0.0, cutoff = 0.0; // w, c, m (bins: unused)
   CgCylinder grid;
+  CgParts parts;
 };
 
 // The sums at every point of the grid (cg_sums_per_point a point, vectors and tensors in the

@@ -297,12 +297,24 @@ private:
 
 } // namespace
 
+CgParts parts_for(std::span<const std::string> names) {
+  const auto named = [&](std::initializer_list<std::string_view> any) {
+    return std::any_of(names.begin(), names.end(), [&](const std::string& n) {
+      return std::find(any.begin(), any.end(), n) != any.end();
+    });
+  };
+  return {named({"contact_stress", "stress"}),
+          named({"wall_force_density", "elastic_energy_density", "dissipation_rate_density",
+                 "relaxation_energy_density", "wall_power_density"}),
+          named({"coordination", "fabric"})};
+}
+
 std::vector<double> coarse_grain_sums(const CgGrains& grains, std::span<const CgContact> contacts,
                                       const CgSettings& settings) {
   settings.grid.check();
   const Weights weights(settings);
   std::vector<double> sums(cg_sums_per_point * settings.grid.size(), 0.0);
-  detail::add_sums(grains, contacts, weights, sums);
+  detail::add_sums(grains, contacts, weights, sums, settings.parts);
   return sums;
 }
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -48,11 +49,24 @@ struct CgContact {
   double wall_power = 0.0;  // with a moving wall: the power of its motion on a, f . u_wall, W
 };
 
+// The parts of the contacts' sums a caller needs; the sums of a part left out stay zero, and
+// its weights are never computed (a table that writes the stress alone skips the contact
+// points and the fabric).
+struct CgParts {
+  bool branches = true;       // the contact stress (a line integral along each branch)
+  bool contact_points = true; // wall force and power, elastic, dissipation, relaxation densities
+  bool fabric = true;         // coordination and fabric (at the grains' centres)
+  bool any() const { return branches || contact_points || fabric; }
+};
+// The parts that the fields named `names` (as named_fields names them) need.
+CgParts parts_for(std::span<const std::string> names);
+
 struct CgSettings {
   CgKind kind = CgKind::gaussian;
   double width = 0.0;  // w, m (bins: unused)
   double cutoff = 0.0; // c, m (bins: unused)
   CgGrid grid;
+  CgParts parts;
 };
 
 // The fields at every point of the grid (CgGrid::index order); vectors 3 and tensors 9 values a

@@ -45,11 +45,16 @@ CoarseGrainOutput::CoarseGrainOutput(std::vector<CoarseGrainSpec> specs, const S
     t.settings.kind = kind_of(spec.function);
     t.settings.width = spec.width;
     t.settings.cutoff = spec.cutoff;
+    // Only the contacts' parts that its fields need (none without contacts: then no contact is
+    // recorded for it).
+    t.settings.parts =
+        spec.contacts ? analysis::parts_for(spec.fields) : analysis::CgParts{false, false, false};
     if (spec.cylindrical) {
       analysis::CgCylinderSettings c;
       c.kind = t.settings.kind;
       c.width = spec.width;
       c.cutoff = spec.cutoff;
+      c.parts = t.settings.parts;
       c.grid = {spec.axis_x, spec.axis_y, spec.lo.x,        spec.hi.x,       spec.lo.z,
                 spec.hi.z,   spec.n,      spec.averaged[1], spec.averaged[2]};
       c.grid.check();
@@ -85,7 +90,7 @@ std::int64_t CoarseGrainOutput::next_sample_after(std::int64_t step) const {
 
 bool CoarseGrainOutput::needs_contacts_at(std::int64_t step) const {
   return std::any_of(tables_.begin(), tables_.end(), [&](const Table& t) {
-    return t.spec.contacts && step > 0 && (step % t.every == 0 || step % t.sample == 0);
+    return t.settings.parts.any() && step > 0 && (step % t.every == 0 || step % t.sample == 0);
   });
 }
 
@@ -97,8 +102,8 @@ void CoarseGrainOutput::sample(const Simulation& sim) {
     if (!sample_now) continue;
     if (!gathered) input_.gather(sim), gathered = true;
     const std::span<const analysis::CgContact> used =
-        t.spec.contacts ? std::span<const analysis::CgContact>(input_.contacts)
-                        : std::span<const analysis::CgContact>();
+        t.settings.parts.any() ? std::span<const analysis::CgContact>(input_.contacts)
+                               : std::span<const analysis::CgContact>();
     const std::vector<double> sums =
         t.cylinder ? analysis::coarse_grain_sums(input_.grains(), used, *t.cylinder)
                    : analysis::coarse_grain_sums(input_.grains(), used, t.settings);

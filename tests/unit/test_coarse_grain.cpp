@@ -4,7 +4,9 @@
 // given forces satisfy the continuum balances of mass and momentum, d rho/dt + div(rho V) = 0
 // and d(rho V)/dt + div(rho V V + sigma) = t (docs/coarse-graining.md), by finite differences
 // in time and space of the fields themselves.
+#include "analysis/cg_accumulate.hpp"
 #include "analysis/coarse_grain.hpp"
+#include "analysis/erf_table.hpp"
 #include "core/random.hpp"
 #include "scene/coarse_grain_spec.hpp"
 
@@ -13,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace yuxi::analysis {
@@ -26,6 +29,22 @@ template <class F> double simpson(F f, double a, double b, int n) {
   double s = f(a) + f(b);
   for (int k = 1; k < n; ++k) s += f(a + k * h) * (k % 2 ? 4.0 : 2.0);
   return s * h / 3.0;
+}
+
+TEST(TableErf, IsTheLibrarysErfToRoundOff) {
+  Random random(3);
+  double worst = 0.0;
+  for (int k = 0; k < 1000000; ++k) {
+    const double x = random.uniform(-7.0, 7.0);
+    worst = std::max(worst, std::abs(table_erf(x) - std::erf(x)));
+  }
+  EXPECT_LT(worst, 1e-15);
+  for (const double x : {0.0, 1.0 / 128, 0.5, 3.0, 5.9921875, 6.0, 1e300})
+    EXPECT_NEAR(table_erf(x), std::erf(x), 4e-16) << x;
+  EXPECT_EQ(table_erf(-0.3), -table_erf(0.3));
+  EXPECT_EQ(table_erf(INFINITY), 1.0);
+  EXPECT_EQ(table_erf(-INFINITY), -1.0);
+  EXPECT_TRUE(std::isnan(table_erf(NAN)));
 }
 
 TEST(CoarseGrainFunction, IntegratesToOneInEveryDimension) {
@@ -368,6 +387,49 @@ TEST(CoarseGrain, SumsOfPartsAddUpToTheWhole) {
                   1e-12 * (1 + std::abs(whole.fabric[9 * p + k])));
     }
     EXPECT_NEAR(parts.coordination[p], whole.coordination[p], 1e-12);
+  }
+}
+
+TEST(CoarseGrain, APartLeftOutStaysZeroAndTheOthersAreUnchanged) {
+  Moving m = moving_grains();
+  for (CgContact& c : m.contacts) c.elastic = 0.5, c.dissipation = 2.0, c.wall_power = 1.0;
+  CgSettings s;
+  s.width = 0.3;
+  s.cutoff = 0.9;
+  s.grid = {{0, 0, 0}, {4, 4, 4}, {8, 8, 8}, {false, false, false}, {false, false, false}};
+  const std::vector<double> all = coarse_grain_sums(m.at_zero.view(), m.contacts, s);
+  using detail::Sum;
+  const auto same = [&](const std::vector<double>& part, std::size_t from, std::size_t count,
+                        bool kept) {
+    for (std::size_t p = 0; p < s.grid.size(); ++p)
+      for (std::size_t k = from; k < from + count; ++k)
+        ASSERT_EQ(part[cg_sums_per_point * p + k], kept ? all[cg_sums_per_point * p + k] : 0.0)
+            << "sum " << k << " at point " << p;
+  };
+  const std::string stress[] = {"density", "stress"};
+  const std::string points[] = {"elastic_energy_density"};
+  const std::string fabric[] = {"coordination"};
+  EXPECT_TRUE(parts_for(stress).branches);
+  EXPECT_FALSE(parts_for(stress).contact_points || parts_for(stress).fabric);
+  EXPECT_TRUE(parts_for(points).contact_points && !parts_for(points).branches);
+  EXPECT_TRUE(parts_for(fabric).fabric && !parts_for(fabric).branches);
+  for (const CgParts parts :
+       {parts_for(stress), parts_for(points), parts_for(fabric), CgParts{false, false, false}}) {
+    s.parts = parts;
+    const std::vector<double> part = coarse_grain_sums(m.at_zero.view(), m.contacts, s);
+    same(part, Sum::mass, Sum::contact_stress, true); // the grains' sums: always
+    same(part, Sum::contact_stress, 9, parts.branches);
+    same(part, Sum::wall_force, 3, parts.contact_points);
+    same(part, Sum::elastic, 4, parts.contact_points);
+    same(part, Sum::contacts, 10, parts.fabric);
+  }
+  // Each part holds something in the whole, so that leaving it out shows.
+  for (const std::size_t k :
+       {std::size_t{Sum::contact_stress}, std::size_t{Sum::elastic}, std::size_t{Sum::contacts}}) {
+    double largest = 0.0;
+    for (std::size_t p = 0; p < s.grid.size(); ++p)
+      largest = std::max(largest, std::abs(all[cg_sums_per_point * p + k]));
+    EXPECT_GT(largest, 0.0) << "sum " << k;
   }
 }
 
