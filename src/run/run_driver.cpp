@@ -1,5 +1,6 @@
 #include "run/run_driver.hpp"
 
+#include "analysis/coarse_grain.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
@@ -121,15 +122,17 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
                                                  resume_after(energy_every), measures->header());
   }
   // coarse_grain/<name>/: the [[coarse_grain]] tables' fields. The device engine records no
-  // contacts: there, a table asks for the kinetic fields alone (contacts = false).
+  // contacts: there, a table writes the kinetic fields alone (its fields need no contact, or
+  // contacts = false).
   if (!scene.coarse_grains.empty()) {
     if (stepper)
       for (const CoarseGrainSpec& c : scene.coarse_grains)
-        if (c.contacts)
+        if (c.contacts && analysis::parts_for(c.fields).any())
           throw std::invalid_argument(fmt::format(
               "[[coarse_grain]] '{}': its contact fields need the contacts, which the device "
-              "engine does not record; set contacts = false there, or run on the CPU engine "
-              "(--device cpu)",
+              "engine does not record; name kinetic fields only (density, velocity, "
+              "kinetic_stress, temperature, ...) or set contacts = false there, or run on the "
+              "CPU engine (--device cpu)",
               c.name));
     coarse = std::make_unique<CoarseGrainOutput>(scene.coarse_grains, sim, dir, dt);
   }

@@ -25,8 +25,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The chute for 300 steps, a row of energies.csv and a frame every 100, a checkpoint every 150.
-Scene short_chute() {
+// The chute for 300 steps, a row of energies.csv and a frame every 100, a checkpoint every 150;
+// `extra` is added to its text.
+Scene short_chute(const std::string& extra = "") {
   const std::string path = YUXI_SCENES_DIR "/chute-lammps.toml";
   std::ifstream in(path);
   std::string text{std::istreambuf_iterator<char>(in), {}};
@@ -37,7 +38,7 @@ Scene short_chute() {
   };
   replace("t_end = 1.0 ", "t_end = 0.03 ");
   replace("snapshot_interval = 0.0 ", "snapshot_interval = 0.01 ");
-  text += "\n[checkpoint]\nevery_steps = 150\nevery_minutes = 0\nkeep = 5\n";
+  text += "\n[checkpoint]\nevery_steps = 150\nevery_minutes = 0\nkeep = 5\n" + extra;
   return read_scene_text(text, path);
 }
 
@@ -150,6 +151,38 @@ TEST_F(DeviceRun, WritesTheCpuEnginesFilesWithTheSameBooks) {
   const auto cpu_rows = csv_rows(*dir_ / "cpu" / "energies.csv");
   EXPECT_EQ(rows.back()[15], cpu_rows.back()[15]);
   EXPECT_GT(rows.back()[15], 10000);
+}
+
+// A [[coarse_grain]] table of kinetic fields runs on the device engine (which records no
+// contacts) and writes the CPU engine's fields; one that needs the contacts is refused there,
+// with a message that names it.
+TEST(DeviceRunCoarseGraining, KineticFieldsRunOnTheDeviceAndContactFieldsAreRefused) {
+  const fs::path dir = test::temp_dir("device_run_cg");
+  const auto with_table = [](const std::string& fields) {
+    return short_chute("\n[[coarse_grain]]\nname = \"flow\"\nwidth = 1.0\naverage = \"xy\"\n"
+                       "n = [1, 1, 80]\ninterval = 0.01\nfields = [" +
+                       fields + "]\n");
+  };
+  const std::string kinetic = "\"density\", \"velocity\", \"temperature\"";
+  const Finished cpu = run_into(open_scene(with_table(kinetic), false), dir / "cpu", false);
+  const Finished device = run_into(open_scene(with_table(kinetic), false), dir / "device", true);
+  ASSERT_FALSE(cpu.summary.failed || device.summary.failed);
+  for (const char* step : {"000000100", "000000300"}) {
+    const std::string name = std::string("coarse_grain/flow/flow_") + step + ".csv";
+    const auto a = csv_rows(dir / "device" / name), b = csv_rows(dir / "cpu" / name);
+    ASSERT_EQ(a.size(), 80u) << name;
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k)
+      for (std::size_t c = 0; c < a[k].size(); ++c)
+        EXPECT_NEAR(a[k][c], b[k][c], 1e-9 * (1.0 + std::abs(b[k][c]))) << name << " row " << k;
+  }
+  try {
+    run_into(open_scene(with_table("\"density\", \"stress\""), false), dir / "refused", true);
+    ADD_FAILURE() << "a table of the stress ran on the device engine";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("[[coarse_grain]] 'flow'"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 TEST_F(DeviceRun, ItsCheckpointResumesOnTheDeviceBitForBit) {
