@@ -1057,7 +1057,7 @@ def fig9_sections(analysis, out):
             im = ax.imshow(np.ma.masked_where(~(grids[q] > 0), grids[q]), origin="lower",
                            extent=grid_extent(xs, ys), norm=norm, cmap="inferno",
                            interpolation="nearest")
-            ax.set_title(f"{q}, {z0:g} <= z < {z1:g} sigma", fontsize=9)
+            ax.set_title(f"{q}, {z0:g} <= z <= {z1:g} sigma", fontsize=9)
             ax.tick_params(labelsize=7)
             fig.colorbar(im, ax=ax, shrink=0.8, label=f"[{UNIT_E} / sigma^3]")
     fig.suptitle("Energy densities averaged over the first excitation period, horizontal "
@@ -1068,7 +1068,7 @@ def fig9_sections(analysis, out):
     return ("fig9_sections.png",
             "Elastic and kinetic energy densities of the grains, coarse-grained over x and y "
             "(the grid's cells, or a Gaussian: `section_width`) and averaged over z in "
-            + ", ".join(f"[{p[1]:g}, {p[2]:g})" for p in panels)
+            + ", ".join(f"[{p[1]:g}, {p[2]:g}]" for p in panels)
             + " and over the first excitation period (log colour scale; each grain's energy "
             "at its centre, half of each contact's elastic energy to each grain).")
 

@@ -1,11 +1,12 @@
 // Fig. 9 of Li & Cai (2008) by coarse-graining (docs/coarse-graining.md): the grains' number,
-// kinetic and elastic energy densities in horizontal slabs z0 <= z < z1, resolved in x and y on
+// kinetic and elastic energy densities in horizontal slabs z0 <= z <= z1, resolved in x and y on
 // the analysis grid and averaged over z within each slab (a grain whose centre lies outside the
-// slab does not count), then averaged over the snapshots of the first excitation period.
-// With bins (width 0) a cell's value is the total of its grains over its volume, the paper's
-// cells; with a Gaussian of width w (cut off at 3 w), the smooth field at the cells' centres.
-// Every grain's energy stands at its centre: its kinetic energy, and half of each of its
-// contacts' elastic energy (the per-grain energies of Fig. 10).
+// slab does not count; one exactly on a face shared by two slabs counts in both), then averaged
+// over the snapshots of the first excitation period. With bins (width 0) a cell's value is the
+// total of its grains over its volume, the paper's cells; with a Gaussian of width w (cut off at 3
+// w), the smooth field at the cells' centres. Every grain's energy stands at its centre: its
+// kinetic energy, and half of each of its contacts' elastic energy (the per-grain energies of Fig.
+// 10).
 //
 // CSV (write_csv), analysis/period_sections.csv:
 //   section,z0,z1,x,y,number_density,kinetic_energy_density,elastic_energy_density

@@ -197,30 +197,6 @@ TEST(ColumnSum, ColumnsAddUpToTheTotalOfTheGrainsOnTheGrid) {
   EXPECT_DOUBLE_EQ(s2.at(1, 0), 7.0);
 }
 
-TEST(ColumnSum, SlabsTakeGrainsWithZ0UpToButNotZ1AndAverageOverTime) {
-  const XYGrid g({0, 0, 0}, {2, 1, 0}, 2, 1);
-  const std::vector<Vec3> p{{0.5, 0.5, 2.0}, {0.5, 0.5, 3.9}, {0.5, 0.5, 4.0}, {0.5, 0.5, 1.99}};
-  const std::vector<double> e{1.0, 3.0, 100.0, 1000.0};
-  const GridField m = slab_mean(g, 2.0, 4.0, p, e);
-  EXPECT_DOUBLE_EQ(m.at(0, 0), 2.0);
-  EXPECT_TRUE(std::isnan(m.at(1, 0)));
-
-  // Two snapshots: time averages of the cell totals and counts, and the mean per grain.
-  ColumnAccumulator elastic(g, 2.0, 4.0), kinetic(g, 2.0, 4.0);
-  elastic.add(p, e);
-  kinetic.add(p, std::vector<double>{5, 5, 5, 5});
-  const std::vector<Vec3> p2{{0.5, 0.5, 2.5}, {1.5, 0.5, 3.0}};
-  elastic.add(p2, std::vector<double>{8.0, 6.0});
-  kinetic.add(p2, std::vector<double>{1, 1});
-  EXPECT_EQ(elastic.snapshots(), 2u);
-  EXPECT_DOUBLE_EQ(elastic.time_mean().at(0, 0), (1.0 + 3.0 + 8.0) / 2);
-  EXPECT_DOUBLE_EQ(elastic.time_mean().at(1, 0), 6.0 / 2);
-  EXPECT_DOUBLE_EQ(elastic.time_mean_count().at(0, 0), 3.0 / 2);
-  EXPECT_DOUBLE_EQ(elastic.grain_mean().at(0, 0), 12.0 / 3);
-  EXPECT_DOUBLE_EQ(elastic.sum().at(1, 0), 6.0);
-  EXPECT_THROW(ColumnAccumulator(g, 4.0, 4.0), std::invalid_argument);
-}
-
 // Fig. 9 by coarse-graining: with bins each cell holds the paper's time-averaged cell totals
 // over the cell's volume; with a Gaussian the densities hold the grains' count and energies.
 TEST(SectionEnergies, BinsAreTheCellTotalsOverTheCellVolumeAndAGaussianHoldsTheTotals) {
@@ -234,17 +210,24 @@ TEST(SectionEnergies, BinsAreTheCellTotalsOverTheCellVolumeAndAGaussianHoldsTheT
   bins.add(p2, std::vector<double>{1, 1}, e2);
   EXPECT_EQ(bins.snapshots(), 2u);
   for (std::size_t section = 0; section < 2; ++section) {
-    ColumnAccumulator count(g, heights[2 * section], heights[2 * section + 1]), kinetic = count,
-                                                                                elastic = count;
-    count.add(p, std::vector<double>(4, 1.0)), count.add(p2, std::vector<double>(2, 1.0));
-    kinetic.add(p, std::vector<double>{5, 5, 5, 5}), kinetic.add(p2, std::vector<double>{1, 1});
-    elastic.add(p, e), elastic.add(p2, e2);
-    const double volume = 1.0 * 1.0 * (heights[2 * section + 1] - heights[2 * section]);
+    // The paper's cells: each cell's grains (z0 <= z < z1), their count and energies, summed
+    // and divided by the two snapshots.
+    const double z0 = heights[2 * section], z1 = heights[2 * section + 1];
+    std::vector<double> count(g.size(), 0.0), kinetic(g.size(), 0.0), elastic(g.size(), 0.0);
+    const auto add = [&](const std::vector<Vec3>& x, const std::vector<double>& k,
+                         const std::vector<double>& el) {
+      for (std::size_t i = 0; i < x.size(); ++i)
+        if (const auto cell = g.cell_of(x[i]); cell && x[i].z >= z0 && x[i].z < z1)
+          count[*cell] += 0.5, kinetic[*cell] += 0.5 * k[i], elastic[*cell] += 0.5 * el[i];
+    };
+    add(p, {5, 5, 5, 5}, e);
+    add(p2, {1, 1}, e2);
+    const double volume = 1.0 * 1.0 * (z1 - z0);
     const std::vector<double> m = bins.means(section);
     for (std::size_t c = 0; c < g.size(); ++c) {
-      EXPECT_DOUBLE_EQ(m[3 * c] * volume, count.time_mean().values[c]) << section << " " << c;
-      EXPECT_DOUBLE_EQ(m[3 * c + 1] * volume, kinetic.time_mean().values[c]);
-      EXPECT_DOUBLE_EQ(m[3 * c + 2] * volume, elastic.time_mean().values[c]);
+      EXPECT_DOUBLE_EQ(m[3 * c] * volume, count[c]) << section << " " << c;
+      EXPECT_DOUBLE_EQ(m[3 * c + 1] * volume, kinetic[c]);
+      EXPECT_DOUBLE_EQ(m[3 * c + 2] * volume, elastic[c]);
     }
   }
   const auto dir = temp_dir("sections");
