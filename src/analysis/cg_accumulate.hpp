@@ -67,23 +67,24 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
     return length > 0.0 ? c.branch / length : Vec3{};
   };
   if (!parts.any()) contacts = {};
-  for (const CgContact& c : contacts) {
-    if (!parts.fabric) break;
-    const bool a = known(c.grain), b = !c.wall && known(c.grain_b);
-    if (!a && !b) continue;
-    if (grain_contacts.empty()) {
-      grain_contacts.assign(n_grains, 0.0);
-      grain_fabric.assign(9 * n_grains, 0.0);
+  // The grains' own contacts, for coordination and fabric.
+  if (parts.fabric)
+    for (const CgContact& c : contacts) {
+      const bool a = known(c.grain), b = !c.wall && known(c.grain_b);
+      if (!a && !b) continue;
+      if (grain_contacts.empty()) {
+        grain_contacts.assign(n_grains, 0.0);
+        grain_fabric.assign(9 * n_grains, 0.0);
+      }
+      const Vec3 unit = unit_branch(c);
+      const auto count = [&](std::int64_t g, double volume) {
+        const auto u = static_cast<std::size_t>(g);
+        grain_contacts[u] += 1.0;
+        add_outer(&grain_fabric[9 * u], unit, unit, volume);
+      };
+      if (a) count(c.grain, c.volume);
+      if (b) count(c.grain_b, c.volume_b);
     }
-    const Vec3 unit = unit_branch(c);
-    const auto count = [&](std::int64_t g, double volume) {
-      const auto u = static_cast<std::size_t>(g);
-      grain_contacts[u] += 1.0;
-      add_outer(&grain_fabric[9 * u], unit, unit, volume);
-    };
-    if (a) count(c.grain, c.volume);
-    if (b) count(c.grain_b, c.volume_b);
-  }
 
   for (std::size_t i = 0; i < n_grains; ++i) {
     const double m = grains.mass[i], volume = grains.volume[i];

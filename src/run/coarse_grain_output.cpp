@@ -32,6 +32,10 @@ std::vector<std::string> column_names(const std::string& name, int components) {
 
 } // namespace
 
+analysis::CgParts contact_parts(const CoarseGrainSpec& spec) {
+  return spec.contacts ? analysis::parts_for(spec.fields) : analysis::CgParts{false, false, false};
+}
+
 std::string CoarseGrainOutput::extension(const Table& t) {
   return t.cylinder ? ".vts" : ".vti";
 }
@@ -45,10 +49,7 @@ CoarseGrainOutput::CoarseGrainOutput(std::vector<CoarseGrainSpec> specs, const S
     t.settings.kind = kind_of(spec.function);
     t.settings.width = spec.width;
     t.settings.cutoff = spec.cutoff;
-    // Only the contacts' parts that its fields need (none without contacts: then no contact is
-    // recorded for it).
-    t.settings.parts =
-        spec.contacts ? analysis::parts_for(spec.fields) : analysis::CgParts{false, false, false};
+    t.settings.parts = contact_parts(spec);
     if (spec.cylindrical) {
       analysis::CgCylinderSettings c;
       c.kind = t.settings.kind;

@@ -22,6 +22,10 @@
 
 namespace yuxi {
 
+// The parts of the contacts' sums a table needs: those of its fields, none with contacts =
+// false (then no contact is recorded for it).
+analysis::CgParts contact_parts(const CoarseGrainSpec& spec);
+
 class CoarseGrainOutput {
 public:
   // The tables `specs` of a run with time step dt, written under `dir`.

@@ -1,6 +1,5 @@
 #include "run/run_driver.hpp"
 
-#include "analysis/coarse_grain.hpp"
 #include "io/energy_csv.hpp"
 #include "io/lammps_dump_writer.hpp"
 #include "io/vtk_writer.hpp"
@@ -127,7 +126,7 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
   if (!scene.coarse_grains.empty()) {
     if (stepper)
       for (const CoarseGrainSpec& c : scene.coarse_grains)
-        if (c.contacts && analysis::parts_for(c.fields).any())
+        if (contact_parts(c).any())
           throw std::invalid_argument(fmt::format(
               "[[coarse_grain]] '{}': its contact fields need the contacts, which the device "
               "engine does not record; name kinetic fields only (density, velocity, "
