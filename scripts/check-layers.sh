@@ -53,7 +53,7 @@ seam=(src/core/host_device.hpp src/core/always_inline.hpp src/core/units.hpp src
   src/contact/rolling_resistance.hpp src/contact/hooke.hpp src/contact/linear_spring_dashpot.hpp
   src/contact/hertz_mindlin.hpp src/contact/luding.hpp src/contact/thermodynamic.hpp
   src/contact/thermodynamic_law.hpp src/core/portable_math.hpp src/core/radial_wave.hpp
-  src/core/particle_energy.hpp
+  src/core/particle_energy.hpp src/core/quaternion.hpp src/core/free_rotation.hpp
   src/device/step_phases.hpp)
 standard=" cmath cstdint cstddef cstring algorithm limits string_view numbers type_traits array "
 for header in "${seam[@]}"; do

@@ -9,6 +9,7 @@
 #include "contact/luding.hpp"
 #include "contact/rolling_resistance.hpp"
 #include "contact/thermodynamic.hpp"
+#include "core/free_rotation.hpp"
 #include "core/particle_view.hpp"
 
 #include <cstdint>
@@ -66,5 +67,17 @@ template __global__ void pair_contacts<HertzMindlin>(ConstParticleView, const st
                                                      const HertzMindlin::Coeffs*,
                                                      HertzMindlin::State*, ContactResult*,
                                                      double, int);
+
+
+// A clump's rotation (core/free_rotation.hpp): a half kick of the torque, the free rotation, a
+// half kick, as the step will do it on the device.
+__global__ void rotate_bodies(Quaternion* q, Quaternion* p, const Vec3* inertia,
+                              const Vec3* torque, double dt, int n) {
+  const int k = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (k >= n) return;
+  kick_rotor(q[k], p[k], torque[k], 0.5 * dt);
+  free_rotation(q[k], p[k], inertia[k], dt);
+  kick_rotor(q[k], p[k], torque[k], 0.5 * dt);
+}
 
 } // namespace yuxi
