@@ -20,10 +20,11 @@ fi
 if ((seconds > 0)); then limit=(-max_total_time="$seconds"); fi
 build=build/asan
 cmake --preset asan > /dev/null
-cmake --build --preset asan --target fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl
+cmake --build --preset asan --target fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl \
+  fuzz_sphere_list
 mkdir -p $build/fuzz-artifacts
 status=0
-for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl; do
+for target in fuzz_scene fuzz_lammps_data fuzz_checkpoint fuzz_stl fuzz_sphere_list; do
   corpus=tests/fuzz/corpus/${target#fuzz_}
   echo "== $target: ${limit[*]} on $(ls "$corpus" | wc -l) corpus files"
   # New inputs go to a scratch folder; the kept corpus is only read. To keep what a run found:

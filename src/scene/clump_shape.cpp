@@ -1,0 +1,82 @@
+// A clump's mass properties and principal frame (clump_shape.hpp).
+#include "scene/clump_shape.hpp"
+
+#include "core/symmetric_eigen3.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <vector>
+
+namespace yuxi {
+
+ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> members) {
+  if (members.empty()) throw std::invalid_argument(fmt::format("shape \"{}\": no members", name));
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const SphereMember& m = members[k];
+    if (!(m.radius > 0) || !std::isfinite(m.radius) || !is_finite(m.centre))
+      throw std::invalid_argument(fmt::format(
+          "shape \"{}\", member {}: radius {} at ({}, {}, {}); a member needs a finite radius > "
+          "0 and a finite centre",
+          name, k + 1, m.radius, m.centre.x, m.centre.y, m.centre.z));
+  }
+  // The moments are taken about the members' mean centre, so that a clump given far from its
+  // frame's origin loses no digits to the parallel-axis terms.
+  Vec3 origin;
+  for (const SphereMember& m : members) origin += m.centre / static_cast<double>(members.size());
+  std::vector<SphereMember> near;
+  double extent = 0;
+  for (const SphereMember& m : members) {
+    near.push_back({m.centre - origin, m.radius});
+    extent = std::max(extent, norm(m.centre - origin) + m.radius);
+  }
+  for (std::size_t k = 0; k < members.size(); ++k)
+    if (members[k].radius < 1e-6 * extent)
+      throw std::invalid_argument(
+          fmt::format("shape \"{}\", member {}: radius {} is below 1e-6 of the clump's size {}",
+                      name, k + 1, members[k].radius, extent));
+  const VolumeMoments v = sphere_union_moments(near);
+  ClumpShape s;
+  s.name = std::move(name);
+  s.volume = v.volume;
+  const Vec3 centre = v.first / v.volume; // from the origin
+  // The inertia tensor over the density about the centre of mass: I = tr(S) 1 - S with S the
+  // central second moments, S_ab = integral of r_a r_b - V c_a c_b.
+  std::array<std::array<double, 3>, 3> central{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) central[a][b] = v.second[a][b] - v.volume * centre[a] * centre[b];
+  const double trace = central[0][0] + central[1][1] + central[2][2];
+  std::array<std::array<double, 3>, 3> inertia{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) inertia[a][b] = (a == b ? trace : 0.0) - central[a][b];
+  const SymmetricEigen3 e = symmetric_eigen3(inertia);
+  s.inertia_per_density = {e.values[0], e.values[1], e.values[2]};
+  // The rotation whose columns are the principal axes turns the principal frame into the given.
+  double m[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = e.axes[c][r];
+  s.frame = from_rotation_matrix(m);
+  s.centre = origin + centre;
+  for (const SphereMember& given : members) {
+    const Vec3 body = to_body(s.frame, given.centre - s.centre);
+    s.members.push_back({body, given.radius});
+    s.bounding_radius = std::max(s.bounding_radius, norm(body) + given.radius);
+  }
+  return s;
+}
+
+ClumpShape ClumpShape::scaled(double factor) const {
+  ClumpShape s = *this;
+  for (SphereMember& m : s.members) {
+    m.centre *= factor;
+    m.radius *= factor;
+  }
+  s.volume *= factor * factor * factor;
+  s.inertia_per_density *= std::pow(factor, 5);
+  s.bounding_radius *= factor;
+  s.centre *= factor;
+  return s;
+}
+
+} // namespace yuxi

@@ -1,0 +1,38 @@
+// A clump: a rigid grain made of overlapping spheres (docs/clumps.md). Its shape is kept in its
+// principal frame: the members' centres measured from the centre of mass along the principal
+// axes of inertia, where the inertia tensor is diagonal.
+#pragma once
+
+#include "core/quaternion.hpp"
+#include "core/vec3.hpp"
+#include "scene/sphere_union.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace yuxi {
+
+struct ClumpShape {
+  std::string name;
+  std::vector<SphereMember> members; // in the principal frame
+  double volume = 0;                 // of the union [length^3]
+  // The principal moments of inertia over the density, ascending: I_k / rho [length^5].
+  Vec3 inertia_per_density;
+  // Where the shape was given: its frame turned from the principal one (v_given = frame v_body +
+  // centre) and the centre of mass there.
+  Quaternion frame;
+  Vec3 centre;
+  // The largest distance from the centre of mass to a member's surface [length].
+  double bounding_radius = 0;
+
+  // The same shape scaled by `factor` (> 0): every length times factor (the members and the
+  // centre), the volume times factor^3, the moments times factor^5.
+  ClumpShape scaled(double factor) const;
+};
+
+// The shape of `members`, given in any frame (radii > 0; throws std::invalid_argument naming
+// the member that is not). Members inside others count once.
+ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> members);
+
+} // namespace yuxi
