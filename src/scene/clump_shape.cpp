@@ -31,6 +31,10 @@ ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> memb
     near.push_back({m.centre - origin, m.radius});
     extent = std::max(extent, norm(m.centre - origin) + m.radius);
   }
+  // Its moments go as the fifth power of its size: within these bounds they stay normal doubles.
+  if (!(extent >= 1e-50 && extent <= 1e50))
+    throw std::invalid_argument(fmt::format(
+        "shape \"{}\": its size {} lies outside 1e-50 to 1e50 in the scene's units", name, extent));
   for (std::size_t k = 0; k < members.size(); ++k)
     if (members[k].radius < 1e-6 * extent)
       throw std::invalid_argument(

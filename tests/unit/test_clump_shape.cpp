@@ -224,6 +224,9 @@ TEST(ClumpShape, FarFromTheOriginTheMomentsKeepTheirDigits) {
 TEST(ClumpShape, AMemberTooSmallForItsClumpIsNamed) {
   const std::vector<SphereMember> bad{{{0, 0, 0}, 1.0}, {{1, 0, 0}, 1e-9}};
   EXPECT_THROW(make_clump_shape("dust", bad), std::invalid_argument);
+  const std::vector<SphereMember> tiny{{{0, 0, 0}, 1e-60}}, huge{{{0, 0, 0}, 1e60}};
+  EXPECT_THROW(make_clump_shape("tiny", tiny), std::invalid_argument);
+  EXPECT_THROW(make_clump_shape("huge", huge), std::invalid_argument);
 }
 
 TEST(ClumpShape, ScalingGoesAsTheLengthsPowers) {
