@@ -334,6 +334,20 @@ def test_a_table_averages_over_a_window(box_scene, tmp_path):
     sim.close()
 
 
+# A linear spring-dashpot pair of the two-grain scenes below.
+_LINEAR_PAIR = {"k_n": 2.0e4, "k_t": 5.7e3, "gamma_n": 60.0, "gamma_t": 20.0, "mu_s": 0.5,
+                "mu_d": 0.5}
+
+
+def _books_around_a_recorded_step(sim, t_end):
+    """Runs to t_end, then one step with its contacts recorded: the books before and after."""
+    sim.run(t_end=t_end)
+    before = sim.energies()
+    sim.record_contacts(True)
+    sim.step()
+    return before, sim.energies()
+
+
 def _two_contacts(model):
     """Grains a and b meeting head-on, and grain c landing on the floor, without gravity: both
     contacts start at t = 0.025, and at 0.027 neither has ended (the thermodynamic law's, the
@@ -353,8 +367,7 @@ def _two_contacts(model):
              "density": 1.909859317, "material": "grain"}],
     }
     if model == "linear":
-        pair = {"k_n": 2.0e4, "k_t": 5.7e3, "gamma_n": 60.0, "gamma_t": 20.0, "mu_s": 0.5,
-                "mu_d": 0.5}
+        pair = _LINEAR_PAIR
         scene["material"] = {"grain": {"density": 1.909859317}}
         scene["contact"] = {"model": "linear",
                             "pair": [dict(pair, materials=["grain", "grain"]),
@@ -375,11 +388,7 @@ def test_dissipation_and_relaxation_densities_hold_the_books(model, tmp_path):
     books dissipate over the step, divided by it, and the relaxation energy density to the
     books' relaxation energy (two contacts, neither ending in the step)."""
     sim = yuxi.Simulation(_two_contacts(model), output=tmp_path / "run", progress=False)
-    sim.run(t_end=0.027)
-    before = sim.energies()
-    sim.record_contacts(True)
-    sim.step()
-    after = sim.energies()
+    before, after = _books_around_a_recorded_step(sim, 0.027)
     assert after["contacts"] == 2
     f = yuxi.coarse_grain(sim, function="bins", n=(4, 4, 4))
     volume = f["cell_volume"]
@@ -398,8 +407,7 @@ def test_wall_power_density_holds_the_books(tmp_path):
     credit to the moving walls over the step, divided by it: a floor that oscillates along its
     normal under two grains, one of them also pressed against a turning cylinder (a shaped wall
     whose surface slides past it)."""
-    pair = {"k_n": 2.0e4, "k_t": 5.7e3, "gamma_n": 60.0, "gamma_t": 20.0, "mu_s": 0.5,
-            "mu_d": 0.5}
+    pair = _LINEAR_PAIR
     grain = {"radius": 0.5, "density": 1.909859317, "material": "grain"}
     scene = {
         "materials": ["grain", "wall"],
@@ -418,11 +426,7 @@ def test_wall_power_density_holds_the_books(tmp_path):
                      dict(grain, position=[6.505, 5.0, 0.9995])],
     }
     sim = yuxi.Simulation(scene, output=tmp_path / "run", progress=False)
-    sim.run(t_end=0.002)
-    before = sim.energies()
-    sim.record_contacts(True)
-    sim.step()
-    after = sim.energies()
+    before, after = _books_around_a_recorded_step(sim, 0.002)
     assert after["contacts"] == 3
     f = yuxi.coarse_grain(sim, function="bins", n=(10, 10, 16))
     power = (after["wall_work"] - before["wall_work"]) / sim.dt
