@@ -134,11 +134,12 @@ YUXI_HD inline double pow(double x, double p) {
 
 namespace detail {
 
-// pi/2 in three parts of 33 significant bits each (and their tails below): k * part is exact
+// pi/2 in three parts of 33 significant bits each and the tail of the third: k * part is exact
 // for |k| < 2^20, so the reduction below loses nothing for |x| < 1.6e6 (fdlibm's constants).
 constexpr double pio2_1 = 1.57079632673412561417e+00;
 constexpr double pio2_2 = 6.07710050630396597660e-11;
 constexpr double pio2_3 = 2.02226624871116645580e-21;
+constexpr double pio2_3t = 8.47842766036889956997e-32; // pi/2 - (the three parts above)
 constexpr double two_over_pi = 6.36619772367581382433e-01;
 
 // sin r and cos r for |r| <= pi/4 by their Taylor series to r^19 and r^20 (truncation below
@@ -175,11 +176,12 @@ YUXI_HD inline double cos_kernel(double r) {
 
 } // namespace detail
 
-// sin x and cos x together. x = k pi/2 + r with |r| <= pi/4 (Cody & Waite's reduction in three
-// parts), then the kernels above by the quadrant k mod 4. Within 1 ulp for |x| <= pi/4, where
-// the kernels act alone, and 2.5 ulp for |x| < 1.6e6, where the reduced argument's rounding
-// adds to theirs (tests/unit/test_portable_math.cpp); beyond, the reduction loses bits and the
-// error grows with |x| (the rotations that call it turn by far less than a radian a step).
+// sin x and cos x together. x = k pi/2 + r with |r| <= pi/4 (Cody & Waite's reduction, pi/2 in
+// four parts), then the kernels above by the quadrant k mod 4. Within 1 ulp for |x| <= pi/4,
+// where the kernels act alone, and 2.5 ulp for |x| < 1.6e6, where the reduced argument's
+// rounding adds to theirs, next to multiples of pi/2 too (tests/unit/test_portable_math.cpp);
+// beyond, the reduction loses bits and the error grows with |x| (the rotations that call it
+// turn by far less than a radian a step).
 struct SinCos {
   double sin = 0, cos = 1;
 };
@@ -188,12 +190,16 @@ YUXI_HD inline SinCos sin_cos(double x) {
   if (!(x - x == 0))
     return {std::numeric_limits<double>::quiet_NaN(),
             std::numeric_limits<double>::quiet_NaN()}; // NaN or infinite
-  const double t = x * two_over_pi;
-  const long long k = static_cast<long long>(t < 0 ? t - 0.5 : t + 0.5);
-  const double kd = static_cast<double>(k);
-  const double r = ((x - kd * pio2_1) - kd * pio2_2) - kd * pio2_3;
+  // Beyond the accurate range, first x mod 2 pi (fmod is exact): an angle that is no longer
+  // accurate, but whose sine and cosine are still a rotation's.
+  if (!(std::abs(x) < 1.6e6)) x = std::fmod(x, 6.283185307179586);
+  // k: the nearest integer to x 2/pi, as a double (rint is exact and the same everywhere; a
+  // conversion to an integer type would overflow for huge x), and its quadrant k mod 4.
+  const double kd = std::rint(x * two_over_pi);
+  const double r = (((x - kd * pio2_1) - kd * pio2_2) - kd * pio2_3) - kd * pio2_3t;
+  const int quadrant = static_cast<int>(std::fmod(kd, 4.0)) & 3; // (-1 & 3 = 3, and so on)
   const double s = sin_kernel(r), c = cos_kernel(r);
-  switch (static_cast<int>(k & 3)) {
+  switch (quadrant) {
   case 0:
     return {s, c};
   case 1:

@@ -20,6 +20,14 @@ struct SymmetricEigen3 {
 // a: the symmetric matrix, a[r][c]. The eigenvectors form a right-handed frame
 // (axes[0] x axes[1] = axes[2]).
 inline SymmetricEigen3 symmetric_eigen3(std::array<std::array<double, 3>, 3> a) {
+  // Scaled by a power of two (exactly) to entries of order one, so that the squares of the
+  // stopping test neither underflow nor overflow (an inertia tensor goes as size^5).
+  double largest = 0;
+  for (const auto& row : a)
+    for (const double x : row) largest = std::max(largest, std::abs(x));
+  const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+  for (auto& row : a)
+    for (double& x : row) x = std::ldexp(x, -exponent);
   std::array<std::array<double, 3>, 3> v{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}; // columns: vectors
   for (int sweep = 0; sweep < 64; ++sweep) {
     const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
@@ -54,7 +62,7 @@ inline SymmetricEigen3 symmetric_eigen3(std::array<std::array<double, 3>, 3> a) 
   std::sort(order.begin(), order.end(), [&](int i, int j) { return a[i][i] < a[j][j]; });
   SymmetricEigen3 e;
   for (int k = 0; k < 3; ++k) {
-    e.values[k] = a[order[k]][order[k]];
+    e.values[k] = std::ldexp(a[order[k]][order[k]], exponent);
     for (int r = 0; r < 3; ++r) e.axes[k][r] = v[r][order[k]];
   }
   // Right-handed: the third axis is the cross product of the first two.

@@ -12,8 +12,8 @@
 namespace yuxi {
 namespace {
 
-// The fields of a line, split at commas, spaces and tabs (a CSV header's names too).
-std::vector<std::string_view> fields_of(std::string_view line) {
+// A plain list's fields: split at commas, spaces and tabs, empty ones dropped.
+std::vector<std::string_view> plain_fields(std::string_view line) {
   std::vector<std::string_view> out;
   std::size_t k = 0;
   const auto separator = [](char c) { return c == ',' || c == ' ' || c == '\t' || c == '\r'; };
@@ -26,11 +26,38 @@ std::vector<std::string_view> fields_of(std::string_view line) {
   return out;
 }
 
+// A CSV row's cells: split at commas only, empty ones kept, each trimmed of spaces, tabs and a
+// carriage return and of one pair of double quotes around it.
+std::vector<std::string_view> csv_cells(std::string_view line) {
+  std::vector<std::string_view> out;
+  const auto trim = [](std::string_view c) {
+    while (!c.empty() && (c.front() == ' ' || c.front() == '\t')) c.remove_prefix(1);
+    while (!c.empty() && (c.back() == ' ' || c.back() == '\t' || c.back() == '\r'))
+      c.remove_suffix(1);
+    if (c.size() >= 2 && c.front() == '"' && c.back() == '"') c = c.substr(1, c.size() - 2);
+    return c;
+  };
+  for (;;) {
+    const std::size_t comma = line.find(',');
+    out.push_back(trim(line.substr(0, comma)));
+    if (comma == std::string_view::npos) return out;
+    line.remove_prefix(comma + 1);
+  }
+}
+
 std::optional<double> number_of(std::string_view s) {
+  if (s.size() > 1 && s.front() == '+') s.remove_prefix(1);
   double v = 0;
   const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (error != std::errc{} || end != s.data() + s.size()) return std::nullopt;
   return v;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
 }
 
 } // namespace
@@ -46,6 +73,7 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
   const auto fail = [&](const std::string& message) {
     throw ShapeFileError(fmt::format("{}:{}: {}", source, line_number, message));
   };
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3); // a UTF-8 byte-order mark
   while (!text.empty()) {
     ++line_number;
     const std::size_t end = std::min(text.find('\n'), text.size());
@@ -53,8 +81,9 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
     text.remove_prefix(std::min(end + 1, text.size()));
     if (const std::size_t hash = line.find('#'); hash != std::string_view::npos)
       line = line.substr(0, hash);
-    const std::vector<std::string_view> fields = fields_of(line);
-    if (fields.empty()) continue;
+    if (plain_fields(line).empty()) continue; // blank
+    const std::vector<std::string_view> fields =
+        format == SphereListFormat::csv ? csv_cells(line) : plain_fields(line);
     if (header) {
       header = false;
       columns = fields.size();
@@ -62,7 +91,8 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
           {{"x", "x"}, {"y", "y"}, {"z", "z"}, {"radius", "r"}}};
       for (std::size_t c = 0; c < 4; ++c) {
         const auto at = std::find_if(fields.begin(), fields.end(), [&](std::string_view f) {
-          return f == names[c][0] || f == names[c][1];
+          const std::string name = lower(f);
+          return name == names[c][0] || name == names[c][1];
         });
         if (at == fields.end())
           fail(fmt::format("the header has no column '{}' (it needs x, y, z and radius)",
@@ -71,9 +101,10 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
       }
       continue;
     }
-    if (format == SphereListFormat::csv ? fields.size() != columns : fields.size() != 4)
-      fail(fmt::format("{} fields where the member needs {}", fields.size(),
-                       format == SphereListFormat::csv ? columns : 4));
+    if (format == SphereListFormat::csv && fields.size() != columns)
+      fail(fmt::format("{} cells where the header has {}", fields.size(), columns));
+    if (format == SphereListFormat::plain && fields.size() != 4)
+      fail(fmt::format("{} fields where a member needs 4 (x y z r)", fields.size()));
     std::array<double, 4> v{};
     for (std::size_t c = 0; c < 4; ++c) {
       const std::string_view f = fields[column[c]];

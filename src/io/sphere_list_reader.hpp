@@ -1,11 +1,13 @@
 // Reads a clump's member spheres from a file (docs/clumps.md, section 1):
 //   CSV (a name ending in .csv): a header naming the columns x, y, z and radius (or r), in any
-//       order and among others, then one member a row;
+//       order and among others (any case, quoted or not), then one member a row; cells are
+//       separated by commas only, trimmed of blanks and of quotes around them, and only the
+//       four named ones are read;
 //   a sphere list (any other name): one member a line, "x y z r" separated by spaces, tabs or
-//       commas, as LIGGGHTS's multisphere templates and YADE's clump files write them; '#'
-//       starts a comment.
-// Blank lines are skipped. Every member needs finite coordinates and a finite radius > 0. A
-// malformed file is a ShapeFileError whose message starts with "<file>:<line>: ".
+//       commas, as LIGGGHTS's multisphere templates write them.
+// '#' starts a comment; blank lines and a UTF-8 byte-order mark are skipped. Every member needs
+// finite coordinates and a finite radius > 0. A malformed file is a ShapeFileError whose
+// message starts with "<file>:<line>: ".
 #pragma once
 
 #include "scene/sphere_union.hpp"
@@ -23,9 +25,10 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-// A clump holds at most this many members (its mass properties cost the cube of the number of
-// members that meet one another).
-constexpr std::size_t max_clump_members = 10000;
+// A clump holds at most this many members: its mass properties cost a number of slices that
+// grows with the places where three members' surfaces meet, each slice the square of the
+// members it cuts.
+constexpr std::size_t max_clump_members = 1000;
 
 enum class SphereListFormat { csv, plain };
 

@@ -81,7 +81,8 @@ void add_arc(AreaMoments& m, const Disc& c, double theta0, double theta1) {
 }
 
 // The moments of a union of discs: each circle's arcs that no other disc covers. Of two equal
-// discs the first counts; a circle inside another, or touching it from inside, is covered.
+// discs (to round-off) the first counts; a circle inside another, or touching it from inside,
+// is covered.
 AreaMoments union_of_discs(const std::vector<Disc>& discs) {
   AreaMoments m;
   std::vector<std::pair<double, double>> covered;
@@ -94,7 +95,9 @@ AreaMoments union_of_discs(const std::vector<Disc>& discs) {
       const Disc& o = discs[j];
       const double dx = o.x - c.x, dy = o.y - c.y, d = std::hypot(dx, dy);
       if (d >= c.r + o.r) continue;
-      if (d == 0 && o.r == c.r) {
+      // Each inside the other: the same disc to round-off (equal radii, centres within an ulp);
+      // the first counts.
+      if (d + c.r <= o.r && d + o.r <= c.r) {
         inside = j < i;
         continue;
       }
@@ -157,58 +160,80 @@ Slab integrate_segment(const std::vector<SphereMember>& members, double a, doubl
   return sum;
 }
 
-// The segment's integral, halved until two estimates agree to `tolerance` (of the volume
-// scale, each component scaled by the clump's size to the power of its order).
+// The segment's integral, given its estimate `whole` by one rule over it: halved until the two
+// halves' sum agrees with it to 1e-14 of `scale` (the clump's volume times its size to the power
+// of each component's order), at most 12 times.
 Slab integrate_adaptively(const std::vector<SphereMember>& members, double a, double b,
-                          const Slab& scale, int depth, std::vector<Disc>& discs) {
-  const Slab whole = integrate_segment(members, a, b, discs);
+                          const Slab& whole, const Slab& scale, int depth,
+                          std::vector<Disc>& discs) {
   const double m = 0.5 * (a + b);
-  Slab halves = integrate_segment(members, a, m, discs);
+  const Slab lower = integrate_segment(members, a, m, discs);
   const Slab upper = integrate_segment(members, m, b, discs);
+  Slab halves;
   bool agree = true;
   for (std::size_t c = 0; c < halves.size(); ++c) {
-    halves[c] += upper[c];
+    halves[c] = lower[c] + upper[c];
     if (std::abs(halves[c] - whole[c]) > 1e-14 * scale[c]) agree = false;
   }
   if (agree || depth >= 12) return halves;
-  Slab lower = integrate_adaptively(members, a, m, scale, depth + 1, discs);
-  const Slab top = integrate_adaptively(members, m, b, scale, depth + 1, discs);
-  for (std::size_t c = 0; c < lower.size(); ++c) lower[c] += top[c];
-  return lower;
+  Slab sum = integrate_adaptively(members, a, m, lower, scale, depth + 1, discs);
+  const Slab top = integrate_adaptively(members, m, b, upper, scale, depth + 1, discs);
+  for (std::size_t c = 0; c < sum.size(); ++c) sum[c] += top[c];
+  return sum;
 }
 
 // The heights where a slice's boundary changes its make-up: each member's poles, the top and
-// bottom of each circle where two members' surfaces meet, and the points where three meet.
+// bottom of each circle where two members' surfaces meet, and the points where three meet;
+// each only where it lies on the union's surface, not buried inside a further member (a buried
+// one changes nothing, and a dense clump has far more of them than of the others).
 std::vector<double> breakpoints(const std::vector<SphereMember>& s) {
   std::vector<double> z;
-  for (const SphereMember& m : s) {
-    z.push_back(m.centre.z - m.radius);
-    z.push_back(m.centre.z + m.radius);
+  const std::size_t n = s.size(), none = n;
+  // Whether point p lies strictly inside a member other than a, b and c.
+  const auto buried = [&](const Vec3& p, std::size_t a, std::size_t b, std::size_t c) {
+    for (std::size_t m = 0; m < n; ++m)
+      if (m != a && m != b && m != c && norm(p - s[m].centre) < s[m].radius * (1 - 1e-9))
+        return true;
+    return false;
+  };
+  const auto add = [&](const Vec3& p, std::size_t a, std::size_t b, std::size_t c) {
+    if (!buried(p, a, b, c)) z.push_back(p.z);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    add(s[i].centre - Vec3{0, 0, s[i].radius}, i, none, none);
+    add(s[i].centre + Vec3{0, 0, s[i].radius}, i, none, none);
   }
-  const std::size_t n = s.size();
   const auto meet = [&](std::size_t i, std::size_t j) {
     const double d = norm(s[j].centre - s[i].centre);
     return d < s[i].radius + s[j].radius && d > std::abs(s[i].radius - s[j].radius);
   };
-  // The plane where the surfaces of i and j meet: n . x = c, n = 2 (c_j - c_i).
+  // The plane where the surfaces of i and j meet, relative to c_i: n . (x - c_i) = c with
+  // n = 2 (c_j - c_i), c = |c_j - c_i|^2 + r_i^2 - r_j^2.
   const auto radical_plane = [&](std::size_t i, std::size_t j) {
     const Vec3 normal = 2.0 * (s[j].centre - s[i].centre);
-    const double c = norm2(s[j].centre) - norm2(s[i].centre) - s[j].radius * s[j].radius +
-                     s[i].radius * s[i].radius;
+    const double c =
+        norm2(s[j].centre - s[i].centre) + s[i].radius * s[i].radius - s[j].radius * s[j].radius;
     return std::pair{normal, c};
   };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       if (!meet(i, j)) continue;
+      // The circle where i and j meet: centre p, unit normal u, radius h; its highest and
+      // lowest points lie along the part of z across u.
       const Vec3 axis = s[j].centre - s[i].centre;
       const double d = norm(axis);
       const Vec3 u = axis / d;
       const double a = (d * d + s[i].radius * s[i].radius - s[j].radius * s[j].radius) / (2 * d);
       const double h = std::sqrt(std::max(0.0, s[i].radius * s[i].radius - a * a));
-      const double centre_z = s[i].centre.z + a * u.z;
-      const double reach = h * std::sqrt(std::max(0.0, 1 - u.z * u.z));
-      z.push_back(centre_z - reach);
-      z.push_back(centre_z + reach);
+      const Vec3 p = s[i].centre + a * u;
+      const Vec3 across = Vec3{0, 0, 1} - u.z * u;
+      const double length = norm(across);
+      if (length > 1e-12) {
+        add(p + (h / length) * across, i, j, none);
+        add(p - (h / length) * across, i, j, none);
+      } else {
+        z.push_back(p.z); // a level circle: one height
+      }
       for (std::size_t k = j + 1; k < n; ++k) {
         if (!meet(i, k) || !meet(j, k)) continue;
         // The line where the two radical planes cross, then its points on sphere i.
@@ -217,14 +242,13 @@ std::vector<double> breakpoints(const std::vector<SphereMember>& s) {
         const Vec3 dir = cross(n1, n2);
         const double dd = norm2(dir);
         if (dd < 1e-24 * norm2(n1) * norm2(n2)) continue;
-        const Vec3 p0 = cross(c1 * n2 - c2 * n1, dir) / dd; // a point on both planes
-        const Vec3 w = p0 - s[i].centre;
+        const Vec3 w = cross(c1 * n2 - c2 * n1, dir) / dd; // on both planes, from c_i
         const double b = dot(w, dir) / dd, c = (norm2(w) - s[i].radius * s[i].radius) / dd;
         const double disc = b * b - c;
         if (disc < 0) continue;
         const double root = std::sqrt(disc);
-        z.push_back(p0.z + (-b - root) * dir.z);
-        z.push_back(p0.z + (-b + root) * dir.z);
+        add(s[i].centre + w + (-b - root) * dir, i, j, k);
+        add(s[i].centre + w + (-b + root) * dir, i, j, k);
       }
     }
   std::sort(z.begin(), z.end());
@@ -235,36 +259,45 @@ std::vector<double> breakpoints(const std::vector<SphereMember>& s) {
 } // namespace
 
 VolumeMoments sphere_union_moments(std::span<const SphereMember> span) {
-  const std::vector<SphereMember> members(span.begin(), span.end());
   VolumeMoments out;
-  if (members.empty()) return out;
+  if (span.empty()) return out;
+  // The members measured from their mean centre o in units of the clump's size L: the
+  // quadrature's tolerances are then the same at every size and place, and no digit goes to
+  // the parallel-axis terms, which are added back exactly below.
+  Vec3 o;
+  for (const SphereMember& m : span) o += m.centre / static_cast<double>(span.size());
+  double size = 0;
+  for (const SphereMember& m : span) size = std::max(size, norm(m.centre - o) + m.radius);
+  std::vector<SphereMember> members;
+  for (const SphereMember& m : span) members.push_back({(m.centre - o) / size, m.radius / size});
   const std::vector<double> z = breakpoints(members);
-  // The scales the agreement of the adaptive halving is measured against: the members' summed
-  // volume times their extent to the power of each component's order.
-  double volume = 0, lo = z.front(), hi = z.back();
-  for (const SphereMember& m : members) {
-    volume += 4.0 / 3.0 * pi * m.radius * m.radius * m.radius;
-    for (int a = 0; a < 3; ++a) {
-      lo = std::min(lo, m.centre[a] - m.radius);
-      hi = std::max(hi, m.centre[a] + m.radius);
-    }
-  }
-  const double size = std::max(std::abs(lo), std::abs(hi));
+  // The scales the adaptive halving's agreement is measured against: the members' summed
+  // volume (the extent is 1).
+  double volume = 0;
+  for (const SphereMember& m : members) volume += 4.0 / 3.0 * pi * m.radius * m.radius * m.radius;
   Slab scale;
-  for (std::size_t c = 0; c < scale.size(); ++c)
-    scale[c] = volume * (c == 0 ? 1.0 : c < 4 ? size : size * size);
+  scale.fill(volume);
   std::vector<Disc> discs;
   Slab total{};
   for (std::size_t k = 0; k + 1 < z.size(); ++k) {
     if (!(z[k + 1] > z[k])) continue;
-    const Slab part = integrate_adaptively(members, z[k], z[k + 1], scale, 0, discs);
+    const Slab whole = integrate_segment(members, z[k], z[k + 1], discs);
+    const Slab part = integrate_adaptively(members, z[k], z[k + 1], whole, scale, 0, discs);
     for (std::size_t c = 0; c < total.size(); ++c) total[c] += part[c];
   }
-  out.volume = total[0];
-  out.first = {total[1], total[2], total[3]};
-  out.second = {{{total[4], total[7], total[8]},
-                 {total[7], total[5], total[9]},
-                 {total[8], total[9], total[6]}}};
+  // Back to the given units and origin: V L^3, the first moment L^4 F + V o, the second
+  // L^5 S + o F^T + F o^T + V o o^T (F the first moment about o).
+  const double l3 = size * size * size, l4 = l3 * size, l5 = l4 * size;
+  out.volume = total[0] * l3;
+  const Vec3 f{total[1] * l4, total[2] * l4, total[3] * l4};
+  out.first = f + out.volume * o;
+  const double second[3][3] = {{total[4], total[7], total[8]},
+                               {total[7], total[5], total[9]},
+                               {total[8], total[9], total[6]}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      out.second[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
+          second[a][b] * l5 + o[a] * f[b] + f[a] * o[b] + out.volume * o[a] * o[b];
   return out;
 }
 

@@ -2,7 +2,7 @@
 // against closed forms. Spheres on one axis are exact: each slice across the axis is the widest
 // member's disc, so the union is a stack of pieces of spheres whose moments are polynomials.
 // Turned off the axis, the same clump exercises the general slices (arcs of several circles);
-// a random clump in two orientations must give the same principal moments, and a Monte Carlo
+// a random clump in three orientations must give the same principal moments, and a Monte Carlo
 // estimate bounds it independently.
 #include "core/quaternion.hpp"
 #include "core/symmetric_eigen3.hpp"
@@ -109,6 +109,22 @@ std::vector<SphereMember> moved(const std::vector<SphereMember>& members, const 
   return out;
 }
 
+// The shape's members, in its principal frame, centred with a diagonal inertia tensor whose
+// entries are the principal moments: a wrong (transposed, reflected) frame fails this.
+void expect_principal(const ClumpShape& s) {
+  const VolumeMoments m = sphere_union_moments(s.members);
+  const double scale = s.inertia_per_density.z;
+  const double size = std::sqrt(scale / s.volume);
+  EXPECT_LT(norm(m.first) / (s.volume * size), 1e-12);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double inertia =
+          (a == b ? m.second[0][0] + m.second[1][1] + m.second[2][2] : 0.0) - m.second[a][b];
+      const double expected = a == b ? s.inertia_per_density[a] : 0.0;
+      EXPECT_NEAR(inertia, expected, 1e-12 * scale) << a << b;
+    }
+}
+
 TEST(ClumpShape, TurnedOffTheAxisTheShapeKeepsTheClosedForm) {
   const std::vector<SphereMember> chain{
       {{0, 0, -0.8}, 0.5}, {{0, 0, 0.0}, 0.5}, {{0, 0, 0.9}, 0.7}};
@@ -130,6 +146,9 @@ TEST(ClumpShape, TurnedOffTheAxisTheShapeKeepsTheClosedForm) {
   const auto given = moved(chain, q, {2.0, -1.0, 0.5});
   for (std::size_t k = 0; k < given.size(); ++k)
     EXPECT_LT(norm(to_lab(s.frame, s.members[k].centre) + s.centre - given[k].centre), 1e-13);
+  // In the principal frame the members' union has its centre at the origin and a diagonal
+  // tensor of the principal moments.
+  expect_principal(s);
   // The axis of the smallest moment is the chain's.
   EXPECT_NEAR(std::abs(dot(to_lab(s.frame, {1, 0, 0}), to_lab(q, {0, 0, 1}))), 1.0, 1e-12);
 }
@@ -153,6 +172,7 @@ TEST(ClumpShape, ARandomClumpHasTheSameMomentsInEveryOrientation) {
     for (int k = 0; k < 3; ++k)
       EXPECT_LT(relative(b.inertia_per_density[k], a.inertia_per_density[k]), 1e-12) << k;
     EXPECT_LT(norm(b.centre - (to_lab(q, a.centre) + Vec3{0.3, 0.1, -0.4})), 1e-13);
+    expect_principal(b);
   }
 }
 
@@ -197,6 +217,32 @@ TEST(ClumpShape, RepeatedAndEnclosedMembersCountOnce) {
   EXPECT_LT(relative(b.volume, a.volume), 1e-13);
   for (int k = 0; k < 3; ++k)
     EXPECT_LT(relative(b.inertia_per_density[k], a.inertia_per_density[k]), 1e-12);
+}
+
+TEST(ClumpShape, MembersEqualToRoundOffCountOnce) {
+  // Centres an ulp apart or less: the same member written twice by two routes.
+  const std::vector<SphereMember> one{{{0, 0, 0}, 2.0}};
+  for (const double gap : {1e-20, 1e-16, 6e-17}) {
+    const std::vector<SphereMember> two{{{0, 0, 0}, 2.0}, {{gap, 0, 0}, 2.0}};
+    EXPECT_LT(relative(sphere_union_moments(two).volume, sphere_union_moments(one).volume), 1e-14)
+        << gap;
+  }
+}
+
+TEST(ClumpShape, EveryAllowedSizeGivesTheSameShape) {
+  const auto members = random_clump(5, 21);
+  const ClumpShape unit = make_clump_shape("unit", members);
+  for (const double f : {1e-45, 1e-20, 1e20, 1e45}) {
+    std::vector<SphereMember> scaled;
+    for (const SphereMember& m : members) scaled.push_back({m.centre * f, m.radius * f});
+    const ClumpShape s = make_clump_shape("scaled", scaled);
+    EXPECT_LT(relative(s.volume, unit.volume * f * f * f), 1e-13) << f;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT(relative(s.inertia_per_density[k], unit.inertia_per_density[k] * std::pow(f, 5)),
+                1e-12)
+          << f;
+    EXPECT_NEAR(std::abs(dot(s.frame, unit.frame)), 1.0, 1e-12) << f;
+  }
 }
 
 TEST(ClumpShape, ApartMembersAddUp) {
@@ -264,6 +310,26 @@ TEST(SymmetricEigen3, DiagonalisesARandomSymmetricMatrix) {
         for (int c = 0; c < 3; ++c) av += a[r][c] * e.axes[k][c];
         EXPECT_NEAR(av, e.values[k] * e.axes[k][r], 1e-14);
       }
+    // Orthonormal and right-handed.
+    const auto as_vec = [&](int k) { return Vec3{e.axes[k][0], e.axes[k][1], e.axes[k][2]}; };
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) EXPECT_NEAR(dot(as_vec(k), as_vec(l)), k == l ? 1.0 : 0.0, 1e-14);
+    EXPECT_NEAR(dot(cross(as_vec(0), as_vec(1)), as_vec(2)), 1.0, 1e-14);
+  }
+}
+
+TEST(SymmetricEigen3, ScaledFarFromOneItStillDiagonalises) {
+  const std::array<std::array<double, 3>, 3> a{{{2, 1, 0}, {1, 3, 1}, {0, 1, 4}}};
+  const SymmetricEigen3 unit = symmetric_eigen3(a);
+  for (const double f : {1e-200, 1e200}) {
+    std::array<std::array<double, 3>, 3> b = a;
+    for (auto& row : b)
+      for (double& x : row) x *= f;
+    const SymmetricEigen3 e = symmetric_eigen3(b);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT(relative(e.values[k], unit.values[k] * f), 1e-14) << f;
+      for (int r = 0; r < 3; ++r) EXPECT_NEAR(e.axes[k][r], unit.axes[k][r], 1e-14);
+    }
   }
 }
 
