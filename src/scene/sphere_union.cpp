@@ -1,16 +1,15 @@
 // The union's moments by slices (sphere_union.hpp for the method and its accuracy).
 #include "scene/sphere_union.hpp"
 
+#include "core/units.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <utility>
 #include <vector>
 
 namespace yuxi {
 namespace {
-
-constexpr double pi = std::numbers::pi;
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton's iteration on P_n from Tricomi's first
 // guess), exact for polynomials of degree 2 n - 1.

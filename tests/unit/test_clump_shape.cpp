@@ -6,21 +6,19 @@
 // estimate bounds it independently.
 #include "core/quaternion.hpp"
 #include "core/symmetric_eigen3.hpp"
+#include "core/units.hpp"
 #include "scene/clump_shape.hpp"
 #include "scene/sphere_union.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
-#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
 namespace yuxi {
 namespace {
-
-constexpr double pi = std::numbers::pi;
 
 // The moments of the piece z0 <= z <= z1 of a sphere of radius r centred at (0, 0, c), from
 // the antiderivatives in u = z - c of pi rho^2, z pi rho^2, z^2 pi rho^2 and pi rho^4 / 4
