@@ -12,8 +12,10 @@ bool within(const ParticleStore& s, std::size_t i, std::size_t j, double range) 
   return norm2(s.x[i] - s.x[j]) < cut * cut;
 }
 
-bool both_walls(const ParticleStore& s, std::size_t i, std::size_t j) {
-  return s.kind[i] == Kind::wall && s.kind[j] == Kind::wall;
+// Two wall particles, or two members of one clump: never a contact.
+bool never_touch(const ParticleStore& s, std::size_t i, std::size_t j) {
+  return (s.kind[i] == Kind::wall && s.kind[j] == Kind::wall) ||
+         (s.body[i] >= 0 && s.body[i] == s.body[j]);
 }
 
 } // namespace
@@ -52,6 +54,9 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
   const Vec3* x = s.x.data();
   const double* radius = s.radius.data();
   const Kind* kind = s.kind.data();
+  const GlobalId* body = s.body.data();
+  // (members of clumps are rare: a store without them skips the test)
+  const bool has_members = std::any_of(body, body + s.size(), [](GlobalId b) { return b >= 0; });
   std::size_t kept = 0;
   list.partners.resize(std::max<std::size_t>(list.partners.capacity(), 64));
   // (Grown by a quarter at a time, reserved exactly: resize() alone would double the memory.)
@@ -67,16 +72,18 @@ void build_neighbor_list(const ParticleStore& s, const CellGrid& grid, double ra
     const Vec3 xi = x[i];
     const double ri = radius[i];
     const bool wall_i = kind[i] == Kind::wall;
+    const GlobalId body_i = has_members ? body[i] : GlobalId{-1};
     const auto c = grid.cell_of(xi);
     const auto here = static_cast<std::ptrdiff_t>(grid.linear(c[0], c[1], c[2]));
-    // Keeps j when it is near, not a second wall particle, and `ours` (the pair rules: every
-    // ghost pair is ours, the halo holding the half shell of ghosts).
+    // Keeps j when it is near, not a second wall particle nor a member of i's clump, and `ours`
+    // (the pair rules: every ghost pair is ours, the halo holding the half shell of ghosts).
     const auto keep_if_near = [&](std::uint32_t j, bool ours) {
       const double cut = ri + radius[j] + range; // as within() adds them
       const bool near = norm2(xi - x[j]) < cut * cut;
       const bool walls = wall_i & (kind[j] == Kind::wall);
+      const bool same_body = body_i >= 0 && body[j] == body_i;
       list.partners[kept] = j;
-      kept += static_cast<std::size_t>(near & !walls & ours);
+      kept += static_cast<std::size_t>(near & !walls & !same_body & ours);
     };
     // The cell itself: owned partners after i, and every ghost.
     {
@@ -129,7 +136,7 @@ void build_neighbor_list_brute_force(const ParticleStore& s, double range, Neigh
   for (std::uint32_t i = 0; i < n; ++i) {
     list.offsets[i] = static_cast<std::uint32_t>(list.partners.size());
     for (std::uint32_t j = 0; j < s.size(); ++j) {
-      if (j == i || both_walls(s, i, j)) continue;
+      if (j == i || never_touch(s, i, j)) continue;
       if (j < i) continue; // owned pairs once; every ghost pair (the halo's half shell)
       if (within(s, i, j, range)) list.partners.push_back(j);
     }

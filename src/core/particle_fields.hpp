@@ -34,6 +34,8 @@ using GlobalId = std::int64_t;
 //   kind         grain or wall
 //   material     index into the scene's materials
 //   motion       index into the scene's wall motions (wall particles only)
+//   body         the clump a grain is a member of (its id: sim/clump_bodies.hpp); -1 for a free
+//                grain or a wall particle
 #define YUXI_PARTICLE_FIELDS(FIELD)                                                                \
   FIELD(Vec3, x)                                                                                   \
   FIELD(Vec3, v)                                                                                   \
@@ -49,6 +51,7 @@ using GlobalId = std::int64_t;
   FIELD(GlobalId, gid)                                                                             \
   FIELD(Kind, kind)                                                                                \
   FIELD(std::uint8_t, material)                                                                    \
-  FIELD(std::uint16_t, motion)
+  FIELD(std::uint16_t, motion)                                                                     \
+  FIELD(GlobalId, body)
 
 } // namespace yuxi

@@ -7,7 +7,12 @@
 namespace yuxi {
 
 void ParticleStore::resize_all(std::size_t n) {
-  for_each_field([n](auto& field) { field.resize(n); });
+  for_each_field([this, n](auto& field) {
+    if (static_cast<void*>(&field) == static_cast<void*>(&body))
+      body.resize(n, GlobalId{-1}); // (a new particle is no clump's member)
+    else
+      field.resize(n);
+  });
 }
 
 std::size_t ParticleStore::add(const ParticleSpec& s, GlobalId id) {
@@ -24,12 +29,13 @@ std::size_t ParticleStore::add(const ParticleSpec& s, GlobalId id) {
   radius[i] = s.radius;
   mass[i] = s.mass;
   const bool wall = s.kind == Kind::wall;
-  inv_mass[i] = wall ? 0.0 : 1.0 / s.mass;
+  inv_mass[i] = wall ? 0.0 : 1.0 / (s.contact_mass > 0.0 ? s.contact_mass : s.mass);
   inv_inertia[i] = wall || !s.spins ? 0.0 : 1.0 / solid_sphere_inertia(s.mass, s.radius);
   gid[i] = id;
   kind[i] = s.kind;
   material[i] = s.material;
   motion[i] = s.motion;
+  body[i] = s.body;
   n_owned_ = i + 1;
   return i;
 }

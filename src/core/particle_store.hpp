@@ -10,6 +10,7 @@
 #include "core/particle_view.hpp"
 #include "core/vec3.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,12 +28,16 @@ struct ParticleSpec {
   std::uint8_t material = 0;
   std::uint16_t motion = 0; // index into the scene's wall motions (wall particles only)
   bool spins = true;        // false: infinite moment of inertia (rotation locked)
+  // A clump's member (sim/clump_bodies.hpp): the clump's id, and its mass, which the member
+  // takes in contacts (0: the particle's own mass).
+  GlobalId body = -1;
+  double contact_mass = 0.0;
 };
 
 class ParticleStore {
 public:
   // One vector per field of the field list (core/particle_fields.hpp): x, v, w, f, torque,
-  // x_rest, x_build, radius, mass, inv_mass, inv_inertia, gid, kind, material, motion.
+  // x_rest, x_build, radius, mass, inv_mass, inv_inertia, gid, kind, material, motion, body.
 #define YUXI_STORE_VECTOR(type, name) std::vector<type> name;
   YUXI_PARTICLE_FIELDS(YUXI_STORE_VECTOR)
 #undef YUXI_STORE_VECTOR
@@ -116,7 +121,9 @@ public:
   }
 
   // Saves or loads the owned particles, in their order (ghosts are not part of the state).
-  template <class Archive> void checkpoint(Archive& ar) {
+  // `with_body` false: a state saved before particles had the `body` field (every particle
+  // loads as no clump's member).
+  template <class Archive> void checkpoint(Archive& ar, bool with_body = true) {
     static_assert(!std::is_const_v<Archive>);
     std::uint64_t n = n_owned_;
     ar.value(n);
@@ -125,7 +132,14 @@ public:
       resize_all(n);
       n_owned_ = n;
     }
-    for_each_field([&](auto& field) { ar.elements(field.data(), n); });
+    for_each_field([&](auto& field) {
+      if constexpr (Archive::loading)
+        if (!with_body && static_cast<void*>(&field) == static_cast<void*>(&body)) {
+          std::fill(body.begin(), body.end(), GlobalId{-1});
+          return;
+        }
+      ar.elements(field.data(), n);
+    });
   }
   // The saving half of checkpoint() for a store that stays as it is.
   template <class Writer> void save(Writer& ar) const {

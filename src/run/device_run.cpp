@@ -29,6 +29,7 @@ std::vector<std::string> device_engine_refusals(const Simulation& sim) {
                              device::max_wall_motions));
   if (!sim.inserts().empty()) no.push_back("[[insert]] sources");
   if (sim.has_outlets()) no.push_back("[[outlet]] sinks");
+  if (!sim.clumps().empty()) no.push_back("clumps of spheres");
   return no;
 }
 

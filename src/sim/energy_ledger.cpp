@@ -11,7 +11,7 @@ EnergyBooks EnergyLedger::parts(const ParticleStore& s, const SimulationConfig& 
   e.step = step;
   e.time = time;
   for (std::size_t i = 0; i < s.n_owned(); ++i) {
-    if (!s.is_grain(i)) continue;
+    if (!s.is_grain(i) || s.body[i] >= 0) continue; // (a clump's books are its body's)
     e.translational += translational_energy(s.mass[i], s.v[i]);
     e.rotational += rotational_energy(s, i);
     e.gravitational -= s.mass[i] * dot(g_potential, s.x[i]);

@@ -15,7 +15,8 @@ namespace yuxi {
 
 Simulation::Simulation(SimulationConfig config, ParticleStore particles,
                        std::vector<PlaneWall> planes, std::vector<WallMotion> motions,
-                       AnyContactLaw law, Comm comm, std::vector<ShapedWall> shaped_walls)
+                       AnyContactLaw law, Comm comm, std::vector<ShapedWall> shaped_walls,
+                       std::vector<ClumpBody> clumps)
     : config_(std::move(config)), store_(std::move(particles)),
       exchange_(config_.box, comm, config_.ranks, occupied_lengths(config_.box, store_),
                 cell_edge_for(config_, contact_reach(store_))),
@@ -27,6 +28,11 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       throw std::invalid_argument(fmt::format("particle {} refers to wall motion {} of {}",
                                               store_.gid[i], store_.motion[i],
                                               walls_.motions().size()));
+  if (!clumps.empty() && comm.size() > 1)
+    throw std::invalid_argument(fmt::format(
+        "clumps run on one rank for now, not on {}: run this scene on one rank", comm.size()));
+  clumps_.set(std::move(clumps));
+  clumps_.index_members(store_); // (every member there, each naming a clump that is)
   walls_.size_for(config_.skin, exchange_.cell_edge());
   for (std::size_t i = 0; i < store_.n_owned(); ++i) sources_.ids_from(store_.gid[i] + 1);
   // Every rank holds every particle here: cut by particle count (unless balancing is off),
@@ -34,6 +40,13 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
   if (comm.size() > 1) exchange_.take_share(store_, config_.rebalance_every > 0);
   refresh();
   ledger_.set_initial_balance(energies().balance());
+}
+
+void Simulation::set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets) {
+  if (!clumps_.empty() && (!inserts.empty() || !outlets.empty()))
+    throw std::invalid_argument("[[insert]] and [[outlet]] do not yet pour or drain clumps: a "
+                                "scene with clumps has neither");
+  sources_.set(std::move(inserts), std::move(outlets));
 }
 
 void Simulation::refresh() {
@@ -104,8 +117,13 @@ Simulation::Drift Simulation::kick_drift() {
       f[i].x = gravity.x * m, f[i].y = gravity.y * m, f[i].z = gravity.z * m;
       torque[i].x = 0.0, torque[i].y = 0.0, torque[i].z = 0.0;
     }
-    drift.list_build_due = drift.list_build_due || moved_far;
     drift.moved2 = fastest2 * dt * dt;
+    if (!clumps_.empty()) {
+      clumps_.kick_drift(dt, g_periodic, gravity_work);
+      // (a member's displacement, its clump's turn included)
+      moved_far |= clumps_.place_members(store_, config_.box, limit2, &drift.moved2);
+    }
+    drift.list_build_due = drift.list_build_due || moved_far;
   }
   ledger_.books().gravity_work += gravity_work;
   time_ += dt;
@@ -152,6 +170,10 @@ void Simulation::final_kick() {
     p.v[i].x += f.x * kick, p.v[i].y += f.y * kick, p.v[i].z += f.z * kick;
     p.w[i].x += torque.x * spin, p.w[i].y += torque.y * spin, p.w[i].z += torque.z * spin;
   }
+  if (!clumps_.empty()) {
+    clumps_.final_kick(config_.dt);
+    clumps_.place_members(store_, config_.box, 0.0, nullptr); // (velocities only)
+  }
 }
 
 void Simulation::book_step() {
@@ -178,7 +200,9 @@ std::size_t Simulation::memory_bytes() const {
 
 void Simulation::start_forces_from_gravity() {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    store_.f[i] = store_.is_grain(i) ? store_.mass[i] * config_.gravity : Vec3{};
+    // (a clump's members start from none: gravity acts on the clump, gather_forces())
+    store_.f[i] =
+        store_.is_grain(i) && store_.body[i] < 0 ? store_.mass[i] * config_.gravity : Vec3{};
     store_.torque[i] = Vec3{};
   }
 }
@@ -222,6 +246,7 @@ void Simulation::compute_forces(bool advance_history) {
                              walls_.shaped(), time_, dt, walls_.shaped_loads_here(),
                              walls_.element_forces_here());
   }
+  if (!clumps_.empty()) clumps_.gather_forces(store_, config_.gravity);
   check_health();
 }
 
@@ -253,7 +278,9 @@ EnergyBooks Simulation::energies() const {
 }
 
 EnergyBooks Simulation::energy_parts() const {
-  return ledger_.parts(store_, config_, contacts_.tally(), step_, time_);
+  EnergyBooks e = ledger_.parts(store_, config_, contacts_.tally(), step_, time_);
+  clumps_.add_energies(e, potential_gravity(config_));
+  return e;
 }
 
 void Simulation::settle_energy_books() {
@@ -307,7 +334,11 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
     const auto k = store_.material[i];
     if (k >= n_mat) continue;
     if (store_.is_grain(i)) {
-      m_min[k] = std::min(m_min[k], store_.mass[i]);
+      // A clump's member: the least mass a contact on its clump can meet.
+      const double m = store_.body[i] < 0
+                           ? store_.mass[i]
+                           : clumps_.bodies()[clumps_.body_of(store_, i)].smallest_contact_mass();
+      m_min[k] = std::min(m_min[k], m);
       r_min[k] = std::min(r_min[k], store_.radius[i]);
       grains[k] += 1.0;
     } else {

@@ -6,16 +6,19 @@
 //   walls      wall particles' motions, planes, shaped walls           (sim/walls.hpp)
 //   sources    inserts, outlets, the id counter                        (sim/sources.hpp)
 //   ledger     the energy books and health errors                      (sim/energy_ledger.hpp)
+//   clumps     the rigid bodies of clumps of spheres                    (sim/clump_bodies.hpp)
 // It advances them with velocity Verlet (Allen & Tildesley 3.2.1; rotation likewise for
-// spheres, whose inertia tensor is isotropic). One step, phase by phase (see step()):
-//   1. kick_drift(): half kick and drift of grains; walls placed at t + dt by their motion
+// spheres, whose inertia tensor is isotropic; NO_SQUISH for the orientation of clumps). One
+// step, phase by phase (see step()):
+//   1. kick_drift(): half kick and drift of grains and clumps, the clumps' members placed;
+//      walls placed at t + dt by their motion
 //   2. agree_on_list_build(): the step's one collective (list build due anywhere, health,
 //      displacement)
 //   3. build_lists() if due (history stashed by global ids, escapes, sources, periodic wrap,
 //      migration, particles sorted by cell, ghosts, lists, history restored:
 //      simulation_list_build.cpp), else ghosts refreshed
 //   4. compute_forces(): gravity, contacts with other particles and walls; ghost forces summed
-//      back
+//      back; the members' forces added onto their clumps
 //   5. final_kick(): second half kick; the walls' work booked, servos steered
 // Saving and loading the state (checkpoints, resuming on any number of ranks) is in
 // simulation_state.cpp, changes from outside between steps in simulation_edits.cpp.
@@ -30,6 +33,7 @@
 #include "scene/plane_wall.hpp"
 #include "scene/shaped_wall.hpp"
 #include "scene/wall_motion.hpp"
+#include "sim/clump_bodies.hpp"
 #include "sim/contact_compute.hpp"
 #include "sim/energy_ledger.hpp"
 #include "sim/engine_state.hpp"
@@ -94,9 +98,11 @@ public:
   // Every rank is given all particles; each keeps those of its sub-domain. `comm` is the group
   // of ranks that share the simulation (a group of one: serial).
   // `shaped_walls`: the triangle meshes and cylinders (every rank is given all of them).
+  // `clumps`: the bodies of the clumps whose members are among `particles` (make_clump(),
+  // sim/clump_bodies.hpp); clumps run on one rank for now (std::invalid_argument on more).
   Simulation(SimulationConfig config, ParticleStore particles, std::vector<PlaneWall> planes,
              std::vector<WallMotion> motions, AnyContactLaw law, Comm comm = Comm::world(),
-             std::vector<ShapedWall> shaped_walls = {});
+             std::vector<ShapedWall> shaped_walls = {}, std::vector<ClumpBody> clumps = {});
   // Collective: a checkpoint's state continued under `frame`, built straight from it (no
   // initial state of the scene is made first). Without `branch`, a resume (see load()): the
   // state's cells, skin and, on as many ranks, cut planes are the saved run's. With `branch`, the
@@ -124,6 +130,8 @@ public:
   const SimulationConfig& config() const { return config_; }
   // This rank's particles (all of them when serial).
   const ParticleStore& particles() const { return store_; }
+  // The clumps' bodies (their members are among the particles).
+  const std::vector<ClumpBody>& clumps() const { return clumps_.bodies(); }
   // Every rank's owned particles, sorted by global id, on rank 0 (empty elsewhere). Collective.
   ParticleStore gather_particles() const;
   const Comm& comm() const { return exchange_.comm(); }
@@ -217,9 +225,8 @@ public:
   // builder sets them before the first step, and before a checkpoint is loaded). Insertions
   // happen at list builds (a batch due forces one); grains that an outlet holds leave at the
   // next list build, their mechanical energy booked as removed, as escaped grains'.
-  void set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets) {
-    sources_.set(std::move(inserts), std::move(outlets));
-  }
+  // Throws std::invalid_argument with clumps (sources do not yet pour or drain them).
+  void set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets);
   using SourceTally = Sources::Tally;
   // Each insert's cumulative grains and mass, and each outlet's (collective).
   std::vector<SourceTally> inflow() const { return sources_.inflow(); }
@@ -380,7 +387,9 @@ private:
   double time_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t list_builds_ = 0;
-  std::size_t n_grains_ = 0; // owned particles [0, n_grains_) are grains, the rest walls
+  // Owned particles [0, n_grains_) are free grains, [n_grains_, n_movers_) members of clumps,
+  // the rest wall particles.
+  std::size_t n_grains_ = 0, n_movers_ = 0;
   bool list_build_requested_ = false;
   PhaseTimes timers_;
   Exchange exchange_;
@@ -390,6 +399,7 @@ private:
   Walls walls_;
   Sources sources_;
   EnergyLedger ledger_;
+  ClumpBodies clumps_;
 };
 
 } // namespace yuxi

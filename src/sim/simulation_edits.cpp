@@ -25,6 +25,10 @@ std::vector<std::size_t> Simulation::grain_indices(std::span<const GlobalId> ids
       throw std::invalid_argument(fmt::format(
           "particle id {} is a wall particle: its motion is the scene's, not set from outside",
           id));
+    if (store_.body[i] >= 0)
+      throw std::invalid_argument(
+          fmt::format("particle id {} is a member of clump {}: it moves with its clump, not alone",
+                      id, store_.body[i]));
     out.push_back(i);
   }
   return out;
@@ -214,6 +218,8 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
           if (!exchange_.decomposition().owns(config_.box.wrap(spec.position))) continue;
           ParticleSpec p = spec;
           p.kind = Kind::grain;
+          p.body = -1; // (a free grain; a clump is built with its body)
+          p.contact_mass = 0.0;
           store_.add(p, id);
         }
       });
@@ -222,26 +228,37 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
 
 std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
   std::int64_t removed = 0;
-  edit_particles([] {},
-                 [&] {
-                   const OwnedIndex index(store_);
-                   std::vector<std::size_t> gone;
-                   for (const GlobalId id : ids)
-                     if (const std::size_t i = index.find(id);
-                         i != OwnedIndex::none && store_.is_grain(i))
-                       gone.push_back(i);
-                   std::sort(gone.begin(), gone.end());
-                   gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
-                   const Vec3 g = potential_gravity(config_);
-                   for (const std::size_t i : gone)
-                     ledger_.books().removed += mechanical_energy(store_, i, g);
-                   removed = static_cast<std::int64_t>(gone.size());
-                   if (!gone.empty()) store_.remove_owned(gone);
-                 });
+  edit_particles(
+      [&] {
+        const OwnedIndex index(store_);
+        for (const GlobalId id : ids)
+          if (const std::size_t i = index.find(id); i != OwnedIndex::none && store_.body[i] >= 0)
+            throw std::invalid_argument(fmt::format(
+                "particle id {} is a member of clump {}: a clump leaves whole, not member by "
+                "member",
+                id, store_.body[i]));
+      },
+      [&] {
+        const OwnedIndex index(store_);
+        std::vector<std::size_t> gone;
+        for (const GlobalId id : ids)
+          if (const std::size_t i = index.find(id); i != OwnedIndex::none && store_.is_grain(i))
+            gone.push_back(i);
+        std::sort(gone.begin(), gone.end());
+        gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
+        const Vec3 g = potential_gravity(config_);
+        for (const std::size_t i : gone) ledger_.books().removed += mechanical_energy(store_, i, g);
+        removed = static_cast<std::int64_t>(gone.size());
+        if (!gone.empty()) store_.remove_owned(gone);
+      });
   return comm().sum(removed);
 }
 
 void Simulation::add_insert(InsertSpec insert) {
+  if (!clumps_.empty())
+    throw std::invalid_argument(fmt::format(
+        "insert '{}': [[insert]] does not yet pour among clumps: a scene with clumps has none",
+        insert.name));
   sources_.check_new_name(insert.name);
   ++edits_;
   const double cell_edge = exchange_.cell_edge();

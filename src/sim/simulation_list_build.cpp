@@ -3,6 +3,7 @@
 // the walls' candidates, contact history.
 #include "sim/simulation.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace yuxi {
@@ -42,31 +43,36 @@ void Simulation::build_lists(const ListBuildPlan& plan) {
   // Wrap grains into the periodic box along axes that one rank spans; across ranks the
   // migration shifts them.
   const auto dims = exchange_.decomposition().dims();
+  // (A clump's members stand wrapped already, placed from its centre, which wraps here.)
+  if (!clumps_.empty() && (in_step || plan.after == After::edit)) clumps_.wrap(config_.box);
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
-    if (!store_.is_grain(i)) continue;
+    if (!store_.is_grain(i) || store_.body[i] >= 0) continue;
     Vec3 wrapped = config_.box.wrap(store_.x[i]);
     for (int a = 0; a < 3; ++a)
       if (dims[a] > 1) wrapped[a] = store_.x[i][a];
     store_.x[i] = wrapped;
   }
   if (c.size() > 1) exchange_.migrate(store_, history);
-  // Sort owned particles by cell so that neighbours sit close in memory: the grains first,
-  // then the wall particles (so the integration runs over the grains alone, with no test of
-  // the kind, which alternates unpredictably along cells that hold both).
+  // Sort owned particles by cell so that neighbours sit close in memory: the free grains
+  // first, then the clumps' members, then the wall particles (so the integration runs over the
+  // free grains alone, with no test of the kind, which alternates unpredictably along cells
+  // that hold both).
   {
     PhaseTimer timer(timers_.neighbor_local);
     const CellGrid& grid = exchange_.grid();
     const std::size_t n = store_.n_owned(), cells = grid.n_cells();
-    std::vector<std::uint32_t> key(n), count(2 * cells + 1, 0), order(n);
+    std::vector<std::uint32_t> key(n), count(3 * cells + 1, 0), order(n);
     for (std::size_t i = 0; i < n; ++i) {
-      key[i] = static_cast<std::uint32_t>(grid.cell_index(store_.x[i]) +
-                                          (store_.is_grain(i) ? 0 : cells));
+      const std::size_t group = !store_.is_grain(i) ? 2 : store_.body[i] >= 0 ? 1 : 0;
+      key[i] = static_cast<std::uint32_t>(grid.cell_index(store_.x[i]) + group * cells);
       ++count[key[i] + 1];
     }
-    for (std::size_t k = 0; k < 2 * cells; ++k) count[k + 1] += count[k];
+    for (std::size_t k = 0; k < 3 * cells; ++k) count[k + 1] += count[k];
     n_grains_ = count[cells];
+    n_movers_ = count[2 * cells];
     for (std::size_t i = 0; i < n; ++i) order[count[key[i]]++] = static_cast<std::uint32_t>(i);
     store_.permute_owned(order);
+    if (!clumps_.empty()) clumps_.index_members(store_);
   }
   // Ghosts, each with copies of the contact states it may be needed for on its receiver.
   exchange_.make_ghosts(store_, history);
@@ -76,7 +82,7 @@ void Simulation::build_lists(const ListBuildPlan& plan) {
   // Where forces on ghosts go back to another rank, the pairs with a ghost come first
   // (compute_forces()).
   search_.build(store_, exchange_.grid(), exchange_.halo().sends_to_other_ranks(), walls_.planes());
-  walls_.list_candidates(store_, n_grains_, exchange_.grid(), search_.skin(), time_,
+  walls_.list_candidates(store_, n_movers_, exchange_.grid(), search_.skin(), time_,
                          search_.list());
   history.restore(store_, search_.list());
   contacts_.size_for(search_.list(), walls_.element_forces_here());
@@ -103,7 +109,7 @@ void Simulation::handle_escapes_here() {
   const std::size_t n = store_.n_owned();
   const Vec3 g_potential = potential_gravity(config_);
   const Box& box = config_.box;
-  std::vector<std::size_t> gone;
+  std::vector<std::size_t> gone, clumps_gone;
   for (std::size_t i = 0; i < n; ++i) {
     if (!is_finite(store_.x[i]) || !is_finite(store_.v[i]) || !is_finite(store_.w[i]))
       throw SimulationError(fmt::format("step {}, t = {}: non-finite state of {}; its contacts: {}",
@@ -116,12 +122,26 @@ void Simulation::handle_escapes_here() {
                                         step_, time_, describe_particle(i), box.lo.x, box.hi.x,
                                         box.lo.y, box.hi.y, box.lo.z, box.hi.z,
                                         describe_contacts(i)));
+    if (store_.body[i] >= 0) { // (a clump leaves whole, once, with the first member out)
+      clumps_gone.push_back(clumps_.body_of(store_, i));
+      continue;
+    }
     gone.push_back(i);
     ledger_.books().removed += mechanical_energy(store_, i, g_potential);
   }
+  const std::size_t escaped = gone.size();
+  if (!clumps_gone.empty()) {
+    std::sort(clumps_gone.begin(), clumps_gone.end());
+    clumps_gone.erase(std::unique(clumps_gone.begin(), clumps_gone.end()), clumps_gone.end());
+    for (const std::size_t b : clumps_gone)
+      ledger_.books().removed += clumps_.mechanical_energy(b, g_potential);
+    const std::vector<std::size_t> members = clumps_.remove(clumps_gone);
+    gone.insert(gone.end(), members.begin(), members.end());
+    std::sort(gone.begin(), gone.end());
+  }
   if (gone.empty()) return;
   store_.remove_owned(gone);
-  ledger_.books().escaped += gone.size();
+  ledger_.books().escaped += escaped + clumps_gone.size();
 }
 
 } // namespace yuxi

@@ -36,6 +36,7 @@ void Simulation::save_state(ArchiveWriter& ar) const {
   for (const std::vector<double>& cuts : exchange_.cuts()) ar.vector(cuts);
   ar.value(exchange_.cell_edge());
   ar.value(config_.skin);
+  clumps_.save(ar);
   store_.save(ar);
   contacts_.history().save(ar, store_, search_.list());
 }
@@ -60,8 +61,12 @@ Simulation::SavedCells Simulation::read_section(ArchiveReader& ar, const Section
           cells.skin < cells.edge))
       throw ArchiveError("the cells' edge or the skin is impossible (corrupt)");
   }
+  if (plan.layout >= 10)
+    clumps_.load(ar);
+  else
+    clumps_.set({});
   store_.clear_ghosts();
-  store_.checkpoint(ar);
+  store_.checkpoint(ar, plan.layout >= 10);
   if (plan.keep_history) {
     contacts_.history().load(ar);
   } else {
@@ -202,6 +207,10 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
     // (a branch sizes the cells for its own skin)
     if (branch) cells.edge = 0.0;
     validate_loaded_particles();
+    if (!clumps_.empty() && c.size() > 1)
+      throw std::invalid_argument(fmt::format(
+          "the checkpoint holds clumps, which run on one rank for now, not on {}", c.size()));
+    clumps_.index_members(store_); // (every member there, each naming a clump that is)
   } catch (const ArchiveError& e) {
     error = e.what();
   } catch (const std::length_error&) {
@@ -300,6 +309,7 @@ Simulation::SavedCells Simulation::merge_sections(const std::vector<std::string>
   ContactTally tally;
   double time = 0, initial_balance = 0;
   std::int64_t step = 0, list_builds = 0;
+  std::vector<ClumpBody> bodies;
   for (std::size_t k = 0; k < share.size(); ++k) {
     ArchiveReader ar(share[k]);
     const SavedCells read = read_section(ar, plan);
@@ -309,6 +319,7 @@ Simulation::SavedCells Simulation::merge_sections(const std::vector<std::string>
       time = time_, step = step_, list_builds = list_builds_,
       initial_balance = ledger_.initial_balance();
     for (std::size_t i = 0; i < store_.n_owned(); ++i) pool.append_copy(store_, i);
+    bodies.insert(bodies.end(), clumps_.bodies().begin(), clumps_.bodies().end());
     states += contacts_.history().stashed_bytes();
     books.add(ledger_.books());
     const Walls::Work& w = walls_.work();
@@ -323,6 +334,9 @@ Simulation::SavedCells Simulation::merge_sections(const std::vector<std::string>
     tally.touching += t.touching;
   }
   store_ = std::move(pool);
+  std::sort(bodies.begin(), bodies.end(),
+            [](const ClumpBody& a, const ClumpBody& b) { return a.id < b.id; });
+  clumps_.set(std::move(bodies));
   contacts_.history().give(states);
   time_ = time, step_ = step, list_builds_ = list_builds;
   ledger_.set_initial_balance(initial_balance);

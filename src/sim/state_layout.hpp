@@ -6,13 +6,15 @@
 // pourings started, paused or stopped from outside the scene; a state of layout 6 or 7 matches
 // them by position. Layout 9 adds the linked cells' edge and the skin after the cut planes, so
 // that a resumed run is built straight from its state with the saved run's cells; a state of
-// layout 8 or older is given cells sized for its particles.
+// layout 8 or older is given cells sized for its particles. Layout 10 adds the clumps' bodies
+// (sim/clump_bodies.hpp) before the particles, and the particles' `body` field; in a state of
+// layout 9 or older no particle is a clump's member.
 #pragma once
 
 #include <cstdint>
 
 namespace yuxi {
 
-inline constexpr std::uint32_t state_layout = 9, oldest_state_layout = 5;
+inline constexpr std::uint32_t state_layout = 10, oldest_state_layout = 5;
 
 } // namespace yuxi

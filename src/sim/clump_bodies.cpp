@@ -1,0 +1,264 @@
+#include "sim/clump_bodies.hpp"
+
+#include "core/free_rotation.hpp"
+#include "core/particle_energy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace yuxi {
+
+Vec3 ClumpBody::angular_velocity() const {
+  return lab_angular_velocity(q, p, inertia);
+}
+
+Vec3 ClumpBody::arm(std::size_t k) const {
+  return to_lab(q, members[k]);
+}
+
+double ClumpBody::smallest_contact_mass() const {
+  double reach = 0.0;
+  for (std::size_t k = 0; k < members.size(); ++k)
+    reach = std::max(reach, norm(members[k]) + radii[k]);
+  const double smallest_moment = std::min({inertia.x, inertia.y, inertia.z});
+  return 1.0 / (1.0 / mass + reach * reach / smallest_moment);
+}
+
+PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t material,
+                       GlobalId first_id, const Vec3& x, const Quaternion& orientation,
+                       const Vec3& v, const Vec3& omega) {
+  if (!(density > 0.0) || !std::isfinite(density))
+    throw std::invalid_argument(
+        fmt::format("clump '{}': density {} is not positive and finite", shape.name, density));
+  if (!(std::abs(dot(orientation, orientation) - 1.0) < 1e-9))
+    throw std::invalid_argument(
+        fmt::format("clump '{}': the orientation is not a unit quaternion", shape.name));
+  PlacedClump out;
+  ClumpBody& b = out.body;
+  b.id = first_id;
+  b.mass = density * shape.volume;
+  b.inertia = density * shape.inertia_per_density;
+  b.x = x;
+  b.v = v;
+  b.q = orientation;
+  const Vec3 w_body = to_body(b.q, omega);
+  b.p =
+      rotor_momentum(b.q, {b.inertia.x * w_body.x, b.inertia.y * w_body.y, b.inertia.z * w_body.z});
+  b.material = material;
+  double summed = 0.0; // the members' volumes, each whole (overlaps counted again)
+  for (const SphereMember& m : shape.members) {
+    b.members.push_back(m.centre);
+    b.radii.push_back(m.radius);
+    summed += m.radius * m.radius * m.radius;
+  }
+  for (std::size_t k = 0; k < b.members.size(); ++k) {
+    ParticleSpec m;
+    const Vec3 r = b.arm(k);
+    m.position = x + r;
+    m.velocity = v + cross(omega, r);
+    m.angular_velocity = omega;
+    m.radius = b.radii[k];
+    m.mass = b.mass * (b.radii[k] * b.radii[k] * b.radii[k] / summed);
+    m.material = material;
+    m.spins = false; // (its rotation is its clump's)
+    m.body = first_id;
+    m.contact_mass = b.mass;
+    out.members.push_back(m);
+  }
+  return out;
+}
+
+void ClumpBodies::set(std::vector<ClumpBody> bodies) {
+  for (std::size_t b = 1; b < bodies.size(); ++b)
+    if (!(bodies[b - 1].id < bodies[b].id))
+      throw std::invalid_argument(
+          fmt::format("clump ids must ascend and differ (clump {} follows clump {})", bodies[b].id,
+                      bodies[b - 1].id));
+  bodies_ = std::move(bodies);
+  first_.clear();
+  member_index_.clear();
+}
+
+void ClumpBodies::index_members(const ParticleStore& s) {
+  first_.assign(bodies_.size() + 1, 0);
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    first_[b + 1] = first_[b] + bodies_[b].members.size();
+  constexpr auto missing = static_cast<std::uint32_t>(-1);
+  member_index_.assign(first_.back(), missing);
+  for (std::size_t i = 0; i < s.n_owned(); ++i) {
+    if (s.body[i] < 0) continue;
+    const std::size_t b = body_of(s, i);
+    const auto k = static_cast<std::size_t>(s.gid[i] - bodies_[b].id);
+    if (k >= bodies_[b].members.size() || member_index_[first_[b] + k] != missing)
+      throw std::invalid_argument(
+          fmt::format("grain {} is no member of clump {} ({} members, ids {} on)", s.gid[i],
+                      bodies_[b].id, bodies_[b].members.size(), bodies_[b].id));
+    member_index_[first_[b] + k] = static_cast<std::uint32_t>(i);
+  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    for (std::size_t k = 0; k < bodies_[b].members.size(); ++k)
+      if (member_index_[first_[b] + k] == missing)
+        throw std::invalid_argument(fmt::format("member {} (grain {}) of clump {} is missing", k,
+                                                bodies_[b].id + static_cast<GlobalId>(k),
+                                                bodies_[b].id));
+}
+
+std::size_t ClumpBodies::body_of(const ParticleStore& s, std::size_t i) const {
+  const GlobalId id = s.body[i];
+  const auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id,
+                                   [](const ClumpBody& b, GlobalId g) { return b.id < g; });
+  if (at == bodies_.end() || at->id != id)
+    throw std::invalid_argument(
+        fmt::format("grain {} names clump {}, which does not exist", s.gid[i], id));
+  return static_cast<std::size_t>(at - bodies_.begin());
+}
+
+void ClumpBodies::kick_drift(double dt, const Vec3& g_periodic, double& gravity_work) {
+  const double half_dt = 0.5 * dt;
+  for (ClumpBody& b : bodies_) {
+    const double kick = half_dt / b.mass;
+    b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
+    kick_rotor(b.q, b.p, b.torque, half_dt);
+    free_rotation(b.q, b.p, b.inertia, dt);
+    b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
+    gravity_work += b.mass * dot(g_periodic, b.v) * dt; // M g_p . dX
+  }
+}
+
+void ClumpBodies::final_kick(double dt) {
+  const double half_dt = 0.5 * dt;
+  for (ClumpBody& b : bodies_) {
+    const double kick = half_dt / b.mass;
+    b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
+    kick_rotor(b.q, b.p, b.torque, half_dt);
+  }
+}
+
+bool ClumpBodies::place_members(ParticleStore& s, const Box& box, double limit2,
+                                double* moved2) const {
+  bool moved_far = false;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const ClumpBody& body = bodies_[b];
+    const Vec3 omega = body.angular_velocity();
+    for (std::size_t k = 0; k < body.members.size(); ++k) {
+      const std::size_t i = member_index_[first_[b] + k];
+      const Vec3 r = body.arm(k);
+      s.v[i] = body.v + cross(omega, r);
+      s.w[i] = omega;
+      if (!moved2) continue;
+      const Vec3 x = box.wrap(body.x + r);
+      *moved2 = std::max(*moved2, norm2(x - s.x[i]));
+      s.x[i] = x;
+      moved_far |= !(norm2(s.x[i] - s.x_build[i]) <= limit2); // NaN too
+    }
+  }
+  return moved_far;
+}
+
+void ClumpBodies::gather_forces(const ParticleStore& s, const Vec3& gravity) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    ClumpBody& body = bodies_[b];
+    Vec3 force = body.mass * gravity, torque;
+    for (std::size_t k = 0; k < body.members.size(); ++k) {
+      const std::size_t i = member_index_[first_[b] + k];
+      force += s.f[i];
+      torque += cross(body.arm(k), s.f[i]) + s.torque[i];
+    }
+    body.force = force;
+    body.torque = torque;
+  }
+}
+
+void ClumpBodies::add_energies(EnergyBooks& e, const Vec3& g_potential) const {
+  for (const ClumpBody& b : bodies_) {
+    e.translational += translational_energy(b.mass, b.v);
+    e.rotational += rotor_energy(b.q, b.p, b.inertia);
+    e.gravitational -= b.mass * dot(g_potential, b.x);
+    ++e.grains;
+  }
+}
+
+double ClumpBodies::mechanical_energy(std::size_t b, const Vec3& g_potential) const {
+  const ClumpBody& body = bodies_[b];
+  return translational_energy(body.mass, body.v) + rotor_energy(body.q, body.p, body.inertia) -
+         body.mass * dot(g_potential, body.x);
+}
+
+std::vector<std::size_t> ClumpBodies::remove(std::span<const std::size_t> bodies) {
+  std::vector<std::size_t> members;
+  for (const std::size_t b : bodies)
+    for (std::size_t k = first_[b]; k < first_[b + 1]; ++k) members.push_back(member_index_[k]);
+  std::sort(members.begin(), members.end());
+  std::vector<ClumpBody> kept;
+  kept.reserve(bodies_.size() - bodies.size());
+  std::size_t next = 0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (next < bodies.size() && bodies[next] == b) {
+      ++next;
+      continue;
+    }
+    kept.push_back(std::move(bodies_[b]));
+  }
+  set(std::move(kept));
+  return members;
+}
+
+void ClumpBodies::wrap(const Box& box) {
+  for (ClumpBody& b : bodies_) b.x = box.wrap(b.x);
+}
+
+namespace {
+
+// A body's fields in the order of a checkpoint, saved (Body const) or loaded.
+template <class Archive, class Body> void transfer(Archive& ar, Body& b) {
+  ar.value(b.id);
+  ar.value(b.mass);
+  ar.value(b.inertia);
+  ar.value(b.x);
+  ar.value(b.v);
+  ar.value(b.q);
+  ar.value(b.p);
+  ar.value(b.force);
+  ar.value(b.torque);
+  ar.value(b.material);
+  ar.vector(b.members);
+  ar.vector(b.radii);
+}
+
+} // namespace
+
+void ClumpBodies::save(ArchiveWriter& ar) const {
+  ar.value(static_cast<std::uint64_t>(bodies_.size()));
+  for (const ClumpBody& b : bodies_) transfer(ar, b);
+}
+
+void ClumpBodies::load(ArchiveReader& ar) {
+  std::uint64_t n = 0;
+  ar.value(n);
+  ar.check_room(n, sizeof(ClumpBody::id) + sizeof(double) * 26);
+  std::vector<ClumpBody> bodies(n);
+  for (ClumpBody& b : bodies) {
+    transfer(ar, b);
+    const double scalars[] = {b.mass,    b.inertia.x, b.inertia.y, b.inertia.z, b.q.w,
+                              b.q.x,     b.q.y,       b.q.z,       b.p.w,       b.p.x,
+                              b.p.y,     b.p.z,       b.x.x,       b.x.y,       b.x.z,
+                              b.v.x,     b.v.y,       b.v.z,       b.force.x,   b.force.y,
+                              b.force.z, b.torque.x,  b.torque.y,  b.torque.z};
+    bool ok = b.mass > 0 && b.inertia.x > 0 && b.inertia.y > 0 && b.inertia.z > 0 &&
+              !b.members.empty() && b.members.size() == b.radii.size() && b.id >= 0;
+    for (const double x : scalars) ok = ok && std::isfinite(x);
+    ok = ok && std::abs(dot(b.q, b.q) - 1.0) < 1e-9; // (a unit quaternion)
+    for (std::size_t k = 0; ok && k < b.members.size(); ++k)
+      ok = is_finite(b.members[k]) && b.radii[k] > 0 && std::isfinite(b.radii[k]);
+    if (!ok)
+      throw std::invalid_argument(fmt::format(
+          "clump {} of the checkpoint is impossible (mass, moments, members, orientation or a "
+          "non-finite value)",
+          b.id));
+  }
+  set(std::move(bodies));
+}
+
+} // namespace yuxi

@@ -1,0 +1,120 @@
+// Rigid clumps of spheres in a simulation, one part of it (docs/clumps.md). A clump's members
+// are grains of the particle store, with the clump's id in their `body` field; the clump
+// itself, its body, lives here: mass, principal moments, centre of mass and its velocity,
+// orientation q and the conjugate momentum p of NO_SQUISH (core/free_rotation.hpp), and the
+// members' centres in its principal frame. The part integrates the bodies (velocity Verlet for
+// the centre, NO_SQUISH for the orientation), places the members from them at every drift
+// (x = X + R b, v = V + omega x R b, w = omega), and adds the members' contact forces and
+// torques onto them, member by member in the order of the shape, so the sum does not depend on
+// where the list build sorted the members.
+//
+// Members take their body's mass in contacts (inv_mass = 1 / M, as LAMMPS's granular pair
+// styles do with rigid bodies); their `mass` field holds their share of it, by volume, for the
+// analyses that weigh grains. The books take the bodies' energies in place of the members'.
+#pragma once
+
+#include "core/archive.hpp"
+#include "core/box.hpp"
+#include "core/particle_store.hpp"
+#include "core/quaternion.hpp"
+#include "core/vec3.hpp"
+#include "scene/clump_shape.hpp"
+#include "sim/energy_books.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace yuxi {
+
+struct ClumpBody {
+  GlobalId id = -1;   // the global id of member 0; member k has id + k
+  double mass = 0.0;  // M [mass]
+  Vec3 inertia;       // principal moments I1, I2, I3 [mass length^2]
+  Vec3 x;             // centre of mass
+  Vec3 v;             // its velocity
+  Quaternion q;       // body frame -> lab
+  Quaternion p;       // NO_SQUISH's conjugate momentum 2 q (0, L_body)
+  Vec3 force, torque; // at the last force evaluation (lab frame; the torque about x)
+  std::uint8_t material = 0;
+  std::vector<Vec3> members; // centres in the principal frame [length]
+  std::vector<double> radii; // [length]
+
+  // The angular velocity in the lab frame [rad/time].
+  Vec3 angular_velocity() const;
+  // Member k's centre relative to the centre of mass, in the lab frame.
+  Vec3 arm(std::size_t k) const;
+  // The smallest mass a contact on one of its members can meet: 1 / (1/M + max_k (|b_k| +
+  // r_k)^2 / I_min), a lower bound of the effective mass at any point of its surface (the time
+  // step's check).
+  double smallest_contact_mass() const;
+};
+
+// A clump of `shape` (scene/clump_shape.hpp) and `density` [mass/length^3]: its body, of id
+// `first_id`, its centre of mass at x, turned by `orientation` from the principal frame, moving
+// at v and turning at omega (lab frame) [length/time, rad/time]; and its members (ids first_id +
+// k, in the shape's order), each with its share of the mass by volume. Throws
+// std::invalid_argument for a density that is not positive and finite, or an orientation that
+// is not a unit quaternion.
+struct PlacedClump {
+  ClumpBody body;
+  std::vector<ParticleSpec> members;
+};
+PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t material,
+                       GlobalId first_id, const Vec3& x, const Quaternion& orientation,
+                       const Vec3& v = {}, const Vec3& omega = {});
+
+class ClumpBodies {
+public:
+  // The bodies (ids ascending and unique; the members must be in the store before the first
+  // list build: index_members()).
+  void set(std::vector<ClumpBody> bodies);
+  bool empty() const { return bodies_.empty(); }
+  std::size_t size() const { return bodies_.size(); }
+  const std::vector<ClumpBody>& bodies() const { return bodies_; }
+  // The members of every body among the owned particles of `s`, found again after the particles
+  // were sorted (a list build). Throws std::invalid_argument where a body's member is missing,
+  // or where a grain names a body that is not here.
+  void index_members(const ParticleStore& s);
+
+  // The first half kick by the last forces and the drift over dt (velocity Verlet; NO_SQUISH's
+  // R3 R2 R1 R2 R3 for the orientation); gravity's work along periodic axes M g_p . dX added
+  // to `gravity_work`.
+  void kick_drift(double dt, const Vec3& g_periodic, double& gravity_work);
+  // The second half kick by the forces just gathered.
+  void final_kick(double dt);
+  // The members placed from their bodies (positions wrapped into `box`'s periodic axes), with
+  // the bodies' velocities at their points; returns whether a member moved farther than
+  // sqrt(limit2) from where it stood at the last list build, and raises `moved2` to the largest
+  // squared displacement of a member. `moved2` null: velocities only, the positions kept.
+  bool place_members(ParticleStore& s, const Box& box, double limit2, double* moved2) const;
+  // Each body's force and torque: gravity M g, plus its members' contact forces and torques,
+  // member by member.
+  void gather_forces(const ParticleStore& s, const Vec3& gravity);
+
+  // The bodies' translational, rotational and gravitational energies and their count, added to
+  // the books (members are left out of the per-grain sums).
+  void add_energies(EnergyBooks& e, const Vec3& g_potential) const;
+  // The mechanical energy of body b (as the books count it).
+  double mechanical_energy(std::size_t b, const Vec3& g_potential) const;
+  // The body of member i of the store, by its index here.
+  std::size_t body_of(const ParticleStore& s, std::size_t i) const;
+  // Removes bodies (indices here, ascending); returns the store indices of their members, to be
+  // removed by the caller (ascending).
+  std::vector<std::size_t> remove(std::span<const std::size_t> bodies);
+  // Wraps the centres of mass into the box's periodic axes.
+  void wrap(const Box& box);
+
+  void save(ArchiveWriter& ar) const;
+  // Throws ArchiveError where the section is damaged, std::invalid_argument where a body is
+  // impossible (non-finite, not positive mass or moments, no members).
+  void load(ArchiveReader& ar);
+
+private:
+  std::vector<ClumpBody> bodies_;
+  // Store indices of the members, body by body in member order (first_[b] to first_[b + 1]).
+  std::vector<std::size_t> first_;
+  std::vector<std::uint32_t> member_index_;
+};
+
+} // namespace yuxi
