@@ -3,6 +3,7 @@
 #pragma once
 
 #include "contact/contact_model.hpp"
+#include "scene/clump_shape.hpp"
 #include "scene/coarse_grain_spec.hpp"
 #include "scene/fish_basin.hpp"
 #include "scene/measure_spec.hpp"
@@ -124,12 +125,14 @@ struct Scene {
   std::vector<std::string> warnings; // for the user, once (e.g. mesh triangles left out)
   std::optional<FishBasinSpec> basin;
   std::optional<AnalysisSettings> analysis;
-  std::vector<FillSpec> fills;                // [[fill]]: grains placed at the start
-  std::vector<InsertSpec> inserts;            // [[insert]]: grains poured during the run
-  std::vector<OutletSpec> outlets;            // [[outlet]]: where grains leave
-  std::vector<MeasureSpec> measures;          // [[measure]]: measurements.csv
-  std::vector<CoarseGrainSpec> coarse_grains; // [[coarse_grain]]: fields on grids
-  std::vector<ParticleSpec> particles;        // explicit [[particle]] entries and LAMMPS data atoms
+  std::vector<ClumpShape> shapes;                       // [[shape]]: clumps of spheres, by name
+  std::vector<std::vector<SphereMember>> shape_spheres; // each shape's members as given, scaled
+  std::vector<FillSpec> fills;                          // [[fill]]: grains placed at the start
+  std::vector<InsertSpec> inserts;                      // [[insert]]: grains poured during the run
+  std::vector<OutletSpec> outlets;                      // [[outlet]]: where grains leave
+  std::vector<MeasureSpec> measures;                    // [[measure]]: measurements.csv
+  std::vector<CoarseGrainSpec> coarse_grains;           // [[coarse_grain]]: fields on grids
+  std::vector<ParticleSpec> particles; // explicit [[particle]] entries and LAMMPS data atoms
   std::optional<LammpsDataSpec> lammps_data;
   std::size_t n_lammps_atoms = 0;
   // The largest radius of the grains the scene builds or pours (0: none; a branch takes its

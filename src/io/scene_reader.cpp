@@ -5,6 +5,7 @@
 #include "io/coarse_grain_scene_reader.hpp"
 #include "io/lammps_data_reader.hpp"
 #include "io/measure_scene_reader.hpp"
+#include "io/shape_scene_reader.hpp"
 #include "io/source_scene_reader.hpp"
 #include "io/toml_reader.hpp"
 #include "io/wall_scene_reader.hpp"
@@ -656,6 +657,7 @@ Scene read_scene_text(std::string_view text, const std::string& source, bool lin
   read_analysis(scene, root);
   read_lammps_data_section(scene, root);
   read_particles(scene, root);
+  read_shapes(scene, root); // (before the fills that name them)
   read_sources(scene, root);
   read_measures(scene, root);
   read_coarse_grains(scene, root);

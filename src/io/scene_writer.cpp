@@ -123,11 +123,22 @@ void write_grains(const Scene& s, const GrainKind& g, toml::table& t) {
 }
 
 void write_sources(const Scene& s, toml::table& doc) {
+  if (!s.shapes.empty()) {
+    toml::array shapes;
+    for (std::size_t k = 0; k < s.shapes.size(); ++k) {
+      toml::array spheres;
+      for (const SphereMember& m : s.shape_spheres[k])
+        spheres.push_back(toml::array{m.centre.x, m.centre.y, m.centre.z, m.radius});
+      shapes.push_back(toml::table{{"name", s.shapes[k].name}, {"spheres", spheres}});
+    }
+    doc.insert("shape", shapes);
+  }
   if (!s.fills.empty()) {
     toml::array fills;
     for (const FillSpec& f : s.fills) {
       toml::table t{{"region", region_table(f.region)}};
       write_grains(s, f.grains, t);
+      if (f.shape >= 0) t.insert("shape", s.shapes[static_cast<std::size_t>(f.shape)].name);
       if (f.walls) {
         t.insert("kind", "wall");
         t.erase("velocity");

@@ -1,11 +1,14 @@
 #include "io/source_scene_reader.hpp"
 
+#include "core/ball_volume.hpp"
 #include "core/units.hpp"
 #include "io/wall_scene_reader.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
+#include <string_view>
 
 namespace yuxi {
 namespace {
@@ -94,6 +97,24 @@ void read_fill(Scene& scene, TomlReader& t, std::size_t index) {
   f.region = read_region(scene, t);
   f.walls = t.choice("kind", {"grain", "wall"}, "grain") == "wall";
   f.grains = read_grains(scene, t, 2008 + index, f.walls);
+  if (t.has("shape")) {
+    const std::string name = t.string("shape");
+    std::vector<std::string_view> names;
+    for (std::size_t k = 0; k < scene.shapes.size(); ++k) {
+      names.push_back(scene.shapes[k].name);
+      if (scene.shapes[k].name == name) f.shape = static_cast<int>(k);
+    }
+    if (f.shape < 0)
+      t.fail("shape", scene.shapes.empty()
+                          ? fmt::format("no [[shape]] named '{}': the scene has no [[shape]]", name)
+                          : fmt::format("no [[shape]] named '{}' (the scene's: {})", name,
+                                        fmt::join(names, ", ")));
+    if (f.walls) t.fail("shape", "wall particles are spheres: no shape for kind = \"wall\"");
+    const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(f.shape)];
+    // (one member: a sphere, the fill's grains as they would be without the shape)
+    if (shape.members.size() > 1)
+      f.grains.volume_fraction = shape.volume / ball_volume(shape.bounding_radius);
+  }
   if (f.walls && (t.has("velocity") || t.has("velocity_spread")))
     t.fail(t.has("velocity") ? "velocity" : "velocity_spread",
            "wall particles do not move: no velocity for kind = \"wall\"");
@@ -136,6 +157,8 @@ void read_insert(Scene& scene, TomlReader& t, std::size_t index) {
   s.name = t.string("name", fmt::format("insert[{}]", index + 1));
   s.region = read_region(scene, t);
   s.grains = read_grains(scene, t, 3008 + index);
+  if (t.has("shape"))
+    t.fail("shape", "[[insert]] does not pour clumps yet: place them at the start with [[fill]]");
   if (t.has("rate") == t.has("mass_rate"))
     t.fail("rate", "give exactly one of 'rate' (grains per time) and 'mass_rate' (mass per time)");
   s.by_mass = t.has("mass_rate");

@@ -254,6 +254,30 @@ std::vector<double> TomlReader::numbers(std::string_view key) {
   return out;
 }
 
+std::vector<std::vector<double>> TomlReader::number_rows(std::string_view key, std::size_t width) {
+  const std::string what = fmt::format("an array of arrays of {} numbers", width);
+  const toml::node& n = require(key);
+  const toml::array* rows = n.as_array();
+  if (!rows || rows->empty()) wrong_type(key, what);
+  std::vector<std::vector<double>> out;
+  for (const auto& row : *rows) {
+    const toml::array* a = row.as_array();
+    if (!a) wrong_type(key, what);
+    if (a->size() != width)
+      fail(key, fmt::format("row {} has {} numbers, not {}", out.size() + 1, a->size(), width));
+    std::vector<double> values;
+    for (const auto& e : *a) {
+      if (!e.is_number()) wrong_type(key, what);
+      const double x =
+          e.is_integer() ? static_cast<double>(*e.value<std::int64_t>()) : *e.value<double>();
+      if (!std::isfinite(x)) fail(key, "every number must be finite");
+      values.push_back(x);
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
 std::optional<TomlReader> TomlReader::table(std::string_view key) {
   const toml::node* n = find(key);
   if (!n) return std::nullopt;

@@ -54,6 +54,8 @@ public:
   std::vector<std::string> strings(std::string_view key);
   std::vector<std::int64_t> integers(std::string_view key);
   std::vector<double> numbers(std::string_view key); // finite numbers (integers allowed)
+  // An array of arrays of `width` finite numbers each ([[x, y, z, r], ...]); at least one.
+  std::vector<std::vector<double>> number_rows(std::string_view key, std::size_t width);
 
   std::optional<TomlReader> table(std::string_view key);
   std::vector<TomlReader> tables(std::string_view key); // an array of tables ([[key]])

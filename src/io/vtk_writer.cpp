@@ -76,6 +76,9 @@ constexpr ArraySpec point_data[] = {
     {"Int64", "id", 1, 8,
      scalar<std::int64_t>(
          [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.gid[i]; })},
+    {"Int64", "clump", 1, 8, // the clump a grain is a member of (its id), -1: none
+     scalar<std::int64_t>(
+         [](const ParticleStore& s, std::uint64_t, std::uint32_t i) { return s.body[i]; })},
     {"Int32", "kind", 1, 4,
      scalar<std::int32_t>([](const ParticleStore& s, std::uint64_t, std::uint32_t i) {
        return static_cast<std::int32_t>(s.kind[i]);

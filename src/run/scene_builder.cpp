@@ -1,6 +1,9 @@
 #include "run/scene_builder.hpp"
 
+#include "sim/clump_bodies.hpp"
+
 #include <fmt/format.h>
+#include <span>
 
 namespace yuxi {
 
@@ -36,9 +39,36 @@ std::string speed_note(const BuildReport& r) {
 namespace {
 
 // The scene's particles at t = 0, as every rank builds them: the basin's, the [[particle]]s, the
-// fills in file order, each clear of every particle placed before it.
-ParticleStore scene_particles(const Scene& scene, BuildReport& r) {
+// fills in file order, each clear of every particle placed before it; and the clumps' bodies.
+struct SceneParticles {
   ParticleStore particles;
+  std::vector<ClumpBody> clumps;
+};
+
+// The grains a fill of clumps placed become clumps of its shape: each grain's ball bounds its
+// clump (scaled to the ball's radius), turned at random about its centre of mass from the fill's
+// own stream; the members take the ids from `next` on. A shape of one member leaves the grains
+// spheres, as the fill placed them.
+void add_clumps(const Scene& scene, const FillSpec& f, std::span<const ParticleSpec> grains,
+                GlobalId& next, SceneParticles& out) {
+  const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(f.shape)];
+  Random turns(f.grains.seed * 4 + 4);
+  for (const ParticleSpec& p : grains) {
+    if (shape.members.size() == 1) {
+      out.particles.add(p, next++);
+      continue;
+    }
+    const PlacedClump c =
+        make_clump(shape.scaled(p.radius / shape.bounding_radius), f.grains.density, p.material,
+                   next, p.position, random_orientation(turns), p.velocity);
+    for (const ParticleSpec& m : c.members) out.particles.add(m, next++);
+    out.clumps.push_back(c.body);
+  }
+}
+
+SceneParticles scene_particles(const Scene& scene, BuildReport& r) {
+  SceneParticles out;
+  ParticleStore& particles = out.particles;
   if (scene.basin) {
     BuiltParticles basin = build_fish_basin(*scene.basin, scene.sim.box.lo);
     particles = std::move(basin.particles);
@@ -66,13 +96,16 @@ ParticleStore scene_particles(const Scene& scene, BuildReport& r) {
       } catch (const FillError& e) {
         throw SceneError(e.what());
       }
-      for (const auto& p : grains) particles.add(p, next++);
+      if (f.shape >= 0)
+        add_clumps(scene, f, grains, next, out);
+      else
+        for (const auto& p : grains) particles.add(p, next++);
       (f.walls ? r.walls : r.grains) += grains.size();
       r.filled += grains.size();
       placed.insert(placed.end(), grains.begin(), grains.end());
     }
   }
-  return particles;
+  return out;
 }
 
 } // namespace
@@ -108,13 +141,15 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
                                  "run's state (yuxi run --from, Python's Simulation.branch)",
                                  scene.source));
   BuildReport r;
-  ParticleStore particles = scene_particles(scene, r);
+  SceneParticles built = scene_particles(scene, r);
+  ParticleStore& particles = built.particles;
   check_outlets(scene, particles, r);
   SimulationFrame frame = scene_frame(scene);
   r.impact = impact_speed(scene, particles, frame.motions);
-  auto sim = std::make_unique<Simulation>(
-      std::move(frame.config), std::move(particles), std::move(frame.planes),
-      std::move(frame.motions), std::move(frame.law), comm, std::move(frame.shaped_walls));
+  auto sim = std::make_unique<Simulation>(std::move(frame.config), std::move(particles),
+                                          std::move(frame.planes), std::move(frame.motions),
+                                          std::move(frame.law), comm, std::move(frame.shaped_walls),
+                                          std::move(built.clumps));
   if (!frame.inserts.empty() || !frame.outlets.empty())
     sim->set_sources(std::move(frame.inserts), std::move(frame.outlets));
   check_time_step(scene, *sim, force_dt, r);

@@ -2,6 +2,7 @@
 #include "scene/clump_shape.hpp"
 
 #include "core/symmetric_eigen3.hpp"
+#include "core/units.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,13 @@
 #include <vector>
 
 namespace yuxi {
+
+Quaternion random_orientation(Random& rng) {
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  return {a * std::sin(2.0 * pi * u2), a * std::cos(2.0 * pi * u2), b * std::sin(2.0 * pi * u3),
+          b * std::cos(2.0 * pi * u3)};
+}
 
 ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> members) {
   if (members.empty()) throw std::invalid_argument(fmt::format("shape \"{}\": no members", name));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/quaternion.hpp"
+#include "core/random.hpp"
 #include "core/vec3.hpp"
 #include "scene/sphere_union.hpp"
 
@@ -30,6 +31,10 @@ struct ClumpShape {
   // centre), the volume times factor^3, the moments times factor^5.
   ClumpShape scaled(double factor) const;
 };
+
+// An orientation drawn uniformly from all rotations (Shoemake, Graphics Gems III, 1992: a
+// unit quaternion from three uniform numbers).
+Quaternion random_orientation(Random& rng);
 
 // The shape of `members`, given in any frame (radii > 0; throws std::invalid_argument naming
 // the member that is not). Members inside others count once.

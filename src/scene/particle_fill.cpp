@@ -11,7 +11,7 @@
 namespace yuxi {
 
 double GrainKind::mass_of(double r) const {
-  return density * ball_volume(r);
+  return density * (volume_fraction * ball_volume(r));
 }
 
 Vec3 GrainKind::draw_velocity(Random& rng) const {
@@ -39,7 +39,7 @@ std::vector<double> draw_radii(const FillSpec& f, double region_volume) {
   double total = 0;
   while (total < target) {
     const double r = f.grains.size.draw(rng);
-    const double add = by_mass ? f.grains.mass_of(r) : ball_volume(r);
+    const double add = by_mass ? f.grains.mass_of(r) : f.grains.volume_fraction * ball_volume(r);
     if (total + add - target > target - total) break; // the next one would overshoot more
     radii.push_back(r);
     total += add;

@@ -34,6 +34,9 @@ struct GrainKind {
   Vec3 velocity;              // mean initial velocity [length/time]
   double velocity_spread = 0; // plus a vector uniform in a ball of this radius [length/time]
   std::uint64_t seed = 1;
+  // Clumps: a grain's volume over that of its bounding ball (1 for spheres), so that a grain of
+  // bounding radius r weighs density volume_fraction 4/3 pi r^3.
+  double volume_fraction = 1.0;
 
   double mass_of(double r) const;
   // The initial velocity of one grain, from the stream.
@@ -52,6 +55,10 @@ struct FillSpec {
   double jitter = 0.0;           // lattice: random offset of each grain, within a ball [length]
   int attempts_per_grain = 1000; // random: draws of a place before the fill gives up
   bool walls = false;            // fixed wall particles (a rough floor) instead of grains
+  // Clumps of the scene's shape of this index (-1: spheres): each grain placed is the shape's
+  // bounding ball, of the radius drawn, and the clump is turned at random inside it
+  // (run/scene_builder.cpp), so clumps never overlap what the fill would not.
+  int shape = -1;
 };
 
 // The request cannot be met: what() says how many grains fit and why.

@@ -1,0 +1,67 @@
+#include "io/shape_scene_reader.hpp"
+
+#include "io/sphere_list_reader.hpp"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace yuxi {
+
+namespace {
+
+std::vector<SphereMember> read_members(const Scene& scene, TomlReader& t) {
+  if (t.has("spheres") == t.has("file"))
+    t.fail("spheres", "give exactly one of 'spheres' (the members, [[x, y, z, r], ...]) and "
+                      "'file' (a CSV or sphere-list file of them)");
+  std::vector<SphereMember> members;
+  if (t.has("spheres")) {
+    for (const std::vector<double>& row : t.number_rows("spheres", 4)) {
+      if (!(row[3] > 0.0))
+        t.fail("spheres", fmt::format("member {} has radius {}: every radius must be positive",
+                                      members.size() + 1, row[3]));
+      members.push_back({{row[0], row[1], row[2]}, row[3]});
+    }
+  } else {
+    const std::string given = t.string("file");
+    const auto base = std::filesystem::path(scene.source).parent_path();
+    const std::filesystem::path path =
+        std::filesystem::path(given).is_absolute() ? std::filesystem::path(given) : base / given;
+    try {
+      members = read_sphere_list(std::filesystem::absolute(path).lexically_normal().string());
+    } catch (const ShapeFileError& e) {
+      t.fail("file", e.what());
+    }
+  }
+  if (members.size() > max_clump_members)
+    t.fail(t.has("file") ? "file" : "spheres",
+           fmt::format("{} members; a clump holds at most {}", members.size(), max_clump_members));
+  return members;
+}
+
+void read_shape(Scene& scene, TomlReader& t) {
+  const std::string name = t.plain_name("name", "_-", "a shape's name");
+  for (const ClumpShape& s : scene.shapes)
+    if (s.name == name) t.fail("name", fmt::format("a second shape named '{}'", name));
+  std::vector<SphereMember> members = read_members(scene, t);
+  const double scale = t.positive("scale", 1.0);
+  for (SphereMember& m : members) {
+    m.centre = scale * m.centre;
+    m.radius *= scale;
+  }
+  t.finish();
+  try {
+    scene.shapes.push_back(make_clump_shape(name, members));
+    scene.shape_spheres.push_back(std::move(members));
+  } catch (const std::invalid_argument& e) {
+    t.fail(t.has("file") ? "file" : "spheres", e.what());
+  }
+}
+
+} // namespace
+
+void read_shapes(Scene& scene, TomlReader& root) {
+  for (auto& t : root.tables("shape")) read_shape(scene, t);
+}
+
+} // namespace yuxi

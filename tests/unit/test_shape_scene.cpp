@@ -1,0 +1,179 @@
+// Clumps from a scene file: [[shape]] tables (inline members or a file) and fills of them
+// (io/shape_scene_reader.hpp, run/scene_builder.cpp; docs/scene-format.md, "Clumps").
+#include "io/scene_reader.hpp"
+#include "io/scene_writer.hpp"
+#include "run/scene_builder.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <string>
+
+namespace yuxi {
+namespace {
+
+// A box of `count` grains under gravity, as a fill of `fill_extra` (a shape, or nothing).
+std::string box_scene(const std::string& shapes, const std::string& fill_extra, int count = 20) {
+  return fmt::format(R"(materials = ["grain", "wall"]
+[run]
+name = "clumps"
+dt = 1.0e-4
+t_end = 0.1
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [8.0, 8.0, 8.0]
+gravity = [0.0, 0.0, -1.0]
+boundary = ["wall", "wall", "wall"]
+wall_material = "wall"
+[contact]
+model = "linear"
+[[contact.pair]]
+materials = ["grain", "grain"]
+k_n = 1.0e4
+gamma_n = 20.0
+[[contact.pair]]
+materials = ["grain", "wall"]
+k_n = 1.0e4
+gamma_n = 20.0
+{}
+[[fill]]
+material = "grain"
+density = 1.0
+count = {}
+radius = 0.6
+seed = 7
+region = {{ shape = "box", lo = [0.0, 0.0, 0.0], hi = [8.0, 8.0, 8.0] }}
+{}
+)",
+                     shapes, count, fill_extra);
+}
+
+const std::string rod = R"([[shape]]
+name = "rod"
+spheres = [[-0.6, 0.0, 0.0, 0.3], [0.0, 0.0, 0.0, 0.3], [0.6, 0.0, 0.0, 0.3]]
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    read_scene_text(text, "clumps.toml");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ShapeScene, AFillOfAShapePlacesClumpsThatDoNotOverlap) {
+  const Scene scene = read_scene_text(box_scene(rod, "shape = \"rod\""), "clumps.toml");
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  BuildReport report;
+  const auto sim = build_simulation(scene, false, &report, Comm::self());
+  const auto& clumps = sim->clumps();
+  ASSERT_EQ(clumps.size(), 20u);
+  const ParticleStore& s = sim->particles();
+  EXPECT_EQ(s.n_owned(), 60u);
+  EXPECT_EQ(report.grains, 20u);
+  // Each rod scaled to the fill's radius (its bounding ball: 0.9 -> 0.6), turned at random.
+  const double scale = 0.6 / 0.9;
+  for (const ClumpBody& b : clumps) {
+    EXPECT_NEAR(b.radii[0], 0.3 * scale, 1e-12);
+    EXPECT_NEAR(b.mass, scene.shapes[0].volume * scale * scale * scale, 1e-12);
+  }
+  EXPECT_NE(clumps[0].q, clumps[1].q);
+  // No member of one clump overlaps a member of another.
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    for (std::size_t j = i + 1; j < s.n_owned(); ++j)
+      if (s.body[i] != s.body[j]) {
+        EXPECT_GE(norm(s.x[i] - s.x[j]), s.radius[i] + s.radius[j]) << i << " " << j;
+      }
+  // The time step's check takes the least mass a contact on a rod can meet.
+  EXPECT_LE(report.stiffest.m_eff, 0.5 * clumps[0].smallest_contact_mass() * (1 + 1e-12));
+}
+
+// Twenty rods fall for two time units, onto the floor and each other: the books close to an
+// error that shrinks with the time step (first order: the dashpot's force jumps where a
+// contact begins).
+TEST(ShapeScene, ClumpsFallWithTheBooksClosed) {
+  const auto fall = [](double dt) {
+    Scene scene = read_scene_text(box_scene(rod, "shape = \"rod\""), "clumps.toml");
+    scene.sim.dt = dt;
+    const auto sim = build_simulation(scene, false, nullptr, Comm::self());
+    const double b0 = sim->energies().balance();
+    sim->run(std::llround(2.0 / dt));
+    const EnergyBooks e = sim->energies();
+    EXPECT_GT(e.dissipated, 0.0);
+    EXPECT_EQ(e.grains, 20u);
+    return std::abs(e.balance() - b0) / e.dissipated;
+  };
+  const double coarse = fall(1e-4), fine = fall(2.5e-5);
+  EXPECT_LT(fine, 2e-3);
+  EXPECT_LT(fine, coarse / 3.0);
+}
+
+TEST(ShapeScene, AShapeOfOneSphereGivesTheSpheresBits) {
+  const std::string ball = "[[shape]]\nname = \"ball\"\nspheres = [[1.0, 2.0, 3.0, 0.25]]\n";
+  const auto spheres =
+      build_simulation(read_scene_text(box_scene("", ""), "a.toml"), false, nullptr, Comm::self());
+  const auto balls = build_simulation(
+      read_scene_text(box_scene(ball, "shape = \"ball\""), "b.toml"), false, nullptr, Comm::self());
+  EXPECT_TRUE(balls->clumps().empty());
+  spheres->run(200);
+  balls->run(200);
+  const ParticleStore &a = spheres->particles(), &b = balls->particles();
+  ASSERT_EQ(a.n_owned(), b.n_owned());
+  for (std::size_t i = 0; i < a.n_owned(); ++i) {
+    EXPECT_EQ(std::memcmp(&a.x[i], &b.x[i], sizeof(Vec3)), 0);
+    EXPECT_EQ(a.mass[i], b.mass[i]);
+  }
+}
+
+TEST(ShapeScene, TheEchoedSceneBuildsTheSameClumps) {
+  const Scene scene = read_scene_text(box_scene(rod, "shape = \"rod\""), "clumps.toml");
+  const Scene again = read_scene_text(resolved_scene_toml(scene), "echo.toml");
+  const auto a = build_simulation(scene, false, nullptr, Comm::self());
+  const auto b = build_simulation(again, false, nullptr, Comm::self());
+  ASSERT_EQ(a->clumps().size(), b->clumps().size());
+  for (std::size_t k = 0; k < a->clumps().size(); ++k) {
+    EXPECT_EQ(a->clumps()[k].x, b->clumps()[k].x);
+    EXPECT_EQ(a->clumps()[k].q, b->clumps()[k].q);
+  }
+}
+
+TEST(ShapeScene, AShapeFromAFile) {
+  const auto dir = std::filesystem::temp_directory_path() / "yuxi-shape-scene";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "rod.csv") << "x,y,z,radius\n-0.6,0,0,0.3\n0,0,0,0.3\n0.6,0,0,0.3\n";
+  const std::string from_file = "[[shape]]\nname = \"rod\"\nfile = \"rod.csv\"\nscale = 2.0\n";
+  const Scene scene =
+      read_scene_text(box_scene(from_file, "shape = \"rod\""), (dir / "clumps.toml").string());
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  EXPECT_NEAR(scene.shapes[0].bounding_radius, 1.8, 1e-12);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ShapeScene, BadShapesAreRefusedByName) {
+  const auto refused = [](const std::string& text, const std::string& says) {
+    const std::string e = error_of(text);
+    EXPECT_NE(e.find(says), std::string::npos) << "error: '" << e << "', wanted: " << says;
+  };
+  refused(box_scene(rod, "shape = \"cube\""), "no [[shape]] named 'cube' (the scene's: rod)");
+  refused(box_scene("", "shape = \"rod\""), "the scene has no [[shape]]");
+  refused(box_scene(rod + rod, "shape = \"rod\""), "a second shape named 'rod'");
+  refused(box_scene("[[shape]]\nname = \"x\"\n", ""), "give exactly one of 'spheres'");
+  refused(box_scene("[[shape]]\nname = \"x\"\nspheres = [[0, 0, 0, -1]]\n", ""),
+          "every radius must be positive");
+  refused(box_scene("[[shape]]\nname = \"x\"\nspheres = [[0, 0, 0]]\n", ""),
+          "row 1 has 3 numbers, not 4");
+  refused(box_scene("[[shape]]\nname = \"x\"\nfile = \"no-such-file.csv\"\n", ""), "shape");
+  refused(box_scene(rod, "shape = \"rod\"\nkind = \"wall\""), "wall particles are spheres");
+  refused(box_scene(rod + "[[insert]]\nmaterial = \"grain\"\ndensity = 1.0\nradius = 0.5\n"
+                          "rate = 1.0\nshape = \"rod\"\nregion = { shape = \"box\", lo = [0.0, "
+                          "0.0, 6.0], hi = [8.0, 8.0, 8.0] }\n",
+                    ""),
+          "[[insert]] does not pour clumps yet");
+}
+
+} // namespace
+} // namespace yuxi
