@@ -1,5 +1,6 @@
 #include "py_contacts.hpp"
 
+#include "py_rows.hpp"
 #include "run/coarse_grain_contacts.hpp"
 
 #include <cstring>
@@ -31,12 +32,6 @@ struct ContactColumns {
     column.insert(column.end(), {v.x, v.y, v.z});
   }
 };
-
-py::array_t<double> rows_of(const std::vector<double>& values, py::ssize_t n, py::ssize_t width) {
-  py::array_t<double> a = width == 1 ? py::array_t<double>(n) : py::array_t<double>({n, width});
-  if (n > 0) std::memcpy(a.mutable_data(), values.data(), values.size() * sizeof(double));
-  return a;
-}
 
 } // namespace
 

@@ -3,6 +3,7 @@
 #include "io/scene_error.hpp"
 #include "io/scene_writer.hpp"
 #include "io/source_scene_reader.hpp"
+#include "py_clumps.hpp"
 #include "py_contacts.hpp"
 #include "run/simulation_checkpoint.hpp"
 #include "scene/particle_fill.hpp"
@@ -122,6 +123,7 @@ template <class F> py::object with_field(const ParticleStore& p, const std::stri
   if (name == "angular_velocity") return f(p.w);
   if (name == "force") return f(p.f);
   if (name == "torque") return f(p.torque);
+  if (name == "clump") return f(p.body);
   throw py::key_error(fmt::format("no particle field '{}'", name));
 }
 
@@ -559,6 +561,13 @@ void bind_simulation(py::module_& m) {
              s.sim().record_contacts(on);
            })
       .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); })
+      .def("clumps", [](PySimulation& s) { return clump_arrays(s.sim()); })
+      .def_property_readonly("shapes",
+                             [](PySimulation& s) {
+                               std::vector<std::string> names;
+                               for (const ClumpShape& c : s.scene().shapes) names.push_back(c.name);
+                               return names;
+                             })
       .def("_cg_contacts", [](PySimulation& s) { return cg_contact_arrays(s.sim()); })
       .def("_sum_over_ranks", [](PySimulation& s, py::array_t<double> values) {
         // In place, over the ranks (collective): coarse-graining's sums.

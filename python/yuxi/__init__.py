@@ -213,7 +213,7 @@ class Particles:
     """This rank's owned particles (grains, then wall particles, in the engine's order)."""
 
     FIELDS = ("id", "kind", "material", "radius", "mass", "position", "velocity",
-              "angular_velocity", "force", "torque")
+              "angular_velocity", "force", "torque", "clump")
     GRAIN, WALL = 0, 1  # values of `kind`
 
     def __init__(self, sim):
@@ -503,6 +503,19 @@ class Simulation:
         the first partner, normal, point, overlap, stored elastic energy, and ``state``: the
         contact model's state, one array per field (docs/python.md)."""
         return self._core.contacts()
+
+    def clumps(self):
+        """This rank's clumps (docs/clumps.md) as arrays: id (member k of a clump has id + k; a
+        member's ``particles.clump`` is its clump's id, -1 for a free grain), shape (an index into
+        ``shapes``, -1 for none), position (the centre of mass), velocity, orientation (the unit
+        quaternion w, x, y, z from the principal frame to the lab's), angular_velocity, mass,
+        inertia (the principal moments, ascending), members, force, torque."""
+        return self._core.clumps()
+
+    @property
+    def shapes(self):
+        """The names of the scene's [[shape]] tables, in order (a clump's ``shape`` indexes it)."""
+        return list(self._core.shapes)
 
     def __repr__(self):
         return (f"yuxi.Simulation(step {self.step_count}, t = {self.time:.6g}, "

@@ -192,6 +192,10 @@ YUXI_HD inline SinCos sin_cos(double x) {
             std::numeric_limits<double>::quiet_NaN()}; // NaN or infinite
   // Beyond the accurate range, first x mod 2 pi (fmod is exact): an angle that is no longer
   // accurate, but whose sine and cosine are still a rotation's.
+  // Within pi/4 (the turns of a rigid body's step) no reduction: k is 0 and r is x, so the
+  // general path below gives these bits too, without its rint and fmod (but for -0, which it
+  // turns into +0).
+  if (std::abs(x) <= 0.78 && x != 0.0) return {sin_kernel(x), cos_kernel(x)};
   if (!(std::abs(x) < 1.6e6)) x = std::fmod(x, 6.283185307179586);
   // k: the nearest integer to x 2/pi, as a double (rint is exact and the same everywhere; a
   // conversion to an integer type would overflow for huge x), and its quadrant k mod 4.

@@ -53,6 +53,24 @@ YUXI_HD constexpr Vec3 to_lab(const Quaternion& q, const Vec3& v) {
           2.0 * (xy + wz) * v.x + (ww - xx + yy - zz) * v.y + 2.0 * (yz - wx) * v.z,
           2.0 * (xz - wy) * v.x + 2.0 * (yz + wx) * v.y + (ww - xx - yy + zz) * v.z};
 }
+// The rotation matrix of q, v_lab = R v_body, built once for many vectors: R * v gives to_lab's
+// bits (the same products, added in the same order).
+struct Rotation {
+  Vec3 row[3];
+  YUXI_HD constexpr Vec3 operator*(const Vec3& v) const {
+    return {row[0].x * v.x + row[0].y * v.y + row[0].z * v.z,
+            row[1].x * v.x + row[1].y * v.y + row[1].z * v.z,
+            row[2].x * v.x + row[2].y * v.y + row[2].z * v.z};
+  }
+};
+YUXI_HD constexpr Rotation rotation_of(const Quaternion& q) {
+  const double ww = q.w * q.w, xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+  const double xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+  const double wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+  return {{{ww + xx - yy - zz, 2.0 * (xy - wz), 2.0 * (xz + wy)},
+           {2.0 * (xy + wz), ww - xx + yy - zz, 2.0 * (yz - wx)},
+           {2.0 * (xz - wy), 2.0 * (yz + wx), ww - xx - yy + zz}}};
+}
 // v_lab turned into the body's frame, q* v q.
 YUXI_HD constexpr Vec3 to_body(const Quaternion& q, const Vec3& v) {
   return to_lab(conjugate(q), v);

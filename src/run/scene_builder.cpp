@@ -58,9 +58,9 @@ void add_clumps(const Scene& scene, const FillSpec& f, std::span<const ParticleS
       out.particles.add(p, next++);
       continue;
     }
-    const PlacedClump c =
-        make_clump(shape.scaled(p.radius / shape.bounding_radius), f.grains.density, p.material,
-                   next, p.position, random_orientation(turns), p.velocity);
+    PlacedClump c = make_clump(shape.scaled(p.radius / shape.bounding_radius), f.grains.density,
+                               p.material, next, p.position, random_orientation(turns), p.velocity);
+    c.body.shape = f.shape;
     for (const ParticleSpec& m : c.members) out.particles.add(m, next++);
     out.clumps.push_back(c.body);
   }

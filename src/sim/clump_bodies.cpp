@@ -19,11 +19,15 @@ Vec3 ClumpBody::arm(std::size_t k) const {
 }
 
 double ClumpBody::smallest_contact_mass() const {
-  double reach = 0.0;
-  for (std::size_t k = 0; k < members.size(); ++k)
-    reach = std::max(reach, norm(members[k]) + radii[k]);
-  const double smallest_moment = std::min({inertia.x, inertia.y, inertia.z});
-  return 1.0 / (1.0 / mass + reach * reach / smallest_moment);
+  // A normal push on member k at p = b + r n has the lever p x n = b x n, whose component along
+  // principal axis a is at most |e_a x b|, b's distance from that axis.
+  double turning = 0.0;
+  for (const Vec3& b : members) {
+    const double about_x = b.y * b.y + b.z * b.z, about_y = b.x * b.x + b.z * b.z,
+                 about_z = b.x * b.x + b.y * b.y;
+    turning = std::max(turning, about_x / inertia.x + about_y / inertia.y + about_z / inertia.z);
+  }
+  return 1.0 / (1.0 / mass + turning);
 }
 
 PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t material,
@@ -121,10 +125,24 @@ void ClumpBodies::kick_drift(double dt, const Vec3& g_periodic, double& gravity_
     const double kick = half_dt / b.mass;
     b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
     kick_rotor(b.q, b.p, b.torque, half_dt);
-    free_rotation(b.q, b.p, b.inertia, dt);
     b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
     gravity_work += b.mass * dot(g_periodic, b.v) * dt; // M g_p . dX
   }
+  // NO_SQUISH's free rotation (free_rotation(): R3 R2 R1 R2 R3), each turn for every body
+  // before the next: the bodies' turns are independent, so the processor overlaps them, where
+  // one body's chain of five waits on each sine and cosine in turn. The same operations on
+  // each body, in the same order: free_rotation()'s bits.
+  const auto turn_all = [&](int axis, double h) {
+    for (ClumpBody& b : bodies_) {
+      const double moment = axis == 1 ? b.inertia.x : axis == 2 ? b.inertia.y : b.inertia.z;
+      rotate_about_body_axis(b.q, b.p, axis, moment, h);
+    }
+  };
+  turn_all(3, half_dt);
+  turn_all(2, half_dt);
+  turn_all(1, dt);
+  turn_all(2, half_dt);
+  turn_all(3, half_dt);
 }
 
 void ClumpBodies::final_kick(double dt) {
@@ -142,9 +160,10 @@ bool ClumpBodies::place_members(ParticleStore& s, const Box& box, double limit2,
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const ClumpBody& body = bodies_[b];
     const Vec3 omega = body.angular_velocity();
+    const Rotation turn = rotation_of(body.q); // (arm(k)'s bits, built once)
     for (std::size_t k = 0; k < body.members.size(); ++k) {
       const std::size_t i = member_index_[first_[b] + k];
-      const Vec3 r = body.arm(k);
+      const Vec3 r = turn * body.members[k];
       s.v[i] = body.v + cross(omega, r);
       s.w[i] = omega;
       if (!moved2) continue;
@@ -161,10 +180,11 @@ void ClumpBodies::gather_forces(const ParticleStore& s, const Vec3& gravity) {
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     ClumpBody& body = bodies_[b];
     Vec3 force = body.mass * gravity, torque;
+    const Rotation turn = rotation_of(body.q); // (arm(k)'s bits, built once)
     for (std::size_t k = 0; k < body.members.size(); ++k) {
       const std::size_t i = member_index_[first_[b] + k];
       force += s.f[i];
-      torque += cross(body.arm(k), s.f[i]) + s.torque[i];
+      torque += cross(turn * body.members[k], s.f[i]) + s.torque[i];
     }
     body.force = force;
     body.torque = torque;
@@ -223,6 +243,7 @@ template <class Archive, class Body> void transfer(Archive& ar, Body& b) {
   ar.value(b.force);
   ar.value(b.torque);
   ar.value(b.material);
+  ar.value(b.shape);
   ar.vector(b.members);
   ar.vector(b.radii);
 }
@@ -249,7 +270,7 @@ void ClumpBodies::load(ArchiveReader& ar) {
     bool ok = b.mass > 0 && b.inertia.x > 0 && b.inertia.y > 0 && b.inertia.z > 0 &&
               !b.members.empty() && b.members.size() == b.radii.size() && b.id >= 0;
     for (const double x : scalars) ok = ok && std::isfinite(x);
-    ok = ok && std::abs(dot(b.q, b.q) - 1.0) < 1e-9; // (a unit quaternion)
+    ok = ok && std::abs(dot(b.q, b.q) - 1.0) < 1e-9 && b.shape >= -1; // (a unit quaternion)
     for (std::size_t k = 0; ok && k < b.members.size(); ++k)
       ok = is_finite(b.members[k]) && b.radii[k] > 0 && std::isfinite(b.radii[k]);
     if (!ok)

@@ -37,6 +37,7 @@ struct ClumpBody {
   Quaternion p;       // NO_SQUISH's conjugate momentum 2 q (0, L_body)
   Vec3 force, torque; // at the last force evaluation (lab frame; the torque about x)
   std::uint8_t material = 0;
+  std::int32_t shape = -1;   // the scene's [[shape]] it is made of (its index), -1: none named
   std::vector<Vec3> members; // centres in the principal frame [length]
   std::vector<double> radii; // [length]
 
@@ -44,9 +45,10 @@ struct ClumpBody {
   Vec3 angular_velocity() const;
   // Member k's centre relative to the centre of mass, in the lab frame.
   Vec3 arm(std::size_t k) const;
-  // The smallest mass a contact on one of its members can meet: 1 / (1/M + max_k (|b_k| +
-  // r_k)^2 / I_min), a lower bound of the effective mass at any point of its surface (the time
-  // step's check).
+  // The smallest mass a normal contact on one of its members can meet, a lower bound of the
+  // effective mass 1 / (1/M + (b x n) . I^-1 (b x n)) over every member k and normal n:
+  // 1 / (1/M + max_k sum_a d_ka^2 / I_a), d_ka the distance of b_k from principal axis a (the
+  // time step's check).
   double smallest_contact_mass() const;
 };
 

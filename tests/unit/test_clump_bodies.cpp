@@ -164,6 +164,28 @@ TEST(ClumpBodies, AMemberCannotBeMovedOrRemovedAlone) {
   EXPECT_EQ(sim.particles().n_owned(), 3u);
 }
 
+// The time step's check takes a mass no larger than the effective mass of any normal push on
+// any member, 1 / (1/M + (b x n) . I^-1 (b x n)) in the principal frame.
+TEST(ClumpBodies, TheCheckedMassBoundsEveryNormalPush) {
+  const PlacedClump c = make_clump(three_spheres(), unit_density, 0, 0, {}, Quaternion{});
+  const ClumpBody& b = c.body;
+  const double bound = b.smallest_contact_mass();
+  Random rng(5);
+  double least = 1e300;
+  for (int draw = 0; draw < 20000; ++draw) {
+    const Vec3 n = normalized(Vec3{rng.normal(), rng.normal(), rng.normal()});
+    for (const Vec3& arm : b.members) {
+      const Vec3 l = cross(arm, n);
+      const double turning =
+          l.x * l.x / b.inertia.x + l.y * l.y / b.inertia.y + l.z * l.z / b.inertia.z;
+      least = std::min(least, 1.0 / (1.0 / b.mass + turning));
+    }
+  }
+  EXPECT_LE(bound, least);
+  EXPECT_GT(bound, 0.3 * least); // (and not far below it)
+  EXPECT_LT(bound, b.mass);
+}
+
 // A state saved before particles had the `body` field (layout 9 and older) loads with every
 // particle a free grain.
 TEST(ClumpBodies, ParticlesOfAnOlderLayoutAreNoMembers) {
