@@ -10,6 +10,21 @@
 
 namespace yuxi {
 
+namespace {
+
+bool is_unit(const Quaternion& q) {
+  return std::abs(dot(q, q) - 1.0) < 1e-9; // (false for NaN)
+}
+
+// Velocity Verlet's half kick of the centre and NO_SQUISH's of the momentum, over half_dt.
+void half_kick(ClumpBody& b, double half_dt) {
+  const double kick = half_dt / b.mass;
+  b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
+  kick_rotor(b.q, b.p, b.torque, half_dt);
+}
+
+} // namespace
+
 Vec3 ClumpBody::angular_velocity() const {
   return lab_angular_velocity(q, p, inertia);
 }
@@ -36,7 +51,7 @@ PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t mat
   if (!(density > 0.0) || !std::isfinite(density))
     throw std::invalid_argument(
         fmt::format("clump '{}': density {} is not positive and finite", shape.name, density));
-  if (!(std::abs(dot(orientation, orientation) - 1.0) < 1e-9))
+  if (!is_unit(orientation))
     throw std::invalid_argument(
         fmt::format("clump '{}': the orientation is not a unit quaternion", shape.name));
   PlacedClump out;
@@ -122,9 +137,7 @@ std::size_t ClumpBodies::body_of(const ParticleStore& s, std::size_t i) const {
 void ClumpBodies::kick_drift(double dt, const Vec3& g_periodic, double& gravity_work) {
   const double half_dt = 0.5 * dt;
   for (ClumpBody& b : bodies_) {
-    const double kick = half_dt / b.mass;
-    b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
-    kick_rotor(b.q, b.p, b.torque, half_dt);
+    half_kick(b, half_dt);
     b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
     gravity_work += b.mass * dot(g_periodic, b.v) * dt; // M g_p . dX
   }
@@ -146,12 +159,7 @@ void ClumpBodies::kick_drift(double dt, const Vec3& g_periodic, double& gravity_
 }
 
 void ClumpBodies::final_kick(double dt) {
-  const double half_dt = 0.5 * dt;
-  for (ClumpBody& b : bodies_) {
-    const double kick = half_dt / b.mass;
-    b.v.x += b.force.x * kick, b.v.y += b.force.y * kick, b.v.z += b.force.z * kick;
-    kick_rotor(b.q, b.p, b.torque, half_dt);
-  }
+  for (ClumpBody& b : bodies_) half_kick(b, 0.5 * dt);
 }
 
 bool ClumpBodies::place_members(ParticleStore& s, const Box& box, double limit2,
@@ -262,15 +270,11 @@ void ClumpBodies::load(ArchiveReader& ar) {
   std::vector<ClumpBody> bodies(n);
   for (ClumpBody& b : bodies) {
     transfer(ar, b);
-    const double scalars[] = {b.mass,    b.inertia.x, b.inertia.y, b.inertia.z, b.q.w,
-                              b.q.x,     b.q.y,       b.q.z,       b.p.w,       b.p.x,
-                              b.p.y,     b.p.z,       b.x.x,       b.x.y,       b.x.z,
-                              b.v.x,     b.v.y,       b.v.z,       b.force.x,   b.force.y,
-                              b.force.z, b.torque.x,  b.torque.y,  b.torque.z};
-    bool ok = b.mass > 0 && b.inertia.x > 0 && b.inertia.y > 0 && b.inertia.z > 0 &&
-              !b.members.empty() && b.members.size() == b.radii.size() && b.id >= 0;
-    for (const double x : scalars) ok = ok && std::isfinite(x);
-    ok = ok && std::abs(dot(b.q, b.q) - 1.0) < 1e-9 && b.shape >= -1; // (a unit quaternion)
+    bool ok = std::isfinite(b.mass) && b.mass > 0 && is_finite(b.inertia) && b.inertia.x > 0 &&
+              b.inertia.y > 0 && b.inertia.z > 0 && is_unit(b.q) && std::isfinite(b.p.w) &&
+              is_finite(b.p.vector()) && is_finite(b.x) && is_finite(b.v) && is_finite(b.force) &&
+              is_finite(b.torque) && !b.members.empty() && b.members.size() == b.radii.size() &&
+              b.id >= 0 && b.shape >= -1;
     for (std::size_t k = 0; ok && k < b.members.size(); ++k)
       ok = is_finite(b.members[k]) && b.radii[k] > 0 && std::isfinite(b.radii[k]);
     if (!ok)

@@ -333,17 +333,22 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     const auto k = store_.material[i];
     if (k >= n_mat) continue;
+    if (store_.body[i] >= 0) continue; // (a clump's member: its clump, below)
     if (store_.is_grain(i)) {
-      // A clump's member: the least mass a contact on its clump can meet.
-      const double m = store_.body[i] < 0
-                           ? store_.mass[i]
-                           : clumps_.bodies()[clumps_.body_of(store_, i)].smallest_contact_mass();
-      m_min[k] = std::min(m_min[k], m);
+      m_min[k] = std::min(m_min[k], store_.mass[i]);
       r_min[k] = std::min(r_min[k], store_.radius[i]);
       grains[k] += 1.0;
     } else {
       on_wall[k] = true;
     }
+  }
+  // A clump's members: the least mass a contact on the clump can meet, the smallest member.
+  for (const ClumpBody& b : clumps_.bodies()) {
+    const auto k = b.material;
+    if (k >= n_mat) continue;
+    m_min[k] = std::min(m_min[k], b.smallest_contact_mass());
+    for (const double r : b.radii) r_min[k] = std::min(r_min[k], r);
+    grains[k] += static_cast<double>(b.members.size());
   }
   walls_.mark_materials(on_wall);
   // The grains that inserts will pour: the smallest their size distribution gives.
