@@ -60,3 +60,18 @@ def test_a_fill_naming_no_shape_is_refused(box_scene, tmp_path):
     scene["fill"][0]["shape"] = "cube"
     with pytest.raises(yuxi.SceneError, match="no \\[\\[shape\\]\\] named 'cube'"):
         yuxi.Simulation(scene, output=tmp_path / "bad", progress=False)
+
+
+def test_an_insert_added_from_python_pours_clumps(box_scene, tmp_path):
+    sim = yuxi.Simulation(rods_scene(box_scene), output=tmp_path / "pour", progress=False)
+    assert sim.add_insert({"name": "more", "shape": "rod", "material": "grain", "radius": 0.4,
+                           "rate": 1000.0, "total": 10, "interval": 0.01,
+                           "region": {"shape": "box", "lo": [0.0, 0.0, 9.0],
+                                      "hi": [8.0, 8.0, 12.0]}}) == "more"
+    sim.step(100)
+    c = sim.clumps()
+    assert len(c["id"]) == 74
+    assert np.all(c["members"] == 3)
+    assert np.all(c["position"][64:, 2] >= 8.5)
+    assert sim.energies()["grains"] == 74
+    sim.close()

@@ -220,9 +220,14 @@ void Halo::reverse_sum(std::vector<double>& per_particle, const Comm& comm) cons
 void Halo::migrate(
     ParticleStore& s, const Decomposition& d, const Comm& comm,
     const std::function<std::vector<std::string>(const std::vector<std::size_t>&)>& payloads,
-    const std::function<void(std::size_t, const std::string&)>& arrived) {
+    const std::function<void(std::size_t, const std::string&, const Vec3&)>& arrived,
+    std::span<const Vec3> where) {
   s.clear_ghosts();
   const Vec3 lo = d.lo(), hi = d.hi();
+  // The places that decide the owners, kept beside the particles as they leave and arrive.
+  std::vector<Vec3> at(where.begin(), where.end());
+  const bool anchored = !at.empty();
+  const auto place = [&](std::size_t i) -> const Vec3& { return anchored ? at[i] : s.x[i]; };
   for (int a = 0; a < 3; ++a) {
     if (d.dims()[a] == 1) continue; // periodic wrap alone is done by the caller
     // Both directions at once: one pass to find who leaves, one call for their payloads, one
@@ -231,32 +236,45 @@ void Halo::migrate(
     const int below = d.neighbor(a, -1), above = d.neighbor(a, +1);
     std::vector<std::size_t> leaving; // ascending
     for (std::size_t i = 0; i < s.n_owned(); ++i)
-      if ((below >= 0 && s.x[i][a] < lo[a]) || (above >= 0 && s.x[i][a] >= hi[a]))
+      if ((below >= 0 && place(i)[a] < lo[a]) || (above >= 0 && place(i)[a] >= hi[a]))
         leaving.push_back(i);
     const std::vector<std::string> carried = payloads(leaving);
     std::string out[2];
     for (std::size_t k = 0; k < leaving.size(); ++k) {
-      const int dir = s.x[leaving[k]][a] < lo[a] ? -1 : +1;
+      const int dir = place(leaving[k])[a] < lo[a] ? -1 : +1;
       Vec3 shift;
       if (d.wraps(a, dir)) shift[a] = -dir * d.box().length(a);
       std::string& o = out[dir > 0 ? 1 : 0];
       pack_particle(s, leaving[k], shift, o);
+      if (anchored) put(o, at[leaving[k]] + shift);
       put(o, static_cast<std::uint64_t>(carried[k].size()));
       o += carried[k];
+    }
+    // (the anchors follow the particles: the last owned ones fill the gaps, as in the store)
+    if (anchored) {
+      for (std::size_t k = leaving.size(); k-- > 0;) {
+        at[leaving[k]] = at.back();
+        at.pop_back();
+      }
     }
     s.remove_owned_unordered(leaving); // (the caller sorts the particles next)
     for (int dir : {-1, +1}) {
       const int to = d.neighbor(a, dir), from = d.neighbor(a, -dir);
       const std::string in =
           comm.send_receive(to, out[dir > 0 ? 1 : 0], from, 600 + 4 * a + (dir > 0 ? 2 : 0));
-      std::size_t at = 0;
-      while (at < in.size()) {
+      // What arrives from `from` was sent in direction dir: the sender's shift, -dir L where
+      // that crossed the periodic boundary, the same for every particle of the message.
+      Vec3 shift;
+      if (d.wraps(a, -dir)) shift[a] = -dir * d.box().length(a);
+      std::size_t pos = 0;
+      while (pos < in.size()) {
         ParticleSpec dummy;
         const std::size_t i = s.add(dummy, 0);
-        unpack_particle(s, in, at, i);
-        const auto n = take<std::uint64_t>(in, at);
-        arrived(i, in.substr(at, n));
-        at += n;
+        unpack_particle(s, in, pos, i);
+        if (anchored) at.push_back(take<Vec3>(in, pos));
+        const auto n = take<std::uint64_t>(in, pos);
+        arrived(i, in.substr(pos, n), shift);
+        pos += n;
       }
     }
   }

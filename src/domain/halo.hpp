@@ -88,13 +88,17 @@ public:
   static_assert(sizeof(ParticleStore{}.f[0]) + sizeof(ParticleStore{}.torque[0]) ==
                 reverse_bytes_per_ghost);
 
-  // Sends owned particles outside the sub-domain to their new owners. `payloads(leaving)`
-  // packs what travels with each of the particles `leaving` (called before they leave);
-  // `arrived(i, bytes)` receives the payload of a particle that arrived as owned particle i.
+  // Sends owned particles outside the sub-domain to their new owners. `where[i]`, if given,
+  // is the place that decides owned particle i's owner (a clump's member goes where its
+  // clump's centre of mass goes; by default its own position). `payloads(leaving)` packs what
+  // travels with each of the particles `leaving` (called before they leave);
+  // `arrived(i, bytes, shift)` receives the payload of a particle that arrived as owned
+  // particle i, its position shifted by `shift` (a periodic boundary crossed).
   static void
   migrate(ParticleStore& s, const Decomposition& d, const Comm& comm,
           const std::function<std::vector<std::string>(const std::vector<std::size_t>&)>& payloads,
-          const std::function<void(std::size_t, const std::string&)>& arrived);
+          const std::function<void(std::size_t, const std::string&, const Vec3&)>& arrived,
+          std::span<const Vec3> where = {});
 
 private:
   // The swaps back from swap `from` - 1 down to swap `down_to`, one after the other.

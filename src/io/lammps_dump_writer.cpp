@@ -11,8 +11,9 @@
 namespace yuxi {
 
 LammpsDumpWriter::LammpsDumpWriter(const std::filesystem::path& path, const Box& box,
-                                   std::optional<std::int64_t> resume_after, const Comm& comm)
-    : path_(path), box_(box), comm_(comm) {
+                                   std::optional<std::int64_t> resume_after, const Comm& comm,
+                                   bool clumps)
+    : path_(path), box_(box), comm_(comm), clumps_(clumps) {
   std::string error;
   if (comm_.root()) {
     try {
@@ -71,8 +72,10 @@ void LammpsDumpWriter::write(const ParticleStore& s, std::int64_t step) {
                    step, total, bounds(0), bounds(1), bounds(2));
     for (int a = 0; a < 3; ++a)
       fmt::format_to(std::back_inserter(buf), "{:.10g} {:.10g}\n", box_.lo[a], box_.hi[a]);
-    fmt::format_to(std::back_inserter(buf), "ITEM: ATOMS id type radius mass x y z vx vy vz "
-                                            "omegax omegay omegaz fx fy fz\n");
+    fmt::format_to(std::back_inserter(buf),
+                   "ITEM: ATOMS id type radius mass x y z vx vy vz omegax omegay omegaz fx fy "
+                   "fz{}\n",
+                   clumps_ ? " mol" : "");
   }
   // One line per particle, written with std::to_chars: the same text as printf's %.8g and
   // %.10g (the standard defines it so), at about half the cost of fmt's precision formatting,
@@ -96,6 +99,7 @@ void LammpsDumpWriter::write(const ParticleStore& s, std::int64_t step) {
     for (const double c : {s.x[i].x, s.x[i].y, s.x[i].z}) real(c, 10);
     for (const Vec3* vec : {&s.v[i], &s.w[i], &s.f[i]})
       for (const double c : {vec->x, vec->y, vec->z}) real(c, 8);
+    if (clumps_) integer(s.body[i]);
     at[-1] = '\n';
     buf.append(line, at);
   }

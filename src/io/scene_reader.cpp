@@ -561,6 +561,17 @@ void check_consistency(Scene& scene, TomlReader& root) {
   }
   rg = std::max(rg, poured);
   if (poured > 0) scene.sim.min_contact_reach = std::max(2.0 * rg, rg + rw);
+  // Clumps: how far a member may stand from its clump's centre (the ghosts' extra reach).
+  for (const auto& f : scene.fills)
+    if (f.shape >= 0) {
+      const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(f.shape)];
+      if (shape.members.size() > 1)
+        scene.sim.clump_reach =
+            std::max(scene.sim.clump_reach,
+                     shape.scaled(f.grains.size.largest() / shape.bounding_radius).member_reach());
+    }
+  for (const auto& i : scene.inserts)
+    scene.sim.clump_reach = std::max(scene.sim.clump_reach, i.clump_reach());
   // (a scene without grains may continue a saved state: a run that builds it from t = 0
   // refuses it, build_simulation())
   scene.largest_grain_radius = rg;

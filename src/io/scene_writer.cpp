@@ -174,6 +174,7 @@ void write_sources(const Scene& s, toml::table& doc) {
       t.insert("interval", i.interval);
       t.insert("attempts", i.attempts);
       if (i.held) t.insert("held", true);
+      if (i.shape >= 0) t.insert("shape", s.shapes[static_cast<std::size_t>(i.shape)].name);
       inserts.push_back(t);
     }
     doc.insert("insert", inserts);

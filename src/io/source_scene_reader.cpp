@@ -91,6 +91,28 @@ GrainKind read_grains(const Scene& scene, TomlReader& t, std::uint64_t default_s
   return g;
 }
 
+// The index of the [[shape]] that key `shape` names; the grains drawn are its bounding balls,
+// whose mass is the clump's (volume_fraction). One member: a sphere, the grains as they would be
+// without the shape.
+int read_shape_key(const Scene& scene, TomlReader& t, GrainKind& grains) {
+  const std::string name = t.string("shape");
+  std::vector<std::string_view> names;
+  int index = -1;
+  for (std::size_t k = 0; k < scene.shapes.size(); ++k) {
+    names.push_back(scene.shapes[k].name);
+    if (scene.shapes[k].name == name) index = static_cast<int>(k);
+  }
+  if (index < 0)
+    t.fail("shape", scene.shapes.empty()
+                        ? fmt::format("no [[shape]] named '{}': the scene has no [[shape]]", name)
+                        : fmt::format("no [[shape]] named '{}' (the scene's: {})", name,
+                                      fmt::join(names, ", ")));
+  const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(index)];
+  if (shape.members.size() > 1)
+    grains.volume_fraction = shape.volume / ball_volume(shape.bounding_radius);
+  return index;
+}
+
 void read_fill(Scene& scene, TomlReader& t, std::size_t index) {
   FillSpec f;
   f.name = fmt::format("{} (fill[{}])", t.where(""), index + 1);
@@ -98,22 +120,8 @@ void read_fill(Scene& scene, TomlReader& t, std::size_t index) {
   f.walls = t.choice("kind", {"grain", "wall"}, "grain") == "wall";
   f.grains = read_grains(scene, t, 2008 + index, f.walls);
   if (t.has("shape")) {
-    const std::string name = t.string("shape");
-    std::vector<std::string_view> names;
-    for (std::size_t k = 0; k < scene.shapes.size(); ++k) {
-      names.push_back(scene.shapes[k].name);
-      if (scene.shapes[k].name == name) f.shape = static_cast<int>(k);
-    }
-    if (f.shape < 0)
-      t.fail("shape", scene.shapes.empty()
-                          ? fmt::format("no [[shape]] named '{}': the scene has no [[shape]]", name)
-                          : fmt::format("no [[shape]] named '{}' (the scene's: {})", name,
-                                        fmt::join(names, ", ")));
     if (f.walls) t.fail("shape", "wall particles are spheres: no shape for kind = \"wall\"");
-    const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(f.shape)];
-    // (one member: a sphere, the fill's grains as they would be without the shape)
-    if (shape.members.size() > 1)
-      f.grains.volume_fraction = shape.volume / ball_volume(shape.bounding_radius);
+    f.shape = read_shape_key(scene, t, f.grains);
   }
   if (f.walls && (t.has("velocity") || t.has("velocity_spread")))
     t.fail(t.has("velocity") ? "velocity" : "velocity_spread",
@@ -157,8 +165,10 @@ void read_insert(Scene& scene, TomlReader& t, std::size_t index) {
   s.name = t.string("name", fmt::format("insert[{}]", index + 1));
   s.region = read_region(scene, t);
   s.grains = read_grains(scene, t, 3008 + index);
-  if (t.has("shape"))
-    t.fail("shape", "[[insert]] does not pour clumps yet: place them at the start with [[fill]]");
+  if (t.has("shape")) {
+    s.shape = read_shape_key(scene, t, s.grains);
+    s.clump = scene.shapes[static_cast<std::size_t>(s.shape)];
+  }
   if (t.has("rate") == t.has("mass_rate"))
     t.fail("rate", "give exactly one of 'rate' (grains per time) and 'mass_rate' (mass per time)");
   s.by_mass = t.has("mass_rate");
@@ -174,8 +184,9 @@ void read_insert(Scene& scene, TomlReader& t, std::size_t index) {
   s.held = t.boolean("held", false);
   // One batch must fit in the region by random placement (a batch is at most the total).
   const double volume = s.region.volume_in(scene.sim.box);
+  // (a clump's: its bounding ball placed, its own volume weighed)
   const double grain_volume = 4.0 / 3.0 * pi * s.grains.size.mean_cube();
-  const double grain_mass = s.grains.density * grain_volume;
+  const double grain_mass = s.grains.density * s.grains.volume_fraction * grain_volume;
   double batch = s.rate * s.interval / (s.by_mass ? grain_mass : 1.0);
   if (s.total >= 0) batch = std::min(batch, static_cast<double>(s.total));
   if (batch * grain_volume > random_fill_limit * volume)

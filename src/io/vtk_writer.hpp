@@ -1,18 +1,22 @@
 // VTK XML output that ParaView opens: one .vtu (unstructured grid of vertex cells, appended raw
 // binary data) per snapshot, with the scene's shaped walls, if it has any, beside it in a .vtp
-// (vtk_walls.hpp), and a .pvd collection naming them with their times (the particles as part 0,
-// the walls as part 1). The .pvd is rewritten after each frame, so it is valid whenever the run
-// stops. On several MPI ranks every rank writes its own particles into the one .vtu (no rank
-// gathers the others'); rank 0 writes the walls.
+// (vtk_walls.hpp), the clumps, if there are any, in a second .vtu (a vertex at each centre of
+// mass, with its orientation, principal axes and velocities), and a .pvd collection naming them
+// with their times (the particles as part 0, the walls as part 1, the clumps as part 2). The .pvd
+// is rewritten after each frame, so it is valid whenever the run stops. On several MPI ranks every
+// rank writes its own particles into the one .vtu (no rank gathers the others'); rank 0 writes the
+// walls.
 #pragma once
 
 #include "core/particle_store.hpp"
 #include "domain/comm.hpp"
 #include "io/vtk_walls.hpp"
+#include "sim/clump_bodies.hpp"
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +26,10 @@ namespace yuxi {
 // particles first, then rank 1's, ..., each rank's in ascending id.
 void write_vtu(const std::filesystem::path& path, const ParticleStore& s,
                const Comm& comm = Comm::self());
+// Writes every rank's clumps (their bodies, sim/clump_bodies.hpp) to `path` (.vtu; collective):
+// rank 0's first, each rank's in ascending id.
+void write_clumps_vtu(const std::filesystem::path& path, std::span<const ClumpBody> clumps,
+                      const Comm& comm = Comm::self());
 
 class VtkSeries {
 public:
@@ -30,14 +38,14 @@ public:
   explicit VtkSeries(std::filesystem::path folder, std::string stem = "particles",
                      std::optional<std::int64_t> resume_after = std::nullopt,
                      const Comm& comm = Comm::self());
-  // Writes frame `<stem>_<step>.vtu` from every rank's owned particles, and, given `walls`,
-  // `walls_<step>.vtp` from rank 0's (the same on every rank), and updates `<stem>.pvd`
-  // (collective).
+  // Writes frame `<stem>_<step>.vtu` from every rank's owned particles; given `walls`,
+  // `walls_<step>.vtp` from rank 0's (the same on every rank); where any rank has clumps,
+  // `clumps_<step>.vtu` from every rank's; and updates `<stem>.pvd` (collective).
   void write(const ParticleStore& s, std::int64_t step, double time,
-             const WallSurface* walls = nullptr);
+             const WallSurface* walls = nullptr, std::span<const ClumpBody> clumps = {});
 
 private:
-  // One file of the collection: a part (0 the particles, 1 the walls) at a time.
+  // One file of the collection: a part (0 the particles, 1 the walls, 2 the clumps) at a time.
   struct DataSet {
     double time;
     int part;

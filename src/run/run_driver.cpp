@@ -100,7 +100,8 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
     vtk = std::make_unique<VtkSeries>(dir, "particles", resume_after(snapshot_every), sim.comm());
   if (scene.output.lammps_dump && snapshot_every)
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box,
-                                              resume_after(snapshot_every), sim.comm());
+                                              resume_after(snapshot_every), sim.comm(),
+                                              !scene.shapes.empty());
   // inflow.csv and outflow.csv: each insert's and outlet's cumulative grains and mass.
   if (root && !scene.inserts.empty())
     inflow = std::make_unique<EnergyCsv>(dir / "inflow.csv", resume_after(energy_every),
@@ -215,8 +216,8 @@ void RunDriver::Impl::snapshot() {
     // The shaped walls beside the particles, in the same frame (none: no walls file).
     std::optional<WallSurface> surface;
     if (!sim.shaped_walls().empty()) surface = wall_surface(sim); // collective
-    vtk->write(sim.particles(), sim.step_count(), sim.time(),
-               surface ? &*surface : nullptr); // collective
+    vtk->write(sim.particles(), sim.step_count(), sim.time(), surface ? &*surface : nullptr,
+               sim.clumps()); // collective
   }
   if (dump) dump->write(sim.particles(), sim.step_count());
   summary.snapshot_seconds += seconds_since(t0);

@@ -12,6 +12,27 @@
 
 namespace yuxi {
 
+std::size_t clump_anchor(std::span<const Vec3> centres) {
+  std::size_t anchor = 0;
+  for (std::size_t k = 1; k < centres.size(); ++k)
+    if (norm2(centres[k]) < norm2(centres[anchor])) anchor = k;
+  return anchor;
+}
+
+double clump_reach(std::span<const Vec3> centres) {
+  if (centres.empty()) return 0.0;
+  const Vec3 anchor = centres[clump_anchor(centres)];
+  double r = 0.0;
+  for (const Vec3& c : centres) r = std::max(r, norm(c - anchor));
+  return r;
+}
+
+double ClumpShape::member_reach() const {
+  std::vector<Vec3> centres;
+  for (const SphereMember& m : members) centres.push_back(m.centre);
+  return clump_reach(centres);
+}
+
 Quaternion random_orientation(Random& rng) {
   const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);

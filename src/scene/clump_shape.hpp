@@ -30,7 +30,19 @@ struct ClumpShape {
   // The same shape scaled by `factor` (> 0): every length times factor (the members and the
   // centre), the volume times factor^3, the moments times factor^5.
   ClumpShape scaled(double factor) const;
+  // The largest distance of a member's centre from the anchor member's (clump_anchor below)
+  // [length].
+  double member_reach() const;
 };
+
+// The member whose place decides which MPI rank owns a clump: the one nearest the centre of
+// mass (the first of equals), given the members' centres in the principal frame. Its own
+// position, a particle's, decides as a sphere's does (sim/exchange.hpp), so a run resumed from
+// the positions of its last list build makes the same owners again.
+std::size_t clump_anchor(std::span<const Vec3> centres);
+// The largest distance of a member's centre from the anchor's: how far outside its owner's
+// sub-domain a member may stand [length].
+double clump_reach(std::span<const Vec3> centres);
 
 // An orientation drawn uniformly from all rotations (Shoemake, Graphics Gems III, 1992: a
 // unit quaternion from three uniform numbers).

@@ -7,11 +7,17 @@
 // every number of ranks. A candidate is taken where its whole ball lies in the region and
 // overlaps no particle of any rank, no flat wall and no candidate taken before it; a grain that
 // finds no place is owed to the next batch.
+//
+// An insert of a clump shape pours clumps: the radius drawn is the clump's bounding radius, the
+// candidate ball is judged as a sphere's, and the clump placed in it is turned uniformly at
+// random (drawn from the batch's stream after its places, in the order the grains are taken).
 #pragma once
 
+#include "scene/clump_shape.hpp"
 #include "scene/particle_fill.hpp"
 #include "scene/region.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -30,6 +36,30 @@ struct InsertSpec {
   double interval = 0;     // time between batches (the reader sets it)
   int attempts = 20;       // places tried for each grain of a batch
   bool held = false;       // waits for Simulation::start_insert (Python's sim.start_insert)
+  // Clumps of the scene's shape of this index (-1: spheres), `clump` its shape; a shape of one
+  // member pours spheres.
+  std::int32_t shape = -1;
+  ClumpShape clump;
+  bool pours_clumps() const { return shape >= 0 && clump.members.size() > 1; }
+  // The radius of the largest and of the smallest sphere it pours: with clumps, a member's, the
+  // shape scaled to the size drawn.
+  double largest_sphere() const { return grains.size.largest() * sphere_scale(false); }
+  double smallest_sphere() const { return grains.size.smallest() * sphere_scale(true); }
+  // The farthest a member's centre stands from its clump's centre of mass (0: spheres).
+  double clump_reach() const {
+    if (!pours_clumps()) return 0.0;
+    return clump.scaled(grains.size.largest() / clump.bounding_radius).member_reach();
+  }
+
+private:
+  // A member's radius over the bounding radius: the smallest or largest member's (1: spheres).
+  double sphere_scale(bool smallest) const {
+    if (!pours_clumps()) return 1.0;
+    double r = clump.members[0].radius;
+    for (const SphereMember& m : clump.members)
+      r = smallest ? std::min(r, m.radius) : std::max(r, m.radius);
+    return r / clump.bounding_radius;
+  }
 };
 
 struct OutletSpec {

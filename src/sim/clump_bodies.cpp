@@ -162,8 +162,7 @@ void ClumpBodies::final_kick(double dt) {
   for (ClumpBody& b : bodies_) half_kick(b, 0.5 * dt);
 }
 
-bool ClumpBodies::place_members(ParticleStore& s, const Box& box, double limit2,
-                                double* moved2) const {
+bool ClumpBodies::place_members(ParticleStore& s, double limit2, double* moved2) const {
   bool moved_far = false;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const ClumpBody& body = bodies_[b];
@@ -175,7 +174,7 @@ bool ClumpBodies::place_members(ParticleStore& s, const Box& box, double limit2,
       s.v[i] = body.v + cross(omega, r);
       s.w[i] = omega;
       if (!moved2) continue;
-      const Vec3 x = box.wrap(body.x + r);
+      const Vec3 x = body.x + r;
       *moved2 = std::max(*moved2, norm2(x - s.x[i]));
       s.x[i] = x;
       moved_far |= !(norm2(s.x[i] - s.x_build[i]) <= limit2); // NaN too
@@ -214,11 +213,23 @@ double ClumpBodies::mechanical_energy(std::size_t b, const Vec3& g_potential) co
          body.mass * dot(g_potential, body.x);
 }
 
-std::vector<std::size_t> ClumpBodies::remove(std::span<const std::size_t> bodies) {
+void ClumpBodies::add(ClumpBody body) {
+  if (!bodies_.empty() && !(bodies_.back().id < body.id))
+    throw std::invalid_argument(fmt::format("a new clump's id {} is not above the last one's ({})",
+                                            body.id, bodies_.back().id));
+  bodies_.push_back(std::move(body));
+  first_.clear(); // (until index_members)
+  member_index_.clear();
+}
+
+std::vector<std::size_t> ClumpBodies::remove(const ParticleStore& s,
+                                             std::span<const std::size_t> bodies) {
+  std::vector<GlobalId> ids; // ascending, as the bodies
+  for (const std::size_t b : bodies) ids.push_back(bodies_[b].id);
   std::vector<std::size_t> members;
-  for (const std::size_t b : bodies)
-    for (std::size_t k = first_[b]; k < first_[b + 1]; ++k) members.push_back(member_index_[k]);
-  std::sort(members.begin(), members.end());
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (s.body[i] >= 0 && std::binary_search(ids.begin(), ids.end(), s.body[i]))
+      members.push_back(i);
   std::vector<ClumpBody> kept;
   kept.reserve(bodies_.size() - bodies.size());
   std::size_t next = 0;
@@ -233,8 +244,20 @@ std::vector<std::size_t> ClumpBodies::remove(std::span<const std::size_t> bodies
   return members;
 }
 
-void ClumpBodies::wrap(const Box& box) {
-  for (ClumpBody& b : bodies_) b.x = box.wrap(b.x);
+void ClumpBodies::wrap(const Box& box, ParticleStore& s) {
+  std::vector<Vec3> shift(bodies_.size());
+  bool any = false;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const Vec3 wrapped = box.wrap(bodies_[b].x);
+    if (wrapped == bodies_[b].x) continue;
+    shift[b] = wrapped - bodies_[b].x;
+    bodies_[b].x = wrapped;
+    any = true;
+  }
+  if (!any) return;
+  // (found by their ids: escapes, outlets and inserts may have moved them since the last build)
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (s.body[i] >= 0) s.x[i] += shift[find(s.body[i])];
 }
 
 namespace {
@@ -257,6 +280,45 @@ template <class Archive, class Body> void transfer(Archive& ar, Body& b) {
 }
 
 } // namespace
+
+double ClumpBodies::reach() const {
+  double r = 0.0;
+  for (const ClumpBody& b : bodies_) r = std::max(r, clump_reach(b.members));
+  return r;
+}
+
+std::size_t ClumpBodies::find(GlobalId id) const {
+  const auto at = std::lower_bound(bodies_.begin(), bodies_.end(), id,
+                                   [](const ClumpBody& b, GlobalId g) { return b.id < g; });
+  return at != bodies_.end() && at->id == id ? static_cast<std::size_t>(at - bodies_.begin())
+                                             : bodies_.size();
+}
+
+std::string ClumpBodies::pack(std::size_t b) const {
+  ArchiveWriter ar;
+  transfer(ar, bodies_[b]);
+  return ar.data();
+}
+
+void ClumpBodies::take_out(std::size_t b) {
+  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(b));
+  first_.clear();
+  member_index_.clear();
+}
+
+void ClumpBodies::take_in(const std::string& bytes, const Vec3& shift) {
+  ArchiveReader ar(bytes);
+  ClumpBody body;
+  transfer(ar, body);
+  body.x += shift;
+  const auto at = std::lower_bound(bodies_.begin(), bodies_.end(), body.id,
+                                   [](const ClumpBody& b, GlobalId g) { return b.id < g; });
+  if (at != bodies_.end() && at->id == body.id)
+    throw std::logic_error(fmt::format("clump {} arrived twice", body.id));
+  bodies_.insert(at, std::move(body));
+  first_.clear();
+  member_index_.clear();
+}
 
 void ClumpBodies::save(ArchiveWriter& ar) const {
   ar.value(static_cast<std::uint64_t>(bodies_.size()));

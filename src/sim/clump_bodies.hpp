@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace yuxi {
@@ -43,6 +44,8 @@ struct ClumpBody {
 
   // The angular velocity in the lab frame [rad/time].
   Vec3 angular_velocity() const;
+  // The member whose position decides the clump's owner on several ranks (clump_anchor).
+  std::size_t anchor() const { return clump_anchor(members); }
   // Member k's centre relative to the centre of mass, in the lab frame.
   Vec3 arm(std::size_t k) const;
   // The smallest mass a normal contact on one of its members can meet, a lower bound of the
@@ -85,11 +88,12 @@ public:
   void kick_drift(double dt, const Vec3& g_periodic, double& gravity_work);
   // The second half kick by the forces just gathered.
   void final_kick(double dt);
-  // The members placed from their bodies (positions wrapped into `box`'s periodic axes), with
-  // the bodies' velocities at their points; returns whether a member moved farther than
-  // sqrt(limit2) from where it stood at the last list build, and raises `moved2` to the largest
-  // squared displacement of a member. `moved2` null: velocities only, the positions kept.
-  bool place_members(ParticleStore& s, const Box& box, double limit2, double* moved2) const;
+  // The members placed from their bodies, x = X + R b (never wrapped one by one: a clump stays
+  // whole across a periodic face, wrap() moves it), with the bodies' velocities at their
+  // points; returns whether a member moved farther than sqrt(limit2) from where it stood at the
+  // last list build, and raises `moved2` to the largest squared displacement of a member.
+  // `moved2` null: velocities only, the positions kept.
+  bool place_members(ParticleStore& s, double limit2, double* moved2) const;
   // Each body's force and torque: gravity M g, plus its members' contact forces and torques,
   // member by member.
   void gather_forces(const ParticleStore& s, const Vec3& gravity);
@@ -101,11 +105,30 @@ public:
   double mechanical_energy(std::size_t b, const Vec3& g_potential) const;
   // The body of member i of the store, by its index here.
   std::size_t body_of(const ParticleStore& s, std::size_t i) const;
-  // Removes bodies (indices here, ascending); returns the store indices of their members, to be
-  // removed by the caller (ascending).
-  std::vector<std::size_t> remove(std::span<const std::size_t> bodies);
-  // Wraps the centres of mass into the box's periodic axes.
-  void wrap(const Box& box);
+  // A new body (a clump poured in), its id above every body's here; its members go into the
+  // store before the next list build.
+  void add(ClumpBody body);
+  // Removes bodies (indices here, ascending); returns the store indices of their members among
+  // the owned particles of `s`, to be removed by the caller (ascending). The members are found
+  // by their `body` field, so this holds between list builds too, after other removals.
+  std::vector<std::size_t> remove(const ParticleStore& s, std::span<const std::size_t> bodies);
+  // Wraps the centres of mass into the box's periodic axes, each clump's members in `s` shifted
+  // with it (at a list build).
+  void wrap(const Box& box, ParticleStore& s);
+  // The largest distance of a member's centre from its clump's anchor member's
+  // (scene/clump_shape.hpp: clump_anchor) [length]: how far a member may stand outside the
+  // sub-domain that owns its clump (0 without clumps).
+  double reach() const;
+
+  // Moving between ranks with their members (sim/exchange.cpp), the body with its anchor
+  // member: the body of id `id` (its index here), or size() where none is here; a body's
+  // bytes; a body taken out (its members leave with it); one that arrived, its centre shifted
+  // by `shift` (a periodic boundary crossed), put in its place among the ids. Members are found
+  // again by index_members().
+  std::size_t find(GlobalId id) const;
+  std::string pack(std::size_t b) const;
+  void take_out(std::size_t b);
+  void take_in(const std::string& bytes, const Vec3& shift);
 
   void save(ArchiveWriter& ar) const;
   // Throws ArchiveError where the section is damaged, std::invalid_argument where a body is

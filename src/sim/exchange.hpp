@@ -12,6 +12,7 @@
 #include "domain/comm.hpp"
 #include "domain/decomposition.hpp"
 #include "domain/halo.hpp"
+#include "sim/clump_bodies.hpp"
 #include "sim/simulation_config.hpp"
 
 #include <array>
@@ -40,9 +41,21 @@ public:
   // continued from a checkpoint, whose particles and cells are known only once it is read.
   void lay_out(std::array<int, 3> layout, Vec3 occupied, double cell_edge);
 
+  // How far a clump's member may stand from its clump's anchor member [length] (the same on
+  // every rank; 0 without clumps, or on one rank without periodic axes). A clump's owner is the
+  // rank whose sub-domain holds its anchor member (the member nearest its centre of mass:
+  // scene/clump_shape.hpp), and it owns every member and the body, so members stand up to
+  // `reach` outside the sub-domain (or the periodic box: a clump is never cut by a face): the
+  // ghosts reach that much farther, the cells cover that much more, and no sub-domain is cut
+  // narrower than the cells' edge plus it. The anchor's own position decides, as a sphere's
+  // does, so a run resumed from its last list build's positions makes the same owners.
+  void set_clump_reach(double reach);
+  double clump_reach() const { return clump_reach_; }
+
   // Collective, where every rank holds every particle (a scene's start): cuts by particle count
-  // where `balance`, keeps this sub-domain's particles and sets its cells.
-  void take_share(ParticleStore& s, bool balance);
+  // where `balance`, keeps this sub-domain's particles (and clumps: members and body go with
+  // the anchor member) and sets its cells.
+  void take_share(ParticleStore& s, ClumpBodies& clumps, bool balance);
   // Collective, where the ranks hold shares of the particles in no order (sections of another
   // run merged): cuts by particle count and sets this sub-domain's cells; the next migrate()
   // takes every particle to its owner.
@@ -56,7 +69,8 @@ public:
   // of its contacts (contact_history.hpp: the rank that computes a pair after the list build
   // may be either partner's); repeated until every rank holds only its own (one round unless
   // the cut planes have just moved).
-  void migrate(ParticleStore& s, ContactStates& history);
+  // A clump goes whole, with its body, to the rank of its anchor member.
+  void migrate(ParticleStore& s, ContactStates& history, ClumpBodies& clumps);
   // Collective: moves the cut planes so that each rank carries an equal share of the load:
   // each particle's pairs in `list`, or (BalanceBy::time) the seconds `busy` this rank computed
   // since the last balancing spread over its particles by their pairs.
@@ -73,11 +87,20 @@ public:
   void reverse_finish(ParticleStore& s) const { halo_.reverse_finish(s, comm_); }
 
 private:
+  // This sub-domain's cells: its box, grown by the clumps' reach.
+  CellGrid local_grid() const;
+  // Of each owned particle, the one whose place decides its owner: itself, or its clump's
+  // anchor member (ClumpBody::anchor; throws std::logic_error where that is not here).
+  std::vector<std::size_t> anchors(const ParticleStore& s, const ClumpBodies& clumps) const;
+  // Those places (empty without clumps).
+  std::vector<Vec3> owner_places(const ParticleStore& s, const ClumpBodies& clumps) const;
+
   Comm comm_;
   Decomposition decomp_;
   Halo halo_;
   double cell_edge_;
   CellGrid grid_;
+  double clump_reach_ = 0.0;
   double busy_at_balance_ = 0.0; // the `busy` of the last balancing
   bool cuts_moved_ = false;      // since the last migrate() (which then checks for strays)
 };

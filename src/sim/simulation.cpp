@@ -28,25 +28,41 @@ Simulation::Simulation(SimulationConfig config, ParticleStore particles,
       throw std::invalid_argument(fmt::format("particle {} refers to wall motion {} of {}",
                                               store_.gid[i], store_.motion[i],
                                               walls_.motions().size()));
-  if (!clumps.empty() && comm.size() > 1)
-    throw std::invalid_argument(fmt::format(
-        "clumps run on one rank for now, not on {}: run this scene on one rank", comm.size()));
   clumps_.set(std::move(clumps));
   clumps_.index_members(store_); // (every member there, each naming a clump that is)
   walls_.size_for(config_.skin, exchange_.cell_edge());
   for (std::size_t i = 0; i < store_.n_owned(); ++i) sources_.ids_from(store_.gid[i] + 1);
   // Every rank holds every particle here: cut by particle count (unless balancing is off),
-  // keep this sub-domain's.
-  if (comm.size() > 1) exchange_.take_share(store_, config_.rebalance_every > 0);
+  // keep this sub-domain's (a clump goes where its centre of mass is).
+  update_clump_reach();
+  if (comm.size() > 1) exchange_.take_share(store_, clumps_, config_.rebalance_every > 0);
   refresh();
   ledger_.set_initial_balance(energies().balance());
 }
 
 void Simulation::set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets) {
-  if (!clumps_.empty() && (!inserts.empty() || !outlets.empty()))
-    throw std::invalid_argument("[[insert]] and [[outlet]] do not yet pour or drain clumps: a "
-                                "scene with clumps has neither");
   sources_.set(std::move(inserts), std::move(outlets));
+  update_clump_reach();
+}
+
+bool Simulation::ghosts_reach_for_clumps() const {
+  const Box& box = config_.box;
+  return comm().size() > 1 || box.periodic(0) || box.periodic(1) || box.periodic(2);
+}
+
+void Simulation::update_clump_reach() {
+  if (!ghosts_reach_for_clumps()) return;
+  double reach = std::max(config_.clump_reach, comm().max(clumps_.reach()));
+  for (const InsertSpec& insert : sources_.inserts()) reach = std::max(reach, insert.clump_reach());
+  if (reach != exchange_.clump_reach()) exchange_.set_clump_reach(reach);
+}
+
+Box Simulation::member_wrap_box() const {
+  Box box = config_.box;
+  const auto dims = exchange_.decomposition().dims();
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] > 1) box.boundary[a] = Boundary::open; // (the migration shifts them)
+  return box;
 }
 
 void Simulation::refresh() {
@@ -121,7 +137,7 @@ Simulation::Drift Simulation::kick_drift() {
     if (!clumps_.empty()) {
       clumps_.kick_drift(dt, g_periodic, gravity_work);
       // (a member's displacement, its clump's turn included)
-      moved_far |= clumps_.place_members(store_, config_.box, limit2, &drift.moved2);
+      moved_far |= clumps_.place_members(store_, limit2, &drift.moved2);
     }
     drift.list_build_due = drift.list_build_due || moved_far;
   }
@@ -172,7 +188,7 @@ void Simulation::final_kick() {
   }
   if (!clumps_.empty()) {
     clumps_.final_kick(config_.dt);
-    clumps_.place_members(store_, config_.box, 0.0, nullptr); // (velocities only)
+    clumps_.place_members(store_, 0.0, nullptr); // (velocities only)
   }
 }
 
@@ -352,12 +368,18 @@ StiffestContact Simulation::stiffest_contact(double impact_speed) const {
   }
   walls_.mark_materials(on_wall);
   // The grains that inserts will pour: the smallest their size distribution gives.
+  // (A clump's least contact mass grows as its size cubed: the smallest clump's is the least.)
   for (const InsertSpec& insert : sources_.inserts()) {
     const auto k = insert.grains.material;
     if (k >= n_mat) continue;
     const double r = insert.grains.size.smallest();
-    m_min[k] = std::min(m_min[k], insert.grains.mass_of(r));
-    r_min[k] = std::min(r_min[k], r);
+    const double m = insert.pours_clumps()
+                         ? make_clump(insert.clump.scaled(r / insert.clump.bounding_radius),
+                                      insert.grains.density, k, 0, {}, {})
+                               .body.smallest_contact_mass()
+                         : insert.grains.mass_of(r);
+    m_min[k] = std::min(m_min[k], m);
+    r_min[k] = std::min(r_min[k], insert.smallest_sphere());
     grains[k] += 2.0;
   }
   const Comm& c = comm();

@@ -225,7 +225,8 @@ public:
   // builder sets them before the first step, and before a checkpoint is loaded). Insertions
   // happen at list builds (a batch due forces one); grains that an outlet holds leave at the
   // next list build, their mechanical energy booked as removed, as escaped grains'.
-  // Throws std::invalid_argument with clumps (sources do not yet pour or drain them).
+  // An insert of a clump shape pours clumps; an outlet takes a clump whole once its centre of
+  // mass enters. Collective.
   void set_sources(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outlets);
   using SourceTally = Sources::Tally;
   // Each insert's cumulative grains and mass, and each outlet's (collective).
@@ -325,6 +326,15 @@ private:
   void book_step();
 
   void build_lists(const ListBuildPlan& plan);
+  // Whether members standing outside their owner's sub-domain need the ghosts to reach
+  // farther: on several ranks, or along a periodic axis (a clump stays whole across it).
+  bool ghosts_reach_for_clumps() const;
+  // Collective, where ghosts_reach_for_clumps(): the clumps' reach (Exchange::set_clump_reach)
+  // from the scene's, the clumps' here and the inserts'.
+  void update_clump_reach();
+  // The box that a clump's centre (with its members) is wrapped into: periodic only along axes
+  // that one rank spans (across ranks the migration shifts them).
+  Box member_wrap_box() const;
   // Evaluates all forces; `advance_history` false for a setup pass (no time elapses, so no
   // spring is incremented and nothing is dissipated).
   void start_forces_from_gravity();

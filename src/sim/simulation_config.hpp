@@ -44,6 +44,11 @@ struct SimulationConfig {
   // The linked cells are at least this wide beyond the skin: grains that come later
   // ([[insert]]) may be larger than any at the start [length].
   double min_contact_reach = 0.0;
+  // The farthest a member's centre stands from its clump's centre of mass, over the clumps the
+  // scene can hold (its fills and inserts of shapes, at their largest size) [length]: on
+  // several ranks, how much farther the ghosts reach (sim/exchange.hpp). The engine takes at
+  // least its clumps' own; a scene and its resumed run agree on it.
+  double clump_reach = 0.0;
   Backend backend = Backend::cpu;
 };
 

@@ -255,14 +255,10 @@ std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
 }
 
 void Simulation::add_insert(InsertSpec insert) {
-  if (!clumps_.empty())
-    throw std::invalid_argument(fmt::format(
-        "insert '{}': [[insert]] does not yet pour among clumps: a scene with clumps has none",
-        insert.name));
   sources_.check_new_name(insert.name);
   ++edits_;
   const double cell_edge = exchange_.cell_edge();
-  const double r = insert.grains.size.largest();
+  const double r = insert.largest_sphere();
   if (2 * r + config_.skin > cell_edge)
     throw std::invalid_argument(fmt::format(
         "insert '{}': grains of radius {} are larger than the linked cells allow ({}); the scene "
@@ -281,6 +277,7 @@ void Simulation::add_insert(InsertSpec insert) {
   error = comm().first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
   sources_.add_insert(std::move(insert), step_, config_.dt);
+  update_clump_reach(); // (from the next list build)
 }
 
 } // namespace yuxi

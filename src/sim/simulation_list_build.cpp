@@ -33,18 +33,17 @@ void Simulation::build_lists(const ListBuildPlan& plan) {
     const Sources::Books books{ledger_.books().inserted, ledger_.books().removed};
     const Vec3 g_potential = potential_gravity(config_);
     if (sources_.has_outlets())
-      sources_.drain_outlets(store_, config_.box, books, [&](std::size_t i) {
-        return mechanical_energy(store_, i, g_potential);
-      });
+      sources_.drain_outlets(store_, clumps_, config_.box, g_potential, books);
     if (!sources_.inserts().empty())
-      sources_.insert_due_batches(store_, config_, exchange_.decomposition(), c, walls_.planes(),
-                                  time_, step_, books);
+      sources_.insert_due_batches(store_, clumps_, config_, exchange_.decomposition(), c,
+                                  walls_.planes(), time_, step_, books);
   }
   // Wrap grains into the periodic box along axes that one rank spans; across ranks the
   // migration shifts them.
   const auto dims = exchange_.decomposition().dims();
-  // (A clump's members stand wrapped already, placed from its centre, which wraps here.)
-  if (!clumps_.empty() && (in_step || plan.after == After::edit)) clumps_.wrap(config_.box);
+  // (A clump's members stand whole about its centre, which wraps here, taking them along.)
+  if (!clumps_.empty() && (in_step || plan.after == After::edit))
+    clumps_.wrap(member_wrap_box(), store_);
   for (std::size_t i = 0; i < store_.n_owned(); ++i) {
     if (!store_.is_grain(i) || store_.body[i] >= 0) continue;
     Vec3 wrapped = config_.box.wrap(store_.x[i]);
@@ -52,7 +51,7 @@ void Simulation::build_lists(const ListBuildPlan& plan) {
       if (dims[a] > 1) wrapped[a] = store_.x[i][a];
     store_.x[i] = wrapped;
   }
-  if (c.size() > 1) exchange_.migrate(store_, history);
+  if (c.size() > 1) exchange_.migrate(store_, history, clumps_);
   // Sort owned particles by cell so that neighbours sit close in memory: the free grains
   // first, then the clumps' members, then the wall particles (so the integration runs over the
   // free grains alone, with no test of the kind, which alternates unpredictably along cells
@@ -135,7 +134,7 @@ void Simulation::handle_escapes_here() {
     clumps_gone.erase(std::unique(clumps_gone.begin(), clumps_gone.end()), clumps_gone.end());
     for (const std::size_t b : clumps_gone)
       ledger_.books().removed += clumps_.mechanical_energy(b, g_potential);
-    const std::vector<std::size_t> members = clumps_.remove(clumps_gone);
+    const std::vector<std::size_t> members = clumps_.remove(store_, clumps_gone);
     gone.insert(gone.end(), members.begin(), members.end());
     std::sort(gone.begin(), gone.end());
   }

@@ -207,9 +207,6 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
     // (a branch sizes the cells for its own skin)
     if (branch) cells.edge = 0.0;
     validate_loaded_particles();
-    if (!clumps_.empty() && c.size() > 1)
-      throw std::invalid_argument(fmt::format(
-          "the checkpoint holds clumps, which run on one rank for now, not on {}", c.size()));
     clumps_.index_members(store_); // (every member there, each naming a clump that is)
   } catch (const ArchiveError& e) {
     error = e.what();
@@ -220,6 +217,7 @@ void Simulation::continue_from(const SavedState& saved, const BranchCheck* branc
   }
   error = c.first_error(error);
   if (!error.empty()) throw std::invalid_argument(error);
+  update_clump_reach(); // (before the ranks are laid out: their least width)
   lay_out_for_loaded(cells, own);
   // (a state of an older layout holds no next id)
   GlobalId top = -1;

@@ -4,6 +4,7 @@
 
 #include "core/random.hpp"
 #include "scene/ball_hash.hpp"
+#include "sim/energy_ledger.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,13 +67,13 @@ bool Sources::insertion_due(std::int64_t step, double dt) const {
   return false;
 }
 
-void Sources::insert_due_batches(ParticleStore& s, const SimulationConfig& config,
-                                 const Decomposition& decomp, const Comm& comm,
-                                 const std::vector<PlaneWall>& planes, double t, std::int64_t step,
-                                 Books books) {
+void Sources::insert_due_batches(ParticleStore& s, ClumpBodies& clumps,
+                                 const SimulationConfig& config, const Decomposition& decomp,
+                                 const Comm& comm, const std::vector<PlaneWall>& planes, double t,
+                                 std::int64_t step, Books books) {
   for (std::size_t k = 0; k < inserts_.size(); ++k)
     if (batch_due(k, step, config.dt))
-      insert_batch(k, s, config, decomp, comm, planes, t, step, books);
+      insert_batch(k, s, clumps, config, decomp, comm, planes, t, step, books);
 }
 
 void Sources::adopt(const std::vector<std::string>& insert_names,
@@ -136,10 +137,10 @@ void Sources::add_insert(InsertSpec insert, std::int64_t step, double dt) {
   insert_progress_.push_back(p);
 }
 
-void Sources::insert_batch(std::size_t source, ParticleStore& store, const SimulationConfig& config,
-                           const Decomposition& decomp, const Comm& comm,
-                           const std::vector<PlaneWall>& planes, double t, std::int64_t step,
-                           Books books) {
+void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies& clumps,
+                           const SimulationConfig& config, const Decomposition& decomp,
+                           const Comm& comm, const std::vector<PlaneWall>& planes, double t,
+                           std::int64_t step, Books books) {
   const InsertSpec& s = inserts_[source];
   InsertProgress& progress = insert_progress_[source];
   const double dt = config.dt;
@@ -221,9 +222,31 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, const Simul
       const Vec3& x = places[c];
       if (refused[c] > 0.0 || overlaps(taken, x, due[j].radius)) continue;
       taken.add(x, due[j].radius);
+      ++placed;
+      // The step's second half kick (gravity alone, until its contacts are computed) brings
+      // the velocity to the one drawn: it starts half a kick behind. Its kinetic and potential
+      // energy come from outside the equations of motion.
+      const Vec3 v_start = due[j].velocity - (0.5 * dt) * config.gravity;
+      if (s.pours_clumps()) {
+        const Quaternion turn = random_orientation(rng); // (drawn on every rank alike)
+        PlacedClump clump =
+            make_clump(s.clump.scaled(due[j].radius / s.clump.bounding_radius), s.grains.density,
+                       s.grains.material, next_gid_, x, turn, v_start);
+        ClumpBody& body = clump.body;
+        next_gid_ += static_cast<GlobalId>(clump.members.size());
+        progress.mass += body.mass;
+        // (its owner: the rank of its anchor member, sim/exchange.hpp)
+        if (!decomp.owns(config.box.wrap(clump.members[body.anchor()].position))) break;
+        for (std::size_t k = 0; k < clump.members.size(); ++k)
+          store.add(clump.members[k], body.id + static_cast<GlobalId>(k));
+        body.shape = s.shape;
+        body.force = body.mass * config.gravity;
+        books.inserted += 0.5 * body.mass * norm2(due[j].velocity) - body.mass * dot(g, body.x);
+        clumps.add(std::move(body));
+        break;
+      }
       const GlobalId id = next_gid_++;
       const double m = s.grains.mass_of(due[j].radius);
-      ++placed;
       progress.mass += m;
       if (decomp.owns(config.box.wrap(x))) {
         ParticleSpec p;
@@ -231,12 +254,9 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, const Simul
         p.radius = due[j].radius;
         p.mass = m;
         p.material = s.grains.material;
-        // The step's second half kick (gravity alone, until its contacts are computed) brings
-        // the velocity to the one drawn: it starts half a kick behind.
-        p.velocity = due[j].velocity - (0.5 * dt) * config.gravity;
+        p.velocity = v_start;
         const std::size_t i = store.add(p, id);
         store.f[i] = m * config.gravity;
-        // Its kinetic and potential energy come from outside the equations of motion.
         books.inserted += 0.5 * m * norm2(due[j].velocity) - m * dot(g, x);
       }
       break;
@@ -244,6 +264,43 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, const Simul
   }
   progress.grains += placed;
   progress.owed = static_cast<std::int64_t>(due.size()) - placed;
+}
+
+void Sources::drain_outlets(ParticleStore& s, ClumpBodies& clumps, const Box& box,
+                            const Vec3& g_potential, Books books) {
+  // The outlet that holds x (outlets_.size(): none).
+  const auto outlet_of = [&](const Vec3& x) {
+    const Vec3 at = box.wrap(x);
+    std::size_t k = 0;
+    while (k < outlets_.size() && !outlets_[k].region.contains(at)) ++k;
+    return k;
+  };
+  const auto take = [&](std::size_t k, double mass, double energy) {
+    books.removed += energy;
+    ++outlet_part_[k].grains;
+    outlet_part_[k].mass += mass;
+  };
+  std::vector<std::size_t> gone;
+  for (std::size_t i = 0; i < s.n_owned(); ++i) {
+    if (!s.is_grain(i) || s.body[i] >= 0) continue; // (a clump's member: its clump, below)
+    const std::size_t k = outlet_of(s.x[i]);
+    if (k == outlets_.size()) continue;
+    gone.push_back(i);
+    take(k, s.mass[i], mechanical_energy(s, i, g_potential));
+  }
+  std::vector<std::size_t> bodies;
+  for (std::size_t b = 0; b < clumps.size(); ++b) {
+    const std::size_t k = outlet_of(clumps.bodies()[b].x);
+    if (k == outlets_.size()) continue;
+    bodies.push_back(b);
+    take(k, clumps.bodies()[b].mass, clumps.mechanical_energy(b, g_potential));
+  }
+  if (!bodies.empty()) {
+    const std::vector<std::size_t> members = clumps.remove(s, bodies);
+    gone.insert(gone.end(), members.begin(), members.end());
+    std::sort(gone.begin(), gone.end());
+  }
+  if (!gone.empty()) s.remove_owned(gone);
 }
 
 std::vector<Sources::Tally> Sources::inflow() const {

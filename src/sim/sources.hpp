@@ -11,6 +11,7 @@
 #include "domain/decomposition.hpp"
 #include "scene/particle_source.hpp"
 #include "scene/plane_wall.hpp"
+#include "sim/clump_bodies.hpp"
 #include "sim/simulation_config.hpp"
 
 #include <cstdint>
@@ -49,29 +50,18 @@ public:
     double& inserted; // the new grains' mechanical energy
     double& removed;  // the leaving grains'
   };
-  // Inserts every batch due at this step into `s` (each rank keeps the grains it owns): the
-  // same candidates and choices on every rank. Collective (one reduction per batch).
-  void insert_due_batches(ParticleStore& s, const SimulationConfig& config,
+  // Inserts every batch due at this step into `s` (each rank keeps the grains it owns), the
+  // bodies of clumps poured into `clumps`: the same candidates and choices on every rank.
+  // Collective (one reduction per batch).
+  void insert_due_batches(ParticleStore& s, ClumpBodies& clumps, const SimulationConfig& config,
                           const Decomposition& decomp, const Comm& comm,
                           const std::vector<PlaneWall>& planes, double t, std::int64_t step,
                           Books books);
-  // Takes out the grains in an outlet, their mechanical energy (`energy_of`) booked as removed.
-  template <class EnergyOf>
-  void drain_outlets(ParticleStore& s, const Box& box, Books books, EnergyOf&& energy_of) {
-    std::vector<std::size_t> gone;
-    for (std::size_t i = 0; i < s.n_owned(); ++i) {
-      if (!s.is_grain(i)) continue;
-      for (std::size_t k = 0; k < outlets_.size(); ++k)
-        if (outlets_[k].region.contains(box.wrap(s.x[i]))) {
-          gone.push_back(i);
-          books.removed += energy_of(i);
-          ++outlet_part_[k].grains;
-          outlet_part_[k].mass += s.mass[i];
-          break;
-        }
-    }
-    if (!gone.empty()) s.remove_owned(gone);
-  }
+  // Takes out the grains whose centre is in an outlet, and the clumps whose centre of mass is
+  // (whole, members and body), their mechanical energy booked as removed; a clump counts as one
+  // grain in the outlet's tally.
+  void drain_outlets(ParticleStore& s, ClumpBodies& clumps, const Box& box, const Vec3& g_potential,
+                     Books books);
 
   // An insert's pouring steered from outside the scene (the Python API), by the insert's index,
   // at step `step` of a run of time step `dt`. start: it pours from the next step on, at its
@@ -138,8 +128,8 @@ private:
   };
   BatchSteps batch_steps(std::size_t k, double dt) const;
   bool batch_due(std::size_t k, std::int64_t step, double dt) const;
-  void insert_batch(std::size_t k, ParticleStore& s, const SimulationConfig& config,
-                    const Decomposition& decomp, const Comm& comm,
+  void insert_batch(std::size_t k, ParticleStore& s, ClumpBodies& clumps,
+                    const SimulationConfig& config, const Decomposition& decomp, const Comm& comm,
                     const std::vector<PlaneWall>& planes, double t, std::int64_t step, Books books);
   // Takes the saved sources' state by name: each insert and outlet of this scene takes the
   // saved one of its name, and starts afresh where none has it.

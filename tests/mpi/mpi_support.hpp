@@ -45,15 +45,19 @@ inline Snapshot snapshot(const Simulation& sim) {
   return s;
 }
 
-// Compares on rank 0: positions to `tol_x`, velocities to `tol_v`, energies relatively.
-inline void expect_same(const Snapshot& a, const Snapshot& b, double tol_x, double tol_v) {
+// Compares on rank 0: positions to `tol_x` (given `box`, the nearest periodic images: a
+// clump's members stand outside the box along an axis cut between ranks), velocities to
+// `tol_v`, energies relatively.
+inline void expect_same(const Snapshot& a, const Snapshot& b, double tol_x, double tol_v,
+                        const Box* box = nullptr) {
   if (Comm::world().rank() != 0) return;
   ASSERT_EQ(a.state.size(), b.state.size()) << "particles are conserved";
   double dx = 0, dv = 0;
   for (const auto& [gid, xv] : a.state) {
     const auto it = b.state.find(gid);
     ASSERT_NE(it, b.state.end()) << "particle " << gid << " lost";
-    dx = std::max(dx, norm(xv.first - it->second.first));
+    dx = std::max(dx, norm(box ? box->minimum_image(xv.first, it->second.first)
+                               : xv.first - it->second.first));
     dv = std::max(dv, norm(xv.second - it->second.second));
   }
   EXPECT_LE(dx, tol_x);

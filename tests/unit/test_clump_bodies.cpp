@@ -160,7 +160,6 @@ TEST(ClumpBodies, AMemberCannotBeMovedOrRemovedAlone) {
   const Vec3 v{1, 0, 0};
   EXPECT_THROW(sim.set_velocities({&member, 1}, {&v, 1}), std::invalid_argument);
   EXPECT_THROW(sim.remove_grains({&member, 1}), std::invalid_argument);
-  EXPECT_THROW(sim.set_sources({}, {OutletSpec{}}), std::invalid_argument);
   EXPECT_EQ(sim.particles().n_owned(), 3u);
 }
 

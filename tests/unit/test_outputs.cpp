@@ -60,6 +60,70 @@ TEST(VtkWriter, AppendedDataMatchesTheDeclaredArrays) {
   fs::remove_all(dir);
 }
 
+// The values of the appended array `name` of a .vtu file (its declared offset, an 8-byte size,
+// then the values).
+template <class T> std::vector<T> vtu_array(const std::string& vtu, const std::string& name) {
+  const auto declared = vtu.find("Name=\"" + name + "\"");
+  if (declared == std::string::npos) return {};
+  const auto offset_at = vtu.find("offset=\"", declared) + 8;
+  const std::size_t offset = std::stoull(vtu.substr(offset_at));
+  const auto data = vtu.find("_", vtu.find("<AppendedData")) + 1;
+  std::uint64_t size = 0;
+  std::memcpy(&size, vtu.data() + data + offset, 8);
+  std::vector<T> out(size / sizeof(T));
+  std::memcpy(out.data(), vtu.data() + data + offset + 8, size);
+  return out;
+}
+
+// Two rods (three spheres in a row), the second turned a quarter about z: the clumps' file
+// holds their centres, orientations and principal axes, and the series names it as part 2.
+TEST(VtkWriter, ClumpsGoBesideTheParticles) {
+  const auto dir = temp_dir("vtk-clumps");
+  const std::vector<SphereMember> rod{{{-0.6, 0, 0}, 0.3}, {{0, 0, 0}, 0.3}, {{0.6, 0, 0}, 0.3}};
+  const ClumpShape shape = make_clump_shape("rod", rod);
+  const Quaternion quarter = about_axis({0, 0, 1}, pi / 2);
+  const PlacedClump a = make_clump(shape, 1.0, 0, 0, {1, 1, 1}, Quaternion{});
+  const PlacedClump b = make_clump(shape, 1.0, 0, 3, {3, 1, 1}, quarter, {0, 0, -1}, {0, 0, 2});
+  ParticleStore s;
+  for (const PlacedClump* c : {&a, &b})
+    for (std::size_t k = 0; k < c->members.size(); ++k)
+      s.add(c->members[k], c->body.id + static_cast<GlobalId>(k));
+  const std::vector<ClumpBody> bodies{a.body, b.body};
+  VtkSeries series(dir);
+  series.write(s, 10, 0.5, nullptr, bodies);
+  const std::string vtu = slurp(dir / "clumps_000000010.vtu");
+  EXPECT_NE(vtu.find("NumberOfPoints=\"2\""), std::string::npos);
+  EXPECT_EQ(vtu_array<double>(vtu, "Points"), (std::vector<double>{1, 1, 1, 3, 1, 1}));
+  EXPECT_EQ(vtu_array<std::int64_t>(vtu, "id"), (std::vector<std::int64_t>{0, 3}));
+  const auto q = vtu_array<double>(vtu, "orientation");
+  ASSERT_EQ(q.size(), 8u);
+  EXPECT_EQ(q[4], b.body.q.w);
+  EXPECT_EQ(q[7], b.body.q.z);
+  // The rod's long axis (the smallest moment) along x, and along y once turned.
+  const auto axis = vtu_array<double>(vtu, "axis_1");
+  ASSERT_EQ(axis.size(), 6u);
+  EXPECT_NEAR(std::abs(axis[0]), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(axis[4]), 1.0, 1e-12);
+  const auto omega = vtu_array<double>(vtu, "angular_velocity");
+  ASSERT_EQ(omega.size(), 6u);
+  EXPECT_NEAR(omega[5], 2.0, 1e-12);
+  EXPECT_EQ(vtu_array<std::int64_t>(slurp(dir / "particles_000000010.vtu"), "clump"),
+            (std::vector<std::int64_t>{0, 0, 0, 3, 3, 3}));
+  EXPECT_NE(slurp(dir / "particles.pvd").find("part=\"2\" file=\"clumps_000000010.vtu\""),
+            std::string::npos);
+  // The LAMMPS dump of a run with clumps names each member's clump (mol).
+  LammpsDumpWriter dump(dir / "d.lammpstrj", Box{{0, 0, 0}, {5, 5, 5}}, std::nullopt, Comm::self(),
+                        true);
+  dump.write(s, 0);
+  std::istringstream in(slurp(dir / "d.lammpstrj"));
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 9u + 6u);
+  EXPECT_NE(lines[8].find("fz mol"), std::string::npos);
+  EXPECT_EQ(lines[14].substr(lines[14].rfind(' ') + 1), "3");
+  fs::remove_all(dir);
+}
+
 TEST(LammpsDump, FramesHaveTheDumpLayout) {
   const auto dir = temp_dir("dump");
   const ParticleStore s = three_particles();
