@@ -37,6 +37,7 @@ void Sources::set(std::vector<InsertSpec> inserts, std::vector<OutletSpec> outle
   inserts_ = std::move(inserts);
   outlets_ = std::move(outlets);
   insert_progress_.assign(inserts_.size(), InsertProgress{});
+  owed_grains_.assign(inserts_.size(), {});
   for (std::size_t k = 0; k < inserts_.size(); ++k)
     if (inserts_[k].held) insert_progress_[k].halted = 1; // (until start_insert)
   outlet_part_.assign(outlets_.size(), OutletPart{});
@@ -78,15 +79,21 @@ void Sources::insert_due_batches(ParticleStore& s, ClumpBodies& clumps,
 
 void Sources::adopt(const std::vector<std::string>& insert_names,
                     const std::vector<InsertProgress>& inserts,
+                    const std::vector<std::vector<OwedGrain>>& owed,
                     const std::vector<std::string>& outlet_names,
                     const std::vector<OutletPart>& outlets) {
   // (a handful of sources: a search by name each)
   std::vector<InsertProgress> progress(inserts_.size());
+  std::vector<std::vector<OwedGrain>> owed_grains(inserts_.size());
   for (std::size_t k = 0; k < inserts_.size(); ++k) {
     if (inserts_[k].held) progress[k].halted = 1;
     for (std::size_t j = 0; j < insert_names.size(); ++j)
-      if (insert_names[j] == inserts_[k].name) progress[k] = inserts[j];
+      if (insert_names[j] == inserts_[k].name) {
+        progress[k] = inserts[j];
+        if (j < owed.size()) owed_grains[k] = owed[j];
+      }
   }
+  owed_grains_ = std::move(owed_grains);
   std::vector<OutletPart> parts(outlets_.size());
   for (std::size_t k = 0; k < outlets_.size(); ++k)
     for (std::size_t j = 0; j < outlet_names.size(); ++j)
@@ -135,6 +142,7 @@ void Sources::add_insert(InsertSpec insert, std::int64_t step, double dt) {
   p.first_step = std::max(step + 1, std::max<std::int64_t>(1, std::llround(insert.start / dt)));
   inserts_.push_back(std::move(insert));
   insert_progress_.push_back(p);
+  owed_grains_.emplace_back();
 }
 
 void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies& clumps,
@@ -154,10 +162,18 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies
     double radius;
     Vec3 velocity;
   };
+  // The grains owed by the last batch first, as they were drawn, then new ones.
   std::vector<Due> due;
+  std::vector<OwedGrain>& owed = owed_grains_[source];
   if (s.by_mass) {
     double mass = progress.mass;
-    while (mass < progress.mass_before + s.rate * elapsed && due.size() < 1000000) {
+    const double target = progress.mass_before + s.rate * elapsed;
+    for (const OwedGrain& o : owed) {
+      if (!(mass < target)) break;
+      due.push_back({o.radius, o.velocity});
+      mass += s.grains.mass_of(o.radius);
+    }
+    while (mass < target && due.size() < 1000000) {
       const double r = s.grains.size.draw(rng);
       due.push_back({r, s.grains.draw_velocity(rng)});
       mass += s.grains.mass_of(r);
@@ -166,11 +182,15 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies
     auto target =
         progress.grains_before + static_cast<std::int64_t>(std::floor(s.rate * elapsed + 1e-9));
     if (s.total >= 0) target = std::min(target, s.total);
-    for (std::int64_t n = progress.grains; n < target; ++n) {
+    std::int64_t n = progress.grains;
+    for (std::size_t k = 0; k < owed.size() && n < target; ++k, ++n)
+      due.push_back({owed[k].radius, owed[k].velocity});
+    for (; n < target; ++n) {
       const double r = s.grains.size.draw(rng);
       due.push_back({r, s.grains.draw_velocity(rng)});
     }
   }
+  owed.clear();
   if (due.empty()) return;
   // Candidate places: `attempts` for each due grain, from the batch's stream.
   const std::size_t attempts = static_cast<std::size_t>(std::max(1, s.attempts));
@@ -217,10 +237,12 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies
   store.clear_ghosts();
   std::int64_t placed = 0;
   for (std::size_t j = 0; j < due.size(); ++j) {
-    for (std::size_t a = 0; a < attempts; ++a) {
+    bool found = false;
+    for (std::size_t a = 0; a < attempts && !found; ++a) {
       const std::size_t c = j * attempts + a;
       const Vec3& x = places[c];
       if (refused[c] > 0.0 || overlaps(taken, x, due[j].radius)) continue;
+      found = true;
       taken.add(x, due[j].radius);
       ++placed;
       // The step's second half kick (gravity alone, until its contacts are computed) brings
@@ -261,9 +283,10 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies
       }
       break;
     }
+    if (!found) owed.push_back({due[j].radius, due[j].velocity});
   }
   progress.grains += placed;
-  progress.owed = static_cast<std::int64_t>(due.size()) - placed;
+  progress.owed = static_cast<std::int64_t>(owed.size());
 }
 
 void Sources::drain_outlets(ParticleStore& s, ClumpBodies& clumps, const Box& box,
@@ -333,6 +356,10 @@ void Sources::save(ArchiveWriter& ar) const {
   ar.vector(inserts);
   strings(ar, outlet_names);
   ar.vector(outlets);
+  for (const std::vector<OwedGrain>& owed : owed_grains_) {
+    std::vector<OwedGrain> copy = owed;
+    ar.vector(copy);
+  }
 }
 
 void Sources::load(ArchiveReader& ar, std::uint32_t layout) {
@@ -361,7 +388,14 @@ void Sources::load(ArchiveReader& ar, std::uint32_t layout) {
   }
   if (insert_names.size() != inserts.size() || outlet_names.size() != outlets.size())
     throw ArchiveError("the sources' names and states differ in number (corrupt)");
-  adopt(insert_names, inserts, outlet_names, outlets);
+  std::vector<std::vector<OwedGrain>> owed(layout >= 11 ? inserts.size() : 0);
+  for (std::vector<OwedGrain>& o : owed) {
+    ar.vector(o);
+    for (const OwedGrain& g : o)
+      if (!(g.radius > 0 && std::isfinite(g.radius) && is_finite(g.velocity)))
+        throw ArchiveError("an insert's owed grain is impossible (corrupt)");
+  }
+  adopt(insert_names, inserts, owed, outlet_names, outlets);
 }
 
 void Sources::add_outlet_parts(OutletParts& sum) const {
@@ -380,6 +414,19 @@ void Sources::set_outlet_parts(const OutletParts& sum) {
 }
 
 void Sources::agree_over(const Comm& comm, bool loaded) {
+  // The owed grains, from the first rank that loaded a section (every section holds them).
+  {
+    ArchiveWriter mine;
+    for (const std::vector<OwedGrain>& owed : owed_grains_) {
+      std::vector<OwedGrain> copy = owed;
+      mine.vector(copy);
+    }
+    const std::string agreed = comm.first_error(loaded ? "L" + mine.data() : std::string());
+    if (!agreed.empty()) {
+      ArchiveReader ar(std::string_view(agreed).substr(1));
+      for (std::vector<OwedGrain>& owed : owed_grains_) ar.vector(owed);
+    }
+  }
   std::vector<double> numbers{loaded ? static_cast<double>(next_gid_) : -HUGE_VAL};
   constexpr int fields = InsertProgress::n_numbers;
   for (const InsertProgress& p : insert_progress_)

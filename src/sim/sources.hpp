@@ -83,10 +83,11 @@ public:
   std::vector<Tally> outflow(const Comm& comm) const;
 
   // The sources' section of a checkpoint: the next global id, each insert's name and progress
-  // (the same on every rank) and each outlet's name and part on this rank. Loading matches
-  // them by name: a scene's insert or outlet that the checkpoint does not name starts afresh,
-  // and one the scene does not have is left behind (its grains stay). Layouts before 6 hold
-  // no section (nothing was under way); 6 and 7 hold the states by position, unnamed.
+  // (the same on every rank) and each outlet's name and part on this rank; from layout 11 each
+  // insert's owed grains (their sizes and velocities; before it, owed grains are drawn afresh).
+  // Loading matches them by name: a scene's insert or outlet that the checkpoint does not name
+  // starts afresh, and one the scene does not have is left behind (its grains stay). Layouts before
+  // 6 hold no section (nothing was under way); 6 and 7 hold the states by position, unnamed.
   void save(ArchiveWriter& ar) const;
   void load(ArchiveReader& ar, std::uint32_t layout);
 
@@ -117,6 +118,14 @@ private:
     std::int64_t batches = 0, grains = 0, owed = 0;
     double mass = 0;
   };
+  // A grain drawn for a batch that found no place: it is owed to the next batch with the size
+  // and velocity it was drawn with (drawn afresh, the grains that fail, the larger ones where
+  // the region is crowded, would be replaced by an unbiased draw, and the poured sizes would
+  // drift small).
+  struct OwedGrain {
+    double radius = 0;
+    Vec3 velocity;
+  };
   struct OutletPart { // this rank's
     std::int64_t grains = 0;
     double mass = 0;
@@ -135,11 +144,13 @@ private:
   // saved one of its name, and starts afresh where none has it.
   void adopt(const std::vector<std::string>& insert_names,
              const std::vector<InsertProgress>& inserts,
+             const std::vector<std::vector<OwedGrain>>& owed,
              const std::vector<std::string>& outlet_names, const std::vector<OutletPart>& outlets);
 
   std::vector<InsertSpec> inserts_;
   std::vector<OutletSpec> outlets_;
   std::vector<InsertProgress> insert_progress_;
+  std::vector<std::vector<OwedGrain>> owed_grains_; // each insert's, in the order drawn
   std::vector<OutletPart> outlet_part_;
   GlobalId next_gid_ = 0; // of the next new grain (the same on every rank)
 };

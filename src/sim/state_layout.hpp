@@ -8,13 +8,15 @@
 // that a resumed run is built straight from its state with the saved run's cells; a state of
 // layout 8 or older is given cells sized for its particles. Layout 10 adds the clumps' bodies
 // (sim/clump_bodies.hpp) before the particles, and the particles' `body` field; in a state of
-// layout 9 or older no particle is a clump's member.
+// layout 9 or older no particle is a clump's member. Layout 11 adds each insert's owed grains
+// (their sizes and velocities) after the outlets' parts; in a state of layout 10 or older they
+// are drawn afresh.
 #pragma once
 
 #include <cstdint>
 
 namespace yuxi {
 
-inline constexpr std::uint32_t state_layout = 10, oldest_state_layout = 5;
+inline constexpr std::uint32_t state_layout = 11, oldest_state_layout = 5;
 
 } // namespace yuxi
