@@ -33,12 +33,23 @@ def gamma_for(e, k, m):
     return 2 * math.sqrt(k / m) * -le / math.sqrt(math.pi**2 + le**2)
 
 
+def rod_volume(rod):
+    """The volume of `rod` spheres of d = 1 in a row, 0.5 d apart: each after the first adds a
+    sphere less its lens with the one before, pi (4 r + s) (2 r - s)^2 / 12 (r = 0.5, s = 0.5)."""
+    sphere = math.pi / 6
+    lens = math.pi * (4 * 0.5 + 0.5) * (2 * 0.5 - 0.5) ** 2 / 12
+    return sphere + (rod - 1) * (sphere - lens)
+
+
 def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coulomb=True,
-          gentle=True):
+          gentle=True, rod=1, cone=None, folder=HERE):
+    """rod > 1: the grains are clumps of `rod` spheres of d = 0.9-1.1 in a row, 0.5 d apart
+    (aspect ratio 1 + 0.5 (rod - 1)), poured at the sphere heap's rate of volume; `grains`
+    counts clumps. `cone`: the source above a cone of this angle [degrees] (else by `gentle`)."""
     k_n = 2.0e4 * stiff
     gamma_n = 50.0 * math.sqrt(stiff) if e is None else gamma_for(e, k_n, 0.5)
     dt = 8.0e-4 / math.sqrt(stiff)
-    rate = 25.0
+    rate = 25.0 * rod_volume(1) / rod_volume(rod)
     pour = grains / rate
     t_end = round(pour + 25)
     # The source 2-6 d above the apex of a cone on the floor: the heap's apex must never reach it
@@ -46,8 +57,13 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coul
     # cone and a start at 0.5 sqrt(g d) down. The grains land about 6-10 d below the source. From
     # a 40-degree cone at 2 sqrt(g d) they landed from 13-17 d, and at e = 0.9 the heap came out
     # 2 degrees flatter (docs/results/bulk, B1).
-    cone, speed = (30, 0.5) if gentle else (40, 2.0)
+    cone, speed = (30, 0.5) if gentle else (40, 2.0) if cone is None else (cone, 0.5)
     source_top = floor * math.tan(math.radians(cone)) + 6
+    # (a rod's whole bounding ball must fit in the source, and rods still falling through it
+    # leave room for the next: a source wider and taller by twice the rod's extra length)
+    bounding = 0.5 + 0.25 * (rod - 1)  # (the size drawn for a clump: its bounding radius)
+    extra = 2 * (bounding - 0.5)
+    top = source_top + 2 * extra
     out = [f"# Heap: {grains} grains poured onto a rough floor of radius {floor} d; mu_s = mu_d = "
            f"{mu}, k_n = {k_n:g}, gamma_n = {gamma_n:.4g}, mu_r = {mu_r}"
            + (f"; random floor and pour {seed}." if seed != 1 else "."),
@@ -58,9 +74,13 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coul
            "[output]", "energy_interval = 1.0", f"snapshot_interval = {t_end / 4}", "",
            "[checkpoint]", "every_minutes = 20", "",
            "[domain]", f"lo = [{-floor - 4}, {-floor - 4}, -8.0]",
-           f"hi = [{floor + 4}, {floor + 4}, {source_top + 4}]", "gravity = [0.0, 0.0, -1.0]", "skin = 0.2",
+           f"hi = [{floor + 4}, {floor + 4}, {top + 4}]", "gravity = [0.0, 0.0, -1.0]", "skin = 0.2",
            'on_escape = "remove" # grains that bounce off sideways', "",
            "[contact]", 'model = "linear"']
+    if rod > 1:
+        spheres = ", ".join(f"[{0.5 * k:g}, 0.0, 0.0, 0.5]" for k in range(rod))
+        out[out.index("[contact]"):out.index("[contact]")] = [
+            "[[shape]]", f'name = "rod{rod}"', f"spheres = [{spheres}]", ""]
     for partner in ("grain", "floor"):
         out += ["[[contact.pair]]", f'materials = ["grain", "{partner}"]', f"k_n = {k_n:g}",
                 f"k_t = {k_n * 2 / 7:.8g}", f"gamma_n = {gamma_n:.8g}",
@@ -86,11 +106,14 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coul
             "lo = -0.61, hi = 0.61 }", "",
             "[[insert]]", 'name = "pour"', 'material = "grain"', f"rate = {rate}",
             f"total = {grains}", "interval = 0.08", f"velocity = [0.0, 0.0, {-speed}]",
-            "velocity_spread = 0.3", 'size = { distribution = "uniform", min = 0.45, max = 0.55 }']
+            "velocity_spread = 0.3"]
+    out += [f'size = {{ distribution = "uniform", min = {0.9 * bounding:g}, '
+            f"max = {1.1 * bounding:g} }}"]
+    out += [f'shape = "rod{rod}"'] if rod > 1 else []
     out += [f"seed = {3008 + 100 * seed}"] if seed != 1 else []
     out += [
             f'region = {{ shape = "cylinder", center = [0.0, 0.0, {source_top - 4}], '
-            "radius = 3.0, lo = 0.0, hi = 4.0 }", "",
+            f"radius = {3.0 + extra}, lo = 0.0, hi = {4.0 + 2 * extra} }}", "",
             "[[outlet]]", 'name = "off_the_floor"',
             'region = { shape = "half_space", point = [0.0, 0.0, -4.0], normal = [0.0, 0.0, -1.0] }',
             "",
@@ -101,9 +124,9 @@ def scene(name, grains, floor, mu=0.5, stiff=1.0, e=None, mu_r=0.0, seed=1, coul
             f"hi = {source_top - 4} }}",
             "[[measure]]", 'name = "heap_mass"', 'quantity = "mass"',
             f'region = {{ shape = "cylinder", center = [0.0, 0.0, 0.0], radius = {floor + 2}, '
-            f"lo = 0.0, hi = {source_top + 4} }}",
+            f"lo = 0.0, hi = {top + 4} }}",
             "[[measure]]", 'name = "ke"', 'quantity = "kinetic_per_grain"', ""]
-    (HERE / f"{name}.toml").write_text("\n".join(out))
+    (folder / f"{name}.toml").write_text("\n".join(out))
 
 
 for mu in (0.1, 0.3, 0.5, 1.0):
@@ -120,3 +143,10 @@ for mu_r in (0.05, 0.1, 0.2):
 # (the small heap checks the mechanics in the default tests: counts, books, a cone; it keeps the
 # paper's cap, with which its checks were set)
 scene("heap-small", 1200, 14.0, coulomb=False, gentle=False)
+# Heaps of rods (docs/results/clumps): the same volume as 1200 spheres on the small floor, with
+# Coulomb's cap, poured from above a 40-degree cone at 0.5 sqrt(g d); three pours each.
+for rod in (1, 2, 3, 5):
+    for seed in (1, 2, 3):
+        tail = f"-seed{seed}" if seed != 1 else ""
+        scene(f"heap-rod{rod}{tail}", round(1200 * rod_volume(1) / rod_volume(rod)), 14.0,
+              rod=rod, cone=40, seed=seed, folder=HERE.parent / "clumps")
