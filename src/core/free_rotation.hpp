@@ -54,14 +54,22 @@ YUXI_HD constexpr void kick_rotor(const Quaternion& q, Quaternion& p, const Vec3
 }
 
 // The exact flow of the term (p . q e_k)^2 / (8 I_k) over dt: a turn by the angle
-// 2 zeta = omega_k dt about body axis k.
+// 2 zeta = omega_k dt about body axis k. In two parts, which a loop over many bodies can run
+// apart (sim/clump_bodies.cpp): zeta, then the turn by its sine and cosine.
+YUXI_HD constexpr double turn_half_angle(const Quaternion& q, const Quaternion& p, int k,
+                                         double moment, double dt) {
+  return dt * dot(p, times_axis(q, k)) / (4.0 * moment);
+}
+YUXI_HD constexpr void turn_by(Quaternion& q, Quaternion& p, int k, double sin_zeta,
+                               double cos_zeta) {
+  const Quaternion qk = times_axis(q, k), pk = times_axis(p, k);
+  q = cos_zeta * q + sin_zeta * qk;
+  p = cos_zeta * p + sin_zeta * pk;
+}
 YUXI_HD inline void rotate_about_body_axis(Quaternion& q, Quaternion& p, int k, double moment,
                                            double dt) {
-  const Quaternion qk = times_axis(q, k), pk = times_axis(p, k);
-  const double zeta = dt * dot(p, qk) / (4.0 * moment);
-  const portable::SinCos t = portable::sin_cos(zeta);
-  q = t.cos * q + t.sin * qk;
-  p = t.cos * p + t.sin * pk;
+  const portable::SinCos t = portable::sin_cos(turn_half_angle(q, p, k, moment, dt));
+  turn_by(q, p, k, t.sin, t.cos);
 }
 
 // The free rotation over dt (no torque), the symmetric sequence of the three axes.

@@ -176,6 +176,13 @@ YUXI_HD inline double cos_kernel(double r) {
 
 } // namespace detail
 
+// Whether sin_cos(x) is {detail::sin_kernel(x), detail::cos_kernel(x)} alone: within pi/4 and
+// not zero (a loop over many angles can run the kernels on all of them, vectorised, and
+// sin_cos on the others: the same bits).
+YUXI_HD constexpr bool takes_kernels_alone(double x) {
+  return (x < 0 ? -x : x) <= 0.78 && x != 0.0;
+}
+
 // sin x and cos x together. x = k pi/2 + r with |r| <= pi/4 (Cody & Waite's reduction, pi/2 in
 // four parts), then the kernels above by the quadrant k mod 4. Within 1 ulp for |x| <= pi/4,
 // where the kernels act alone, and 2.5 ulp for |x| < 1.6e6, where the reduced argument's
@@ -195,7 +202,7 @@ YUXI_HD inline SinCos sin_cos(double x) {
   // Within pi/4 (the turns of a rigid body's step) no reduction: k is 0 and r is x, so the
   // general path below gives these bits too, without its rint and fmod (but for -0, which it
   // turns into +0).
-  if (std::abs(x) <= 0.78 && x != 0.0) return {sin_kernel(x), cos_kernel(x)};
+  if (takes_kernels_alone(x)) return {sin_kernel(x), cos_kernel(x)};
   if (!(std::abs(x) < 1.6e6)) x = std::fmod(x, 6.283185307179586);
   // k: the nearest integer to x 2/pi, as a double (rint is exact and the same everywhere; a
   // conversion to an integer type would overflow for huge x), and its quadrant k mod 4.
