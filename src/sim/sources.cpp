@@ -238,7 +238,7 @@ void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies
   std::int64_t placed = 0;
   for (std::size_t j = 0; j < due.size(); ++j) {
     bool found = false;
-    for (std::size_t a = 0; a < attempts && !found; ++a) {
+    for (std::size_t a = 0; a < attempts; ++a) {
       const std::size_t c = j * attempts + a;
       const Vec3& x = places[c];
       if (refused[c] > 0.0 || overlaps(taken, x, due[j].radius)) continue;
@@ -356,10 +356,23 @@ void Sources::save(ArchiveWriter& ar) const {
   ar.vector(inserts);
   strings(ar, outlet_names);
   ar.vector(outlets);
-  for (const std::vector<OwedGrain>& owed : owed_grains_) {
-    std::vector<OwedGrain> copy = owed;
-    ar.vector(copy);
+  write_owed(ar);
+}
+
+void Sources::write_owed(ArchiveWriter& ar) const {
+  for (const std::vector<OwedGrain>& owed : owed_grains_) ar.vector(owed);
+}
+
+std::vector<std::vector<Sources::OwedGrain>> Sources::read_owed(ArchiveReader& ar,
+                                                                std::size_t inserts) {
+  std::vector<std::vector<OwedGrain>> owed(inserts);
+  for (std::vector<OwedGrain>& o : owed) {
+    ar.vector(o);
+    for (const OwedGrain& g : o)
+      if (!(g.radius > 0 && std::isfinite(g.radius) && is_finite(g.velocity)))
+        throw ArchiveError("an insert's owed grain is impossible (corrupt)");
   }
+  return owed;
 }
 
 void Sources::load(ArchiveReader& ar, std::uint32_t layout) {
@@ -388,13 +401,7 @@ void Sources::load(ArchiveReader& ar, std::uint32_t layout) {
   }
   if (insert_names.size() != inserts.size() || outlet_names.size() != outlets.size())
     throw ArchiveError("the sources' names and states differ in number (corrupt)");
-  std::vector<std::vector<OwedGrain>> owed(layout >= 11 ? inserts.size() : 0);
-  for (std::vector<OwedGrain>& o : owed) {
-    ar.vector(o);
-    for (const OwedGrain& g : o)
-      if (!(g.radius > 0 && std::isfinite(g.radius) && is_finite(g.velocity)))
-        throw ArchiveError("an insert's owed grain is impossible (corrupt)");
-  }
+  const auto owed = read_owed(ar, layout >= 11 ? inserts.size() : 0);
   adopt(insert_names, inserts, owed, outlet_names, outlets);
 }
 
@@ -417,14 +424,11 @@ void Sources::agree_over(const Comm& comm, bool loaded) {
   // The owed grains, from the first rank that loaded a section (every section holds them).
   {
     ArchiveWriter mine;
-    for (const std::vector<OwedGrain>& owed : owed_grains_) {
-      std::vector<OwedGrain> copy = owed;
-      mine.vector(copy);
-    }
+    write_owed(mine);
     const std::string agreed = comm.first_error(loaded ? "L" + mine.data() : std::string());
     if (!agreed.empty()) {
       ArchiveReader ar(std::string_view(agreed).substr(1));
-      for (std::vector<OwedGrain>& owed : owed_grains_) ar.vector(owed);
+      owed_grains_ = read_owed(ar, owed_grains_.size());
     }
   }
   std::vector<double> numbers{loaded ? static_cast<double>(next_gid_) : -HUGE_VAL};

@@ -147,6 +147,11 @@ private:
              const std::vector<std::vector<OwedGrain>>& owed,
              const std::vector<std::string>& outlet_names, const std::vector<OutletPart>& outlets);
 
+  // Each insert's owed grains in an archive (a checkpoint's section, the ranks' agreement), and
+  // back for `inserts` inserts; throws ArchiveError where a grain is impossible.
+  void write_owed(ArchiveWriter& ar) const;
+  static std::vector<std::vector<OwedGrain>> read_owed(ArchiveReader& ar, std::size_t inserts);
+
   std::vector<InsertSpec> inserts_;
   std::vector<OutletSpec> outlets_;
   std::vector<InsertProgress> insert_progress_;
