@@ -176,11 +176,11 @@ YUXI_HD inline double cos_kernel(double r) {
 
 } // namespace detail
 
-// Whether sin_cos(x) is {detail::sin_kernel(x), detail::cos_kernel(x)} alone: within pi/4 and
-// not zero (a loop over many angles can run the kernels on all of them, vectorised, and
-// sin_cos on the others: the same bits).
+// Whether sin_cos(x) is {detail::sin_kernel(x), detail::cos_kernel(x)} alone: within pi/4, zero
+// included (a loop over many angles can run the kernels on all of them, vectorised, and sin_cos
+// on the others: the same bits). A body at rest turns by zero at every step.
 YUXI_HD constexpr bool takes_kernels_alone(double x) {
-  return (x < 0 ? -x : x) <= 0.78 && x != 0.0;
+  return (x < 0 ? -x : x) <= 0.78;
 }
 
 // sin x and cos x together. x = k pi/2 + r with |r| <= pi/4 (Cody & Waite's reduction, pi/2 in
@@ -200,8 +200,8 @@ YUXI_HD inline SinCos sin_cos(double x) {
   // Beyond the accurate range, first x mod 2 pi (fmod is exact): an angle that is no longer
   // accurate, but whose sine and cosine are still a rotation's.
   // Within pi/4 (the turns of a rigid body's step) no reduction: k is 0 and r is x, so the
-  // general path below gives these bits too, without its rint and fmod (but for -0, which it
-  // turns into +0).
+  // general path below gives these bits too, without its rint and fmod. (At -0 the path turns r
+  // into +0, and the kernels give sin(-0) = -0 + (-0)(0 q) = +0 themselves: the same bits.)
   if (takes_kernels_alone(x)) return {sin_kernel(x), cos_kernel(x)};
   if (!(std::abs(x) < 1.6e6)) x = std::fmod(x, 6.283185307179586);
   // k: the nearest integer to x 2/pi, as a double (rint is exact and the same everywhere; a

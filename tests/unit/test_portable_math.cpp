@@ -135,6 +135,11 @@ TEST(PortableMath, SinAndCosNextToMultiplesOfHalfPi) {
 TEST(PortableMath, SinAndCosAtTheEdges) {
   EXPECT_EQ(portable::sin_cos(0.0).sin, 0.0);
   EXPECT_EQ(portable::sin_cos(0.0).cos, 1.0);
+  // -0 gives +0, as the general path's reduction would make it: a turn by -0 and one by +0 are
+  // the same bits, whichever path a loop takes.
+  EXPECT_FALSE(std::signbit(portable::sin_cos(-0.0).sin));
+  EXPECT_FALSE(std::signbit(portable::detail::sin_kernel(-0.0)));
+  EXPECT_EQ(portable::sin_cos(-0.0).cos, 1.0);
   EXPECT_EQ(portable::sin_cos(1e-300).sin, 1e-300);
   EXPECT_TRUE(std::isnan(portable::sin_cos(std::numeric_limits<double>::infinity()).sin));
   EXPECT_TRUE(std::isnan(portable::sin_cos(std::numeric_limits<double>::quiet_NaN()).cos));
