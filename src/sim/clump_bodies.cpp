@@ -156,8 +156,7 @@ void ClumpBodies::set(std::vector<ClumpBody> bodies) {
           fmt::format("clump ids must ascend and differ (clump {} follows clump {})", bodies[b].id,
                       bodies[b - 1].id));
   bodies_ = std::move(bodies);
-  first_.clear();
-  member_index_.clear();
+  forget_layout();
 }
 
 void ClumpBodies::index_members(const ParticleStore& s) {
@@ -194,8 +193,15 @@ std::size_t ClumpBodies::body_of(const ParticleStore& s, std::size_t i) const {
   return static_cast<std::size_t>(at - bodies_.begin());
 }
 
+void ClumpBodies::forget_layout() {
+  first_.clear(); // (until index_members)
+  member_index_.clear();
+  arms_ready_ = false;
+}
+
 void ClumpBodies::kick_drift(double dt, const Vec3& g_periodic, double& gravity_work) {
   const double half_dt = 0.5 * dt;
+  arms_ready_ = false; // (the bodies turn)
   for (ClumpBody& b : bodies_) {
     half_kick(b, half_dt);
     b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
@@ -214,24 +220,39 @@ void ClumpBodies::final_kick(double dt) {
   for (ClumpBody& b : bodies_) half_kick(b, 0.5 * dt);
 }
 
-bool ClumpBodies::place_members(ParticleStore& s, double limit2, double* moved2) const {
+bool ClumpBodies::place_members(ParticleStore& s, double limit2, double* moved2) {
+  if (!moved2 && arms_ready_) { // (velocities only, by the arms of the drift)
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      const ClumpBody& body = bodies_[b];
+      const Vec3 omega = body.angular_velocity();
+      for (std::size_t k = 0; k < body.members.size(); ++k) {
+        const std::size_t m = first_[b] + k, i = member_index_[m];
+        store(s.v[i], body.v + cross(omega, arms_[m]));
+        store(s.w[i], omega);
+      }
+    }
+    return false;
+  }
   bool moved_far = false;
+  if (moved2) arms_.resize(first_.back());
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const ClumpBody& body = bodies_[b];
     const Vec3 omega = body.angular_velocity();
     const Rotation turn = rotation_of(body.q); // (arm(k)'s bits, built once)
     for (std::size_t k = 0; k < body.members.size(); ++k) {
-      const std::size_t i = member_index_[first_[b] + k];
+      const std::size_t m = first_[b] + k, i = member_index_[m];
       const Vec3 r = turn * body.members[k];
       store(s.v[i], body.v + cross(omega, r));
       store(s.w[i], omega);
       if (!moved2) continue;
+      store(arms_[m], r);
       const Vec3 x = body.x + r;
       *moved2 = std::max(*moved2, norm2(x - s.x[i]));
       store(s.x[i], x);
       moved_far |= !(norm2(s.x[i] - s.x_build[i]) <= limit2); // NaN too
     }
   }
+  if (moved2) arms_ready_ = true;
   return moved_far;
 }
 
@@ -239,11 +260,19 @@ void ClumpBodies::gather_forces(const ParticleStore& s, const Vec3& gravity) {
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     ClumpBody& body = bodies_[b];
     Vec3 force = body.mass * gravity, torque;
-    const Rotation turn = rotation_of(body.q); // (arm(k)'s bits, built once)
-    for (std::size_t k = 0; k < body.members.size(); ++k) {
-      const std::size_t i = member_index_[first_[b] + k];
-      force += s.f[i];
-      torque += cross(turn * body.members[k], s.f[i]) + s.torque[i];
+    // Member k's arm: kept from the placing, or made anew (the same bits).
+    const auto gather = [&](const auto& arm) {
+      for (std::size_t k = 0; k < body.members.size(); ++k) {
+        const std::size_t m = first_[b] + k, i = member_index_[m];
+        force += s.f[i];
+        torque += cross(arm(k, m), s.f[i]) + s.torque[i];
+      }
+    };
+    if (arms_ready_) {
+      gather([&](std::size_t, std::size_t m) { return arms_[m]; });
+    } else {
+      const Rotation turn = rotation_of(body.q); // (arm(k)'s bits, built once)
+      gather([&](std::size_t k, std::size_t) { return turn * body.members[k]; });
     }
     body.force = force;
     body.torque = torque;
@@ -270,8 +299,7 @@ void ClumpBodies::add(ClumpBody body) {
     throw std::invalid_argument(fmt::format("a new clump's id {} is not above the last one's ({})",
                                             body.id, bodies_.back().id));
   bodies_.push_back(std::move(body));
-  first_.clear(); // (until index_members)
-  member_index_.clear();
+  forget_layout();
 }
 
 std::vector<std::size_t> ClumpBodies::remove(const ParticleStore& s,
@@ -354,8 +382,7 @@ std::string ClumpBodies::pack(std::size_t b) const {
 
 void ClumpBodies::take_out(std::size_t b) {
   bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(b));
-  first_.clear();
-  member_index_.clear();
+  forget_layout();
 }
 
 void ClumpBodies::take_in(const std::string& bytes, const Vec3& shift) {
@@ -368,8 +395,7 @@ void ClumpBodies::take_in(const std::string& bytes, const Vec3& shift) {
   if (at != bodies_.end() && at->id == body.id)
     throw std::logic_error(fmt::format("clump {} arrived twice", body.id));
   bodies_.insert(at, std::move(body));
-  first_.clear();
-  member_index_.clear();
+  forget_layout();
 }
 
 void ClumpBodies::save(ArchiveWriter& ar) const {

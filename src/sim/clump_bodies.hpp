@@ -92,8 +92,10 @@ public:
   // whole across a periodic face, wrap() moves it), with the bodies' velocities at their
   // points; returns whether a member moved farther than sqrt(limit2) from where it stood at the
   // last list build, and raises `moved2` to the largest squared displacement of a member.
-  // `moved2` null: velocities only, the positions kept.
-  bool place_members(ParticleStore& s, double limit2, double* moved2) const;
+  // `moved2` null: velocities only, the positions kept. The placing keeps each member's arm
+  // R b, which the gathering of the forces and the velocities after the second kick reuse until
+  // the bodies turn again (the same bits as computing them anew).
+  bool place_members(ParticleStore& s, double limit2, double* moved2);
   // Each body's force and torque: gravity M g, plus its members' contact forces and torques,
   // member by member.
   void gather_forces(const ParticleStore& s, const Vec3& gravity);
@@ -140,6 +142,13 @@ private:
   // Store indices of the members, body by body in member order (first_[b] to first_[b + 1]).
   std::vector<std::size_t> first_;
   std::vector<std::uint32_t> member_index_;
+  // Each member's arm R(q) b at the last placing, indexed as member_index_; valid while
+  // arms_ready_ (until the bodies turn or change).
+  std::vector<Vec3> arms_;
+  bool arms_ready_ = false;
+
+  // The members' indices and arms forgotten: the bodies changed (until index_members()).
+  void forget_layout();
 };
 
 } // namespace yuxi

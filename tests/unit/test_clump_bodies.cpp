@@ -1,7 +1,8 @@
 // The clumps' part of the engine (sim/clump_bodies.hpp): members never touch their own clump,
 // a free clump keeps its angular momentum through the engine's step, a clump leaves whole, a
-// checkpoint resumes a run of clumps bit for bit, bodies turned together turn as each alone,
-// and what a member cannot do alone is refused.
+// checkpoint resumes a run of clumps bit for bit, bodies turned together turn as each alone, the
+// members' arms kept from the placing are arms made anew, and what a member cannot do alone is
+// refused.
 #include "core/free_rotation.hpp"
 #include "core/units.hpp"
 #include "test_support.hpp"
@@ -137,6 +138,60 @@ TEST(ClumpBodies, BodiesTurnedTogetherTurnAsEachAlone) {
     EXPECT_EQ(std::memcmp(&t.q, &b.q, sizeof b.q), 0) << "body " << k;
     EXPECT_EQ(std::memcmp(&t.p, &b.p, sizeof b.p), 0) << "body " << k;
   }
+}
+
+// The placing keeps each member's arm R b for the gathering of the forces and the velocities
+// after the second kick: they are those of arms made anew, to the bit, and a turn of the bodies
+// retires them (a gathering after a drift without a placing makes its arms anew).
+TEST(ClumpBodies, ArmsKeptFromThePlacingAreArmsMadeAnew) {
+  constexpr double dt = 0.01;
+  Clumps scene;
+  for (int k = 0; k < 11; ++k) {
+    const double a = 0.41 * k;
+    scene.add(three_spheres(), {1.5 * k, 0, 0}, about_axis(normalized(Vec3{1.0, a, 2.0}), a),
+              {0.01 * k, 0, 0}, {std::sin(a), 0.3, 1.0 - 0.1 * k});
+  }
+  for (std::size_t i = 0; i < scene.store.n_owned(); ++i) {
+    scene.store.f[i] = {0.1 * static_cast<double>(i), -0.2, 0.05};
+    scene.store.torque[i] = {0.01, 0.02 * static_cast<double>(i), -0.03};
+  }
+  for (ClumpBody& b : scene.bodies) b.torque = {0.1, -0.05, 0.2};
+  const auto same = [](const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  // `kept` reuses its arms; `anew` is given the same bodies afresh, which forgets any arms.
+  ParticleStore store = scene.store, store_anew = scene.store;
+  ClumpBodies kept;
+  kept.set(scene.bodies);
+  kept.index_members(store);
+  double work = 0, moved2 = 0;
+  kept.kick_drift(dt, {}, work);
+  kept.place_members(store, 1.0, &moved2);
+  ClumpBodies anew;
+  const auto refresh = [&] {
+    anew.set(kept.bodies());
+    anew.index_members(store_anew);
+  };
+  refresh();
+  kept.gather_forces(store, {0, 0, -1});
+  anew.gather_forces(store_anew, {0, 0, -1});
+  for (std::size_t b = 0; b < kept.size(); ++b) {
+    EXPECT_TRUE(same(kept.bodies()[b].force, anew.bodies()[b].force)) << "body " << b;
+    EXPECT_TRUE(same(kept.bodies()[b].torque, anew.bodies()[b].torque)) << "body " << b;
+  }
+  kept.final_kick(dt);
+  refresh();
+  kept.place_members(store, 0.0, nullptr);
+  anew.place_members(store_anew, 0.0, nullptr);
+  for (std::size_t i = 0; i < store.n_owned(); ++i) {
+    EXPECT_TRUE(same(store.v[i], store_anew.v[i])) << "member " << i;
+    EXPECT_TRUE(same(store.w[i], store_anew.w[i])) << "member " << i;
+  }
+  // A turn retires the arms.
+  kept.kick_drift(dt, {}, work);
+  refresh();
+  kept.gather_forces(store, {0, 0, -1});
+  anew.gather_forces(store_anew, {0, 0, -1});
+  for (std::size_t b = 0; b < kept.size(); ++b)
+    EXPECT_TRUE(same(kept.bodies()[b].torque, anew.bodies()[b].torque)) << "body " << b;
 }
 
 TEST(ClumpBodies, AClumpThatLeavesTheDomainLeavesWhole) {
