@@ -2,6 +2,8 @@
 
 #include "analysis/free_surface.hpp"
 #include "analysis/line_fit.hpp"
+#include "core/free_rotation.hpp"
+#include "core/particle_energy.hpp"
 #include "core/units.hpp"
 
 #include <algorithm>
@@ -112,10 +114,20 @@ std::vector<double> BedMeasurements::values(const Simulation& sim) const {
     const Quantity q = specs_[k].quantity;
     if (q != Quantity::mass && q != Quantity::grains && q != Quantity::kinetic_per_grain) continue;
     for (std::size_t i = 0; i < p.n_owned(); ++i) {
-      if (!p.is_grain(i) || !in_region(specs_[k], sim.config().box, p.x[i])) continue;
+      if (!p.is_grain(i) || p.body[i] >= 0 || !in_region(specs_[k], sim.config().box, p.x[i]))
+        continue;
       sums[3 * k] += p.mass[i];
       sums[3 * k + 1] += 1.0;
       sums[3 * k + 2] += 0.5 * p.mass[i] * norm2(p.v[i]) + sim.rotational_energy(i);
+    }
+    // A clump is one grain, where its centre of mass stands, with its body's mass and its
+    // energy of motion, turning included (its members, with no inertia of their own, left out
+    // above). Each rank adds the bodies it owns.
+    for (const ClumpBody& b : sim.clumps()) {
+      if (!in_region(specs_[k], sim.config().box, b.x)) continue;
+      sums[3 * k] += b.mass;
+      sums[3 * k + 1] += 1.0;
+      sums[3 * k + 2] += translational_energy(b.mass, b.v) + rotor_energy(b.q, b.p, b.inertia);
     }
   }
   sim.comm().sum(sums.data(), static_cast<int>(sums.size()));

@@ -167,8 +167,14 @@ std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedS
   // by the first rank that has it).
   BuildReport r;
   const ParticleStore& s = sim->particles();
-  double counts[2] = {0.0, 0.0};
-  for (std::size_t i = 0; i < s.n_owned(); ++i) counts[s.is_grain(i) ? 0 : 1] += 1.0;
+  // (a clump is one grain, as energies.csv and a fresh start count it: its body, here, and not
+  // its members)
+  double counts[2] = {static_cast<double>(sim->clumps().size()), 0.0};
+  for (std::size_t i = 0; i < s.n_owned(); ++i)
+    if (!s.is_grain(i))
+      counts[1] += 1.0;
+    else if (s.body[i] < 0)
+      counts[0] += 1.0;
   comm.sum(counts, 2);
   r.grains = static_cast<std::size_t>(counts[0]);
   r.walls = static_cast<std::size_t>(counts[1]);

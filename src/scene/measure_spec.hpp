@@ -1,7 +1,9 @@
 // What a [[measure]] table asks a run to write into measurements.csv on every energy interval
 // (docs/scene-format.md, "Measuring a bed"), so that a benchmark is a scene plus a short script:
 //   mass, grains          the mass, or the number, of grains whose centres lie in the region
+//                         (a clump is one grain, at its centre of mass, of its whole mass)
 //   kinetic_per_grain     (sum m v^2/2 + J w^2/2) / N over those grains: "at rest" when small
+//                         (a clump's M V^2/2 plus its rotational energy)
 //   surface_height        the median, over the columns of width `bin` on the x-y plane that hold
 //                         a grain, of the highest grain top max(z + r) (heights along z)
 //   angle                 the bed's angle [degrees]: a straight line fitted by least squares to

@@ -6,10 +6,12 @@
 #include "io/scene_reader.hpp"
 #include "run/bed_measurements.hpp"
 #include "run/scene_builder.hpp"
+#include "test_support.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <tuple>
 
 namespace yuxi {
 namespace {
@@ -69,6 +71,45 @@ TEST(BedMeasurements, MassCountAndKineticEnergyInARegion) {
   EXPECT_DOUBLE_EQ(v[0], 8.0); // grains at x = 2, 4, 6, 8
   EXPECT_DOUBLE_EQ(v[1], 4.0);
   EXPECT_DOUBLE_EQ(v[2], 4 * 0.5 * 2.0 * 1.0 / 10); // four of ten move at 1
+}
+
+// A clump is one grain: counted once, where its centre of mass stands, with its whole mass and
+// its energy of motion, turning included (its members have no inertia of their own).
+TEST(BedMeasurements, AClumpIsOneGrainOfItsWholeMassAndMotion) {
+  std::string text = head;
+  text += measure("name = \"m\"\nquantity = \"mass\"\n"
+                  "region = { shape = \"box\", lo = [0.0, 0.0, 0.0], hi = [9.0, 10.0, 10.0] }");
+  text += measure("name = \"n\"\nquantity = \"grains\"\n"
+                  "region = { shape = \"box\", lo = [0.0, 0.0, 0.0], hi = [9.0, 10.0, 10.0] }");
+  text += measure("name = \"ke\"\nquantity = \"kinetic_per_grain\"");
+  const Scene scene = read_scene_text(text, "bed.toml");
+  const ClumpShape rod = make_clump_shape(
+      "rod", std::vector<SphereMember>{{{-0.5, 0, 0}, 0.5}, {{0, 0, 0}, 0.5}, {{0.5, 0, 0}, 0.5}});
+  ParticleStore store;
+  std::vector<ClumpBody> bodies;
+  GlobalId next = 0;
+  // One rod at rest in the region, one turning and moving beyond it, a sphere at rest in it.
+  for (const auto& [x, v, omega] : {std::tuple{Vec3{5, 5, 3}, Vec3{}, Vec3{}},
+                                    std::tuple{Vec3{20, 5, 3}, Vec3{1, 0, 0}, Vec3{0, 0.5, 2}}}) {
+    const PlacedClump c = make_clump(rod, 1.0, 0, next, x, Quaternion{}, v, omega);
+    for (const ParticleSpec& m : c.members) store.add(m, next++);
+    bodies.push_back(c.body);
+  }
+  store.add(test::sphere({5, 5, 6}, 0.5, 2.0), next++);
+  const ClumpBody moving = bodies[1];
+  const double mass = bodies[0].mass;
+  const Vec3 w_body = to_body(moving.q, moving.angular_velocity());
+  const double turning =
+      0.5 * (moving.inertia.x * w_body.x * w_body.x + moving.inertia.y * w_body.y * w_body.y +
+             moving.inertia.z * w_body.z * w_body.z);
+  Simulation sim(test::open_box(40, {0, 0, 0}, 1e-4), std::move(store), {}, {},
+                 test::linear_law({1e4, 20, 0, 0, 0, 0}), Comm::world(), {}, std::move(bodies));
+  const auto v = BedMeasurements(scene.measures, sim, 0.5).values(sim);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_DOUBLE_EQ(v[0], mass + 2.0);
+  EXPECT_DOUBLE_EQ(v[1], 2.0);
+  EXPECT_NEAR(v[2], (0.5 * mass * 1.0 + turning) / 3.0, 1e-12 * v[2]);
+  EXPECT_GT(turning, 0.0);
 }
 
 TEST(BedMeasurements, TheAngleAndHeightOfARampOfKnownSlope) {

@@ -284,6 +284,20 @@ TEST(ShapeScene, AnInsertOfAOneSphereShapeGivesTheSpheresBits) {
     EXPECT_EQ(std::memcmp(&a.x[i], &b.x[i], sizeof(Vec3)), 0);
 }
 
+// A run continued from its state counts each clump as one grain, as the fresh start does.
+TEST(ShapeScene, AContinuedRunCountsClumpsAsGrains) {
+  const Scene scene = read_scene_text(box_scene(rod, "shape = \"rod\""), "clumps.toml");
+  BuildReport fresh, continued;
+  const auto sim = build_simulation(scene, false, &fresh, Comm::self());
+  sim->run(10);
+  ArchiveWriter saved;
+  sim->save_state(saved);
+  continue_simulation(scene, {{saved.data()}, 1}, std::nullopt, false, &continued, Comm::self());
+  EXPECT_EQ(fresh.grains, 20u);
+  EXPECT_EQ(continued.grains, 20u);
+  EXPECT_EQ(continued.walls, 0u);
+}
+
 // A run that pours and drains rods, saved while batches are still to come, resumes bit for bit.
 TEST(ShapeScene, ARunPouringClumpsResumesBitForBit) {
   const Scene scene = read_scene_text(pour_scene(rod, "shape = \"rod\""), "pour.toml");
