@@ -99,7 +99,7 @@ void LammpsDumpWriter::write(const ParticleStore& s, std::int64_t step) {
     for (const double c : {s.x[i].x, s.x[i].y, s.x[i].z}) real(c, 10);
     for (const Vec3* vec : {&s.v[i], &s.w[i], &s.f[i]})
       for (const double c : {vec->x, vec->y, vec->z}) real(c, 8);
-    if (clumps_) integer(s.body[i]);
+    if (clumps_) integer(s.body[i] + 1); // (0: no clump, LAMMPS's "no molecule")
     at[-1] = '\n';
     buf.append(line, at);
   }

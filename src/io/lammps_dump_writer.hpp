@@ -19,7 +19,8 @@ namespace yuxi {
 class LammpsDumpWriter {
 public:
   // A new file; or, with `resume_after`, the existing one cut before the first frame of a later
-  // step, continued. Every rank of `comm` makes one (collective). `clumps`: the mol column.
+  // step, continued. Every rank of `comm` makes one (collective). `clumps`: the mol column, a
+  // member's clump id + 1 (0 for a grain of no clump: LAMMPS's and OVITO's "no molecule").
   LammpsDumpWriter(const std::filesystem::path& path, const Box& box,
                    std::optional<std::int64_t> resume_after = std::nullopt,
                    const Comm& comm = Comm::self(), bool clumps = false);

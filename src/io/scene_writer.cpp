@@ -158,6 +158,7 @@ void write_sources(const Scene& s, toml::table& doc) {
       const bool lattice = f.placement == FillSpec::Placement::lattice;
       t.insert("placement", lattice ? "lattice" : "random");
       if (lattice) t.insert("jitter", f.jitter);
+      if (!lattice) t.insert("attempts", f.attempts_per_grain);
       fills.push_back(t);
     }
     doc.insert("fill", fills);

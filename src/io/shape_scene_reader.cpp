@@ -44,11 +44,12 @@ void read_shape(Scene& scene, TomlReader& t) {
   for (const ClumpShape& s : scene.shapes)
     if (s.name == name) t.fail("name", fmt::format("a second shape named '{}'", name));
   std::vector<SphereMember> members = read_members(scene, t);
-  const double scale = t.positive("scale", 1.0);
-  for (SphereMember& m : members) {
-    m.centre = scale * m.centre;
-    m.radius *= scale;
-  }
+  // A fill or insert scales each clump to the bounding radius it draws: a shape's own size, and
+  // so a scale or a file's unit, changes nothing. Said, rather than ignored.
+  if (t.has("scale"))
+    t.fail("scale", "a shape has no size of its own: each [[fill]] and [[insert]] scales its "
+                    "clumps to the bounding radii it draws (its radius or size distribution), "
+                    "so the members' unit does not matter; remove the key");
   t.finish();
   try {
     scene.shapes.push_back(make_clump_shape(name, members));

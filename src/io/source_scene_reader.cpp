@@ -149,6 +149,9 @@ void read_fill(Scene& scene, TomlReader& t, std::size_t index) {
   f.jitter = t.non_negative("jitter", 0.0);
   if (f.jitter > 0 && f.placement != FillSpec::Placement::lattice)
     t.fail("jitter", "applies to placement = \"lattice\" only");
+  if (t.has("attempts") && f.placement != FillSpec::Placement::random)
+    t.fail("attempts", "applies to placement = \"random\" only");
+  f.attempts_per_grain = static_cast<int>(t.integer("attempts", f.attempts_per_grain, 1, 1000000));
   if (f.placement == FillSpec::Placement::random &&
       f.amount == FillSpec::Amount::packing_fraction && f.value > random_fill_limit)
     t.fail("packing_fraction",

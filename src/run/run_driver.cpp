@@ -98,10 +98,13 @@ RunDriver::Impl::Impl(const Scene& s, Simulation& sm, RunOptions o)
                                         "work,contacts");
   if (scene.output.vtk && snapshot_every)
     vtk = std::make_unique<VtkSeries>(dir, "particles", resume_after(snapshot_every), sim.comm());
+  // The dump's mol column where the run has clumps: the scene's shapes, or a state continued
+  // with clumps under a scene of none (collective: every rank writes the same header).
+  const bool has_clumps =
+      !scene.shapes.empty() || sim.comm().max(sim.clumps().empty() ? 0.0 : 1.0) > 0.0;
   if (scene.output.lammps_dump && snapshot_every)
     dump = std::make_unique<LammpsDumpWriter>(dir / "particles.lammpstrj", scene.sim.box,
-                                              resume_after(snapshot_every), sim.comm(),
-                                              !scene.shapes.empty());
+                                              resume_after(snapshot_every), sim.comm(), has_clumps);
   // inflow.csv and outflow.csv: each insert's and outlet's cumulative grains and mass.
   if (root && !scene.inserts.empty())
     inflow = std::make_unique<EnergyCsv>(dir / "inflow.csv", resume_after(energy_every),

@@ -111,8 +111,10 @@ SceneParticles scene_particles(const Scene& scene, BuildReport& r) {
 } // namespace
 
 SimulationFrame scene_frame(const Scene& scene) {
+  std::vector<std::string> shape_names;
+  for (const ClumpShape& shape : scene.shapes) shape_names.push_back(shape.name);
   SimulationFrame f{scene.sim,   scene.planes,  {StaticMotion{}}, scene.law,
-                    scene.walls, scene.inserts, scene.outlets};
+                    scene.walls, scene.inserts, scene.outlets,    std::move(shape_names)};
   if (scene.basin) f.motions = fish_basin_motions(*scene.basin, scene.sim.box.lo);
   return f;
 }
@@ -152,6 +154,7 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
                                           std::move(built.clumps));
   if (!frame.inserts.empty() || !frame.outlets.empty())
     sim->set_sources(std::move(frame.inserts), std::move(frame.outlets));
+  sim->name_shapes(std::move(frame.shape_names));
   check_time_step(scene, *sim, force_dt, r);
   if (report) *report = r;
   return sim;

@@ -40,16 +40,39 @@ Quaternion random_orientation(Random& rng) {
           b * std::cos(2.0 * pi * u3)};
 }
 
-ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> members) {
-  if (members.empty()) throw std::invalid_argument(fmt::format("shape \"{}\": no members", name));
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    const SphereMember& m = members[k];
+namespace {
+
+// The members that no other member encloses (the first of a member given twice): an enclosed
+// member adds nothing to the union, and in a contact it would push again where the member
+// that holds it already pushes, stiffening the clump there.
+std::vector<SphereMember> outside_one_another(std::span<const SphereMember> members) {
+  const auto encloses = [&](std::size_t i, std::size_t j) {
+    return norm(members[i].centre - members[j].centre) + members[j].radius <= members[i].radius;
+  };
+  std::vector<SphereMember> kept;
+  for (std::size_t j = 0; j < members.size(); ++j) {
+    bool enclosed = false;
+    for (std::size_t i = 0; i < members.size() && !enclosed; ++i)
+      enclosed = i != j && encloses(i, j) && (!encloses(j, i) || i < j);
+    if (!enclosed) kept.push_back(members[j]);
+  }
+  return kept;
+}
+
+} // namespace
+
+ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> given) {
+  if (given.empty()) throw std::invalid_argument(fmt::format("shape \"{}\": no members", name));
+  for (std::size_t k = 0; k < given.size(); ++k) {
+    const SphereMember& m = given[k];
     if (!(m.radius > 0) || !std::isfinite(m.radius) || !is_finite(m.centre))
       throw std::invalid_argument(fmt::format(
           "shape \"{}\", member {}: radius {} at ({}, {}, {}); a member needs a finite radius > "
           "0 and a finite centre",
           name, k + 1, m.radius, m.centre.x, m.centre.y, m.centre.z));
   }
+  const std::vector<SphereMember> kept = outside_one_another(given);
+  const std::span<const SphereMember> members = kept;
   // The moments are taken about the members' mean centre, so that a clump given far from its
   // frame's origin loses no digits to the parallel-axis terms.
   Vec3 origin;
@@ -91,10 +114,10 @@ ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> memb
     for (int c = 0; c < 3; ++c) m[r][c] = e.axes[c][r];
   s.frame = from_rotation_matrix(m);
   s.centre = origin + centre;
-  for (const SphereMember& given : members) {
-    const Vec3 body = to_body(s.frame, given.centre - s.centre);
-    s.members.push_back({body, given.radius});
-    s.bounding_radius = std::max(s.bounding_radius, norm(body) + given.radius);
+  for (const SphereMember& member : members) {
+    const Vec3 body = to_body(s.frame, member.centre - s.centre);
+    s.members.push_back({body, member.radius});
+    s.bounding_radius = std::max(s.bounding_radius, norm(body) + member.radius);
   }
   return s;
 }

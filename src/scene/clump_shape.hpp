@@ -49,7 +49,8 @@ double clump_reach(std::span<const Vec3> centres);
 Quaternion random_orientation(Random& rng);
 
 // The shape of `members`, given in any frame (radii > 0; throws std::invalid_argument naming
-// the member that is not). Members inside others count once.
+// the member that is not). A member inside another (a member given twice among them) is left
+// out: it adds nothing to the union, and would stiffen the clump's contacts.
 ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> members);
 
 } // namespace yuxi

@@ -75,11 +75,23 @@ std::vector<ParticleSpec> fill_particles(const FillSpec& f, const Box& domain,
   const double r_max = f.grains.size.largest();
   if (f.placement == FillSpec::Placement::random && fraction > random_fill_limit)
     throw FillError(fmt::format(
-        "{}: {} grains make a packing fraction of {:.3f} in the region ({:.4g} of volume), "
-        "beyond what random placement without overlap reaches (it jams near 0.35-0.38): use "
+        "{}: the balls of {} grains (a clump's: its bounding ball) make a packing fraction of "
+        "{:.3f} in the region ({:.4g} of volume), beyond what random placement without overlap "
+        "reaches (it jams near 0.35-0.38): use "
         "placement = \"lattice\", or pour the grains with [[insert]] and let them settle",
         f.name, radii.size(), fraction, volume));
 
+  // A grain wider than the region along an axis has no place in it at all.
+  {
+    Vec3 lo, hi;
+    f.region.bounds_in(domain, lo, hi);
+    for (int a = 0; a < 3; ++a)
+      if (2 * r_max > hi[a] - lo[a])
+        throw FillError(fmt::format(
+            "{}: its largest grain, of radius {:.4g} (a clump's: its bounding radius), is wider "
+            "than the region ({}) along {} ({:.4g} across): no place holds it",
+            f.name, r_max, f.region.describe(), "xyz"[a], hi[a] - lo[a]));
+  }
   // The scene's particles near the region take up room. Along a periodic axis a grain may
   // straddle the face: it is looked for at its images across it, and a region that spans the
   // axis end to end holds it there (Region::contains_sphere_in).
@@ -123,10 +135,11 @@ std::vector<ParticleSpec> fill_particles(const FillSpec& f, const Box& domain,
         for (const auto& p : out) placed_volume += ball_volume(p.radius);
         throw FillError(fmt::format(
             "{}: placed {} of {} grains; no free place for the next after {} random draws (the "
-            "region holds a packing fraction of {:.3f}; with 1000 draws a grain, random placement "
+            "balls placed, a clump's its bounding ball, fill {:.3f} of the region; with 1000 "
+            "draws a grain, random placement "
             "of equal spheres fills about 0.29 of a periodic box, less of a region whose faces "
             "the balls must clear, and 0.38 only with endless draws): ask for fewer, raise "
-            "attempts_per_grain, use placement = \"lattice\", or pour the grains with [[insert]]",
+            "the fill's attempts, use placement = \"lattice\", or pour the grains with [[insert]]",
             f.name, out.size(), radii.size(), f.attempts_per_grain, placed_volume / volume));
       }
     }

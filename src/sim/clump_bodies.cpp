@@ -398,6 +398,16 @@ void ClumpBodies::take_in(const std::string& bytes, const Vec3& shift) {
   forget_layout();
 }
 
+void ClumpBodies::rename_shapes(const std::vector<std::string>& saved,
+                                const std::vector<std::string>& now) {
+  for (ClumpBody& b : bodies_) {
+    if (b.shape < 0) continue;
+    const auto k = static_cast<std::size_t>(b.shape);
+    const auto at = k < saved.size() ? std::find(now.begin(), now.end(), saved[k]) : now.end();
+    b.shape = at == now.end() ? -1 : static_cast<std::int32_t>(at - now.begin());
+  }
+}
+
 void ClumpBodies::save(ArchiveWriter& ar) const {
   ar.value(static_cast<std::uint64_t>(bodies_.size()));
   for (const ClumpBody& b : bodies_) transfer(ar, b);

@@ -132,6 +132,10 @@ public:
   void take_out(std::size_t b);
   void take_in(const std::string& bytes, const Vec3& shift);
 
+  // Each body's `shape`, an index into `saved` (the names it was given under), made the index of
+  // that name in `now`, or -1 where `now` lacks it or the index was beyond `saved`.
+  void rename_shapes(const std::vector<std::string>& saved, const std::vector<std::string>& now);
+
   void save(ArchiveWriter& ar) const;
   // Throws ArchiveError where the section is damaged, std::invalid_argument where a body is
   // impossible (non-finite, not positive mass or moments, no members).

@@ -85,6 +85,9 @@ struct SimulationFrame {
   std::vector<ShapedWall> shaped_walls;
   std::vector<InsertSpec> inserts;
   std::vector<OutletSpec> outlets;
+  // The scene's [[shape]] names, in order: a clump's `shape` indexes them (a state continued
+  // under this frame has its clumps' shapes found again by name).
+  std::vector<std::string> shape_names;
 };
 
 class Simulation {
@@ -132,6 +135,12 @@ public:
   const ParticleStore& particles() const { return store_; }
   // The clumps' bodies (their members are among the particles).
   const std::vector<ClumpBody>& clumps() const { return clumps_.bodies(); }
+  // The names of the shapes that the clumps' `shape` indexes (the scene's [[shape]] tables, in
+  // order). Name them before a state is loaded: a checkpoint keeps the names its clumps' shapes
+  // had, and a state loaded under other names (a branch into another scene) has each clump's
+  // shape found again by its name, -1 where the names lack it.
+  void name_shapes(std::vector<std::string> names) { shape_names_ = std::move(names); }
+  const std::vector<std::string>& shape_names() const { return shape_names_; }
   // Every rank's owned particles, sorted by global id, on rank 0 (empty elsewhere). Collective.
   ParticleStore gather_particles() const;
   const Comm& comm() const { return exchange_.comm(); }
@@ -410,6 +419,7 @@ private:
   Sources sources_;
   EnergyLedger ledger_;
   ClumpBodies clumps_;
+  std::vector<std::string> shape_names_;
 };
 
 } // namespace yuxi

@@ -37,6 +37,8 @@ void Simulation::save_state(ArchiveWriter& ar) const {
   ar.value(exchange_.cell_edge());
   ar.value(config_.skin);
   clumps_.save(ar);
+  ar.value(static_cast<std::uint64_t>(shape_names_.size()));
+  for (const std::string& name : shape_names_) ar.string(name);
   store_.save(ar);
   contacts_.history().save(ar, store_, search_.list());
 }
@@ -61,10 +63,21 @@ Simulation::SavedCells Simulation::read_section(ArchiveReader& ar, const Section
           cells.skin < cells.edge))
       throw ArchiveError("the cells' edge or the skin is impossible (corrupt)");
   }
-  if (plan.layout >= 10)
+  if (plan.layout >= 10) {
     clumps_.load(ar);
-  else
+    // The names the clumps' shapes had (layout 12; before, taken to be this scene's).
+    std::vector<std::string> saved = shape_names_;
+    if (plan.layout >= 12) {
+      std::uint64_t n = 0;
+      ar.value(n);
+      ar.check_room(n, sizeof n);
+      saved.resize(n);
+      for (std::string& name : saved) ar.string(name);
+    }
+    clumps_.rename_shapes(saved, shape_names_);
+  } else {
     clumps_.set({});
+  }
   store_.clear_ghosts();
   store_.checkpoint(ar, plan.layout >= 10);
   if (plan.keep_history) {
@@ -119,6 +132,7 @@ Simulation::Simulation(SimulationFrame frame, const SavedState& saved, Comm comm
   if (!(config_.dt > 0.0)) throw std::invalid_argument("time step must be positive");
   if (!frame.inserts.empty() || !frame.outlets.empty())
     sources_.set(std::move(frame.inserts), std::move(frame.outlets));
+  shape_names_ = std::move(frame.shape_names);
   continue_from(saved, branch ? &*branch : nullptr);
 }
 

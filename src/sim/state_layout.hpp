@@ -10,13 +10,15 @@
 // (sim/clump_bodies.hpp) before the particles, and the particles' `body` field; in a state of
 // layout 9 or older no particle is a clump's member. Layout 11 adds each insert's owed grains
 // (their sizes and velocities) after the outlets' parts; in a state of layout 10 or older they
-// are drawn afresh.
+// are drawn afresh. Layout 12 adds the names of the scene's shapes after the clumps' bodies, so
+// that a branch into a scene of other shapes finds each clump's shape by name; a state of layout
+// 10 or 11 takes its clumps' shape indices to be those of the scene it is loaded under.
 #pragma once
 
 #include <cstdint>
 
 namespace yuxi {
 
-inline constexpr std::uint32_t state_layout = 11, oldest_state_layout = 5;
+inline constexpr std::uint32_t state_layout = 12, oldest_state_layout = 5;
 
 } // namespace yuxi

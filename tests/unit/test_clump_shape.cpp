@@ -212,6 +212,7 @@ TEST(ClumpShape, RepeatedAndEnclosedMembersCountOnce) {
   more.push_back(pair[1]);                // the same member twice
   more.push_back({{0.1, 0.0, 0.1}, 0.3}); // a member inside another
   const ClumpShape a = make_clump_shape("a", pair), b = make_clump_shape("b", more);
+  EXPECT_EQ(b.members.size(), 2u); // (left out: they would stiffen the contacts)
   EXPECT_LT(relative(b.volume, a.volume), 1e-13);
   for (int k = 0; k < 3; ++k)
     EXPECT_LT(relative(b.inertia_per_density[k], a.inertia_per_density[k]), 1e-12);

@@ -120,7 +120,7 @@ TEST(VtkWriter, ClumpsGoBesideTheParticles) {
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   ASSERT_EQ(lines.size(), 9u + 6u);
   EXPECT_NE(lines[8].find("fz mol"), std::string::npos);
-  EXPECT_EQ(lines[14].substr(lines[14].rfind(' ') + 1), "3");
+  EXPECT_EQ(lines[14].substr(lines[14].rfind(' ') + 1), "4"); // (clump 3, + 1)
   fs::remove_all(dir);
 }
 

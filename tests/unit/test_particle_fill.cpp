@@ -140,6 +140,21 @@ TEST(ParticleFill, AWallFillMakesFixedParticles) {
   }
 }
 
+// A grain wider than the region has no place in it: said so, rather than "the region is full".
+TEST(ParticleFill, AGrainWiderThanTheRegionIsRefusedAsSuch) {
+  FillSpec f = box_fill(1);
+  f.region = Region(BoxRegion{{2, 2, 2}, {18, 3, 30}}); // 1 across along y
+  f.grains.size.kind = SizeDistribution::Kind::constant;
+  f.grains.size.radius = 0.6;
+  try {
+    fill_particles(f, domain, {});
+    FAIL() << "a grain wider than its region was placed";
+  } catch (const FillError& e) {
+    EXPECT_NE(std::string(e.what()).find("wider than the region"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("along y (1 across)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ParticleFill, ARandomFillThatJamsSaysHowManyFit) {
   // 0.36 asked, with a crowd already there: the fill gives up and says how far it got
   FillSpec f = box_fill(0.36);

@@ -145,11 +145,11 @@ TEST(ShapeScene, AShapeFromAFile) {
   const auto dir = std::filesystem::temp_directory_path() / "yuxi-shape-scene";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "rod.csv") << "x,y,z,radius\n-0.6,0,0,0.3\n0,0,0,0.3\n0.6,0,0,0.3\n";
-  const std::string from_file = "[[shape]]\nname = \"rod\"\nfile = \"rod.csv\"\nscale = 2.0\n";
+  const std::string from_file = "[[shape]]\nname = \"rod\"\nfile = \"rod.csv\"\n";
   const Scene scene =
       read_scene_text(box_scene(from_file, "shape = \"rod\""), (dir / "clumps.toml").string());
   ASSERT_EQ(scene.shapes.size(), 1u);
-  EXPECT_NEAR(scene.shapes[0].bounding_radius, 1.8, 1e-12);
+  EXPECT_NEAR(scene.shapes[0].bounding_radius, 0.9, 1e-12);
   std::filesystem::remove_all(dir);
 }
 
@@ -168,6 +168,12 @@ TEST(ShapeScene, BadShapesAreRefusedByName) {
           "row 1 has 3 numbers, not 4");
   refused(box_scene("[[shape]]\nname = \"x\"\nfile = \"no-such-file.csv\"\n", ""), "shape");
   refused(box_scene(rod, "shape = \"rod\"\nkind = \"wall\""), "wall particles are spheres");
+  refused(box_scene(rod + "scale = 2.0\n", "shape = \"rod\""), "a shape has no size of its own");
+  // (a fill's own key: the places drawn for a grain, random placement only)
+  EXPECT_EQ(read_scene_text(box_scene(rod, "attempts = 3"), "a.toml").fills[0].attempts_per_grain,
+            3);
+  refused(box_scene(rod, "attempts = 3\nplacement = \"lattice\""),
+          "applies to placement = \"random\" only");
   refused(box_scene(rod + "[[insert]]\nmaterial = \"grain\"\ndensity = 1.0\nradius = 0.5\n"
                           "rate = 1.0\nshape = \"cube\"\nregion = { shape = \"box\", lo = [0.0, "
                           "0.0, 6.0], hi = [8.0, 8.0, 8.0] }\n",
@@ -296,6 +302,32 @@ TEST(ShapeScene, AContinuedRunCountsClumpsAsGrains) {
   EXPECT_EQ(fresh.grains, 20u);
   EXPECT_EQ(continued.grains, 20u);
   EXPECT_EQ(continued.walls, 0u);
+}
+
+// A branch into a scene of other shapes finds each clump's shape by its name: the same shapes
+// listed in another order, or none of them (-1: no shape of that name).
+TEST(ShapeScene, ABranchFindsItsClumpsShapesByName) {
+  const std::string tri = "[[shape]]\nname = \"tri\"\nspheres = [[0.0, 0.0, 0.0, 0.3], "
+                          "[0.5, 0.0, 0.0, 0.3], [0.0, 0.5, 0.0, 0.3]]\n";
+  const Scene scene = read_scene_text(box_scene(tri + rod, "shape = \"rod\""), "a.toml");
+  const auto sim = build_simulation(scene, false, nullptr, Comm::self());
+  sim->run(10);
+  ArchiveWriter saved;
+  sim->save_state(saved);
+  ASSERT_EQ(sim->clumps().front().shape, 1); // rod, second in the scene
+  const auto shapes_after = [&](const std::string& shapes) {
+    // (the other scene's fill of spheres is not built: a branch takes the checkpoint's grains)
+    const Scene other = read_scene_text(box_scene(shapes, ""), "b.toml");
+    const auto branch = continue_simulation(other, {{saved.data()}, 1}, Simulation::BranchCheck{},
+                                            false, nullptr, Comm::self());
+    std::vector<std::int32_t> found;
+    for (const ClumpBody& b : branch->clumps()) found.push_back(b.shape);
+    return found;
+  };
+  EXPECT_EQ(shapes_after(rod + tri), std::vector<std::int32_t>(20, 0));
+  EXPECT_EQ(shapes_after(tri), std::vector<std::int32_t>(20, -1));
+  // Resumed under its own scene, as saved.
+  EXPECT_EQ(shapes_after(tri + rod), std::vector<std::int32_t>(20, 1));
 }
 
 // A run that pours and drains rods, saved while batches are still to come, resumes bit for bit.
