@@ -227,7 +227,7 @@ void check_device(const OpenedRun& run) {
 
 PySimulation::PySimulation(const PyScene& scene, const std::string& output, bool overwrite,
                            bool progress, bool force_dt, const std::optional<std::string>& device)
-    : progress_(progress) {
+    : progress_(progress), force_dt_(force_dt) {
   Scene chosen = scene.scene;
   set_device(chosen, device_named(device));
   run_ = open_scene(std::move(chosen), force_dt);
@@ -258,6 +258,7 @@ std::unique_ptr<PySimulation> PySimulation::branch(const std::string& from, cons
                                                    const std::optional<std::string>& device) {
   std::unique_ptr<PySimulation> s(new PySimulation());
   s->progress_ = progress;
+  s->force_dt_ = force_dt;
   Scene chosen = scene.scene;
   set_device(chosen, device_named(device));
   s->run_ = open_branch(std::move(chosen), from, force_dt);
@@ -347,6 +348,15 @@ std::string PySimulation::add_insert(const std::string& table_toml) {
   try {
     engine.add_insert(spec);
   } catch (...) {
+    run_.scene.inserts.pop_back();
+    throw;
+  }
+  // The grains it pours meet the time-step check, as a scene's inserts do at the start.
+  try {
+    BuildReport report;
+    check_running_time_step(run_.scene, engine, force_dt_, report);
+  } catch (...) {
+    engine.withdraw_last_insert();
     run_.scene.inserts.pop_back();
     throw;
   }

@@ -86,6 +86,7 @@ private:
   std::unique_ptr<CollectiveGuard> guard_;
   std::int64_t edits_ = 0;
   bool progress_ = true;
+  bool force_dt_ = false; // (the time-step check of what add_insert pours)
   bool finished_ = false;
   // A KeyboardInterrupt met while stepping: the run checkpoints, then it is raised.
   std::optional<pybind11::error_already_set> interrupt_;

@@ -180,6 +180,9 @@ def test_steering_an_insert_that_cannot_be_is_refused(tmp_path):
         sim.add_insert(dict(insert("B", 0.0, 8), radious=0.5))
     with pytest.raises(TypeError, match="dict"):
         sim.add_insert("B")
+    # grains so light that the time step is a third of their contact time
+    with pytest.raises(yuxi.SceneError, match="contact time .*force_dt=True"):
+        sim.add_insert(dict(insert("dust", 0.0, 8), radius=0.02))
     sim.run(t_end=0.2)
     with pytest.raises(ValueError, match="poured its total of 5"):
         sim.start_insert("A")

@@ -97,6 +97,12 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
         if (at == fields.end())
           fail(fmt::format("the header has no column '{}' (it needs x, y, z and radius)",
                            names[c][0]));
+        // A second column of the name (or of radius and r both): which one is meant?
+        if (std::find_if(at + 1, fields.end(), [&](std::string_view f) {
+              const std::string name = lower(f);
+              return name == names[c][0] || name == names[c][1];
+            }) != fields.end())
+          fail(fmt::format("the header names '{}' twice", names[c][0]));
         column[c] = static_cast<std::size_t>(at - fields.begin());
       }
       continue;

@@ -164,10 +164,8 @@ std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedS
                                                 std::optional<Simulation::BranchCheck> branch,
                                                 bool force_dt, BuildReport* report, Comm comm) {
   SimulationFrame frame = scene_frame(scene);
-  const std::vector<WallMotion> motions = frame.motions;
   auto sim = std::make_unique<Simulation>(std::move(frame), saved, comm, branch);
-  // What the state holds, and the impact speed of its grains (every rank's: the fastest, named
-  // by the first rank that has it).
+  // What the state holds, and the impact speed of its grains.
   BuildReport r;
   const ParticleStore& s = sim->particles();
   // (a clump is one grain, as energies.csv and a fresh start count it: its body, here, and not
@@ -181,12 +179,18 @@ std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedS
   comm.sum(counts, 2);
   r.grains = static_cast<std::size_t>(counts[0]);
   r.walls = static_cast<std::size_t>(counts[1]);
-  const ImpactSpeed mine = impact_speed(scene, s, motions);
-  r.impact.speed = comm.max(mine.speed);
-  r.impact.source = comm.first_error(mine.speed == r.impact.speed ? mine.source : "");
-  check_time_step(scene, *sim, force_dt, r);
+  check_running_time_step(scene, *sim, force_dt, r);
   if (report) *report = r;
   return sim;
+}
+
+void check_running_time_step(const Scene& scene, const Simulation& sim, bool force_dt,
+                             BuildReport& r) {
+  // (every rank's grains: the fastest, named by the first rank that has it)
+  const ImpactSpeed mine = impact_speed(scene, sim.particles(), scene_frame(scene).motions);
+  r.impact.speed = sim.comm().max(mine.speed);
+  r.impact.source = sim.comm().first_error(mine.speed == r.impact.speed ? mine.source : "");
+  check_time_step(scene, sim, force_dt, r);
 }
 
 void check_time_step(const Scene& scene, const Simulation& sim, bool force_dt, BuildReport& r) {

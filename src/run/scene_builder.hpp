@@ -54,5 +54,10 @@ std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedS
 // The time-step check against the grains `sim` holds now (a branch's, once loaded), at the
 // impact speed in `report`; fills in its stiffest contact. Collective.
 void check_time_step(const Scene& scene, const Simulation& sim, bool force_dt, BuildReport& report);
+// The same for a simulation under way (collective): the impact speed of its grains and of what
+// its inserts pour, over every rank, then check_time_step. A run continued from a state, or one
+// given another insert, is checked as a scene is at its start.
+void check_running_time_step(const Scene& scene, const Simulation& sim, bool force_dt,
+                             BuildReport& report);
 
 } // namespace yuxi

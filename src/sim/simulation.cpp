@@ -158,7 +158,7 @@ bool Simulation::agree_on_list_build(const Drift& drift) {
   double flags[3] = {drift.list_build_due ? 1.0 : 0.0, ledger_.health_error().empty() ? 0.0 : 1.0,
                      drift.moved2};
   comm().max(flags, 3);
-  if (flags[1] > 0) stop_together(ledger_.health_error());
+  if (flags[1] > 0) stop_if_unhealthy_together();
   settle_energy_books(); // (right after the collective above: no rank waits again)
   search_.note_displacement(std::sqrt(flags[2]));
   return flags[0] > 0;
@@ -269,14 +269,37 @@ void Simulation::compute_forces(bool advance_history) {
 void Simulation::check_health() {
   const ContactTally& tally = contacts_.tally();
   std::string error;
-  if (tally.max_overlap_ratio > config_.max_overlap_ratio)
-    error = fmt::format(
-        "step {}, t = {}: overlap of {:.3g} times the smaller radius (limit {}) at {}; the time "
-        "step is too large for the contact stiffness or the impact speed",
-        step_, time_, tally.max_overlap_ratio, config_.max_overlap_ratio,
-        describe_particle(tally.worst_particle) +
-            "; its contacts: " + describe_contacts(tally.worst_particle));
+  overlap_speed_ = -1.0;
+  if (tally.max_overlap_ratio > config_.max_overlap_ratio) {
+    error = fmt::format("step {}, t = {}: overlap of {:.3g} times the smaller radius (limit {}) "
+                        "at {}",
+                        step_, time_, tally.max_overlap_ratio, config_.max_overlap_ratio,
+                        describe_particle(tally.worst_particle) +
+                            "; its contacts: " + describe_contacts(tally.worst_particle));
+    overlap_speed_ = norm(store_.v[tally.worst_particle]);
+  }
   ledger_.set_health_error(std::move(error));
+}
+
+void Simulation::stop_if_unhealthy_together() const {
+  // Where an overlap went too deep, its cause: a time step too long for the stiffest contact
+  // (at the overlapping grain's speed), or, where the step resolves that contact well, contacts
+  // too soft for what they carry (a collective look at the contacts, on a failure only).
+  std::string error = ledger_.health_error();
+  const double speed = comm().max(overlap_speed_);
+  if (speed >= 0.0) {
+    const double steps = stiffest_contact(speed).contact_time / config_.dt;
+    if (overlap_speed_ >= 0.0)
+      error += steps >= 20.0
+                   ? fmt::format("; the time step resolves the stiffest contact (dt = t_c/{:.0f}): "
+                                 "the contacts are too soft for the loads or the impact speeds "
+                                 "they meet (stiffer contacts, or less load or speed)",
+                                 steps)
+                   : fmt::format("; the time step is too large for the contact stiffness or the "
+                                 "impact speed (dt = t_c/{:.1f} of the stiffest contact)",
+                                 steps);
+  }
+  stop_together(error);
 }
 
 std::string Simulation::describe_particle(std::size_t i) const {

@@ -250,6 +250,11 @@ public:
   // A new insert from the next step on (at its start, if that is later); its name must be new.
   // Collective.
   void add_insert(InsertSpec insert);
+  // Takes back the insert added last, before any step (a check of it failed: the time step).
+  void withdraw_last_insert() {
+    sources_.withdraw_last_insert();
+    update_clump_reach();
+  }
   const std::vector<InsertSpec>& inserts() const { return sources_.inserts(); }
 
   // Counts the changes made from outside the equations of motion (the edits below, and load()):
@@ -294,7 +299,7 @@ public:
   // must not keep such a state). It also checks the energy books of the last list build, if
   // still due.
   void stop_if_unhealthy() {
-    stop_together(ledger_.health_error());
+    stop_if_unhealthy_together();
     settle_energy_books();
   }
 
@@ -354,6 +359,9 @@ private:
   void handle_escapes();
   void handle_escapes_here();
   void stop_together(const std::string& local_error) const;
+  // stop_together() with the health error of the last force evaluation, an overlap's cause
+  // added (collective).
+  void stop_if_unhealthy_together() const;
 
   // What a section says of the cells: the cut planes, and (layout 9 on) the cells' edge and
   // the skin; `edge` 0 where it does not say.
@@ -420,6 +428,8 @@ private:
   EnergyLedger ledger_;
   ClumpBodies clumps_;
   std::vector<std::string> shape_names_;
+  // The speed of the grain of the deepest overlap where it went beyond the limit, else -1.
+  double overlap_speed_ = -1.0;
 };
 
 } // namespace yuxi

@@ -145,6 +145,12 @@ void Sources::add_insert(InsertSpec insert, std::int64_t step, double dt) {
   owed_grains_.emplace_back();
 }
 
+void Sources::withdraw_last_insert() {
+  inserts_.pop_back();
+  insert_progress_.pop_back();
+  owed_grains_.pop_back();
+}
+
 void Sources::insert_batch(std::size_t source, ParticleStore& store, ClumpBodies& clumps,
                            const SimulationConfig& config, const Decomposition& decomp,
                            const Comm& comm, const std::vector<PlaneWall>& planes, double t,

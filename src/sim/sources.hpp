@@ -75,6 +75,8 @@ public:
   // A new insert from the next step on (at its start, if that is later); its name must be new
   // (the caller has checked its grains against the cells and the contact pairs).
   void add_insert(InsertSpec insert, std::int64_t step, double dt);
+  // Takes back the insert added last, before it poured (a check of it failed).
+  void withdraw_last_insert();
   // Throws std::invalid_argument where an insert of this name exists.
   void check_new_name(const std::string& name) const;
 

@@ -63,6 +63,9 @@ TEST(SphereListReader, NamesTheLineOfEveryFault) {
   EXPECT_EQ(error_of("x,y,z\n1,2,3\n", csv),
             "f:1: the header has no column 'radius' (it needs x, y, z and radius)");
   EXPECT_EQ(error_of("x,y,z,r\n1,2,3\n", csv), "f:2: 3 cells where the header has 4");
+  EXPECT_EQ(error_of("x,y,x,z,r\n1,2,3,4,0.5\n", csv), "f:1: the header names 'x' twice");
+  EXPECT_EQ(error_of("x,y,z,radius,R\n1,2,3,0.5,0.5\n", csv),
+            "f:1: the header names 'radius' twice");
   EXPECT_EQ(error_of("x,y,z,r\n1,2,3,0.5,\n", csv), "f:2: 5 cells where the header has 4");
   EXPECT_EQ(error_of("x,y,z,r\n1,,3,0.5\n", csv), "f:2: '' is not a finite number");
   EXPECT_EQ(error_of("0 0 0 1\n0 0 1\n", plain), "f:2: 3 fields where a member needs 4 (x y z r)");
