@@ -247,9 +247,10 @@ VtkSeries::VtkSeries(std::filesystem::path folder, std::string stem,
     const int part = p == std::string::npos ? 0 : std::stoi(line.substr(p + 6));
     const std::string file = line.substr(f + 6, line.find('"', f + 6) - f - 6);
     const std::int64_t step = std::stoll(file.substr(file.rfind('_') + 1));
-    if (step <= *resume_after)
+    if (step <= *resume_after) {
       frames_.push_back({time, part, file});
-    else
+      clumps_shown_ = clumps_shown_ || part == 2;
+    } else
       std::filesystem::remove(folder_ / file);
   }
   write_collection();
@@ -275,10 +276,13 @@ void VtkSeries::write(const ParticleStore& s, std::int64_t step, double time,
     if (!error.empty()) throw std::runtime_error(error);
     frames_.push_back({time, 1, walls_name});
   }
-  if (comm_.any(!clumps.empty())) {
+  // Once a frame showed clumps, every later one has its clumps' part, empty where none is
+  // left: ParaView would otherwise go on showing the last clumps it was given.
+  if (comm_.any(clumps_shown_ || !clumps.empty())) {
     const std::string clumps_name = fmt::format("clumps_{:09d}.vtu", step);
     write_clumps_vtu(folder_ / clumps_name, clumps, comm_);
     frames_.push_back({time, 2, clumps_name});
+    clumps_shown_ = true;
   }
   write_collection();
 }

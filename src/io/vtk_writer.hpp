@@ -56,6 +56,7 @@ private:
   std::string stem_;
   void write_collection();
   std::vector<DataSet> frames_;
+  bool clumps_shown_ = false; // a frame had clumps (on rank 0 after a resume: from the .pvd)
 };
 
 } // namespace yuxi

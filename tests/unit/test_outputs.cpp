@@ -111,6 +111,12 @@ TEST(VtkWriter, ClumpsGoBesideTheParticles) {
             (std::vector<std::int64_t>{0, 0, 0, 3, 3, 3}));
   EXPECT_NE(slurp(dir / "particles.pvd").find("part=\"2\" file=\"clumps_000000010.vtu\""),
             std::string::npos);
+  // A later frame with no clump left still has its (empty) clumps' part: ParaView would
+  // otherwise keep showing the last ones.
+  series.write(s, 20, 1.0, nullptr, {});
+  EXPECT_NE(slurp(dir / "particles.pvd").find("part=\"2\" file=\"clumps_000000020.vtu\""),
+            std::string::npos);
+  EXPECT_NE(slurp(dir / "clumps_000000020.vtu").find("NumberOfPoints=\"0\""), std::string::npos);
   // The LAMMPS dump of a run with clumps names each member's clump (mol).
   LammpsDumpWriter dump(dir / "d.lammpstrj", Box{{0, 0, 0}, {5, 5, 5}}, std::nullopt, Comm::self(),
                         true);
