@@ -2,9 +2,12 @@
 
 #include "io/sphere_list_reader.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <fmt/format.h>
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 namespace yuxi {
 
@@ -39,6 +42,25 @@ std::vector<SphereMember> read_members(const Scene& scene, TomlReader& t) {
   return members;
 }
 
+// The number of connected pieces of the members, two members joined where their balls touch.
+std::size_t separate_pieces(std::span<const SphereMember> members) {
+  std::vector<std::size_t> piece(members.size());
+  for (std::size_t k = 0; k < piece.size(); ++k) piece[k] = k;
+  const auto root = [&](std::size_t k) {
+    while (piece[k] != k) k = piece[k] = piece[piece[k]];
+    return k;
+  };
+  std::size_t pieces = members.size();
+  for (std::size_t i = 0; i < members.size(); ++i)
+    for (std::size_t j = i + 1; j < members.size(); ++j)
+      if (norm(members[i].centre - members[j].centre) <= members[i].radius + members[j].radius &&
+          root(i) != root(j)) {
+        piece[root(i)] = root(j);
+        --pieces;
+      }
+  return pieces;
+}
+
 void read_shape(Scene& scene, TomlReader& t) {
   const std::string name = t.plain_name("name", "_-", "a shape's name");
   for (const ClumpShape& s : scene.shapes)
@@ -57,6 +79,13 @@ void read_shape(Scene& scene, TomlReader& t) {
   } catch (const std::invalid_argument& e) {
     t.fail(t.has("file") ? "file" : "spheres", e.what());
   }
+  // Members that touch no other: a rigid body still (as if joined by massless rods), but more
+  // often a typo in a coordinate. Allowed, and said once.
+  if (const std::size_t pieces = separate_pieces(scene.shapes.back().members); pieces > 1)
+    scene.warnings.push_back(fmt::format(
+        "shape '{}': its members make {} separate pieces that touch nothing of one another; "
+        "the clump moves them as one rigid body",
+        name, pieces));
 }
 
 } // namespace

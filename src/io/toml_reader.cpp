@@ -258,7 +258,8 @@ std::vector<std::vector<double>> TomlReader::number_rows(std::string_view key, s
   const std::string what = fmt::format("an array of arrays of {} numbers", width);
   const toml::node& n = require(key);
   const toml::array* rows = n.as_array();
-  if (!rows || rows->empty()) wrong_type(key, what);
+  if (!rows) wrong_type(key, what);
+  if (rows->empty()) fail(key, fmt::format("the array is empty: give {}", what));
   std::vector<std::vector<double>> out;
   for (const auto& row : *rows) {
     const toml::array* a = row.as_array();

@@ -70,6 +70,14 @@ ClumpShape make_clump_shape(std::string name, std::span<const SphereMember> give
           "shape \"{}\", member {}: radius {} at ({}, {}, {}); a member needs a finite radius > "
           "0 and a finite centre",
           name, k + 1, m.radius, m.centre.x, m.centre.y, m.centre.z));
+    // (the size check below squares lengths: beyond 1e50 they would overflow to inf first)
+    const double far =
+        std::max({std::abs(m.centre.x), std::abs(m.centre.y), std::abs(m.centre.z), m.radius});
+    if (far > 1e50)
+      throw std::invalid_argument(fmt::format(
+          "shape \"{}\", member {}: radius {} at ({}, {}, {}) lies beyond 1e50 in the scene's "
+          "units",
+          name, k + 1, m.radius, m.centre.x, m.centre.y, m.centre.z));
   }
   const std::vector<SphereMember> kept = outside_one_another(given);
   const std::span<const SphereMember> members = kept;

@@ -169,6 +169,17 @@ TEST(ShapeScene, BadShapesAreRefusedByName) {
   refused(box_scene("[[shape]]\nname = \"x\"\nfile = \"no-such-file.csv\"\n", ""), "shape");
   refused(box_scene(rod, "shape = \"rod\"\nkind = \"wall\""), "wall particles are spheres");
   refused(box_scene(rod + "scale = 2.0\n", "shape = \"rod\""), "a shape has no size of its own");
+  refused(box_scene("[[shape]]\nname = \"x\"\nspheres = []\n", ""), "the array is empty");
+  // (allowed, with a warning: members that touch nothing of one another)
+  const Scene apart = read_scene_text(
+      box_scene("[[shape]]\nname = \"x\"\nspheres = [[0, 0, 0, 0.3], [2, 0, 0, 0.3]]\n", ""),
+      "a.toml");
+  ASSERT_EQ(apart.warnings.size(), 1u);
+  EXPECT_NE(apart.warnings[0].find("shape 'x': its members make 2 separate pieces"),
+            std::string::npos);
+  EXPECT_TRUE(read_scene_text(box_scene(rod, ""), "a.toml").warnings.empty());
+  refused(box_scene("[[shape]]\nname = \"x\"\nspheres = [[0, 0, 0, 1], [1e300, 0, 0, 1]]\n", ""),
+          "member 2: radius 1 at (1e+300, 0, 0) lies beyond 1e50");
   // (a fill's own key: the places drawn for a grain, random placement only)
   EXPECT_EQ(read_scene_text(box_scene(rod, "attempts = 3"), "a.toml").fills[0].attempts_per_grain,
             3);
