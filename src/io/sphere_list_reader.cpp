@@ -90,18 +90,16 @@ std::vector<SphereMember> parse_sphere_list(std::string_view text, std::string_v
       const std::array<std::array<std::string_view, 2>, 4> names{
           {{"x", "x"}, {"y", "y"}, {"z", "z"}, {"radius", "r"}}};
       for (std::size_t c = 0; c < 4; ++c) {
-        const auto at = std::find_if(fields.begin(), fields.end(), [&](std::string_view f) {
+        const auto names_c = [&](std::string_view f) {
           const std::string name = lower(f);
           return name == names[c][0] || name == names[c][1];
-        });
+        };
+        const auto at = std::find_if(fields.begin(), fields.end(), names_c);
         if (at == fields.end())
           fail(fmt::format("the header has no column '{}' (it needs x, y, z and radius)",
                            names[c][0]));
         // A second column of the name (or of radius and r both): which one is meant?
-        if (std::find_if(at + 1, fields.end(), [&](std::string_view f) {
-              const std::string name = lower(f);
-              return name == names[c][0] || name == names[c][1];
-            }) != fields.end())
+        if (std::find_if(at + 1, fields.end(), names_c) != fields.end())
           fail(fmt::format("the header names '{}' twice", names[c][0]));
         column[c] = static_cast<std::size_t>(at - fields.begin());
       }

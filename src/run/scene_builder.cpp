@@ -108,15 +108,19 @@ SceneParticles scene_particles(const Scene& scene, BuildReport& r) {
   return out;
 }
 
+// The wall particles' motions: the basin's, or standing still.
+std::vector<WallMotion> scene_motions(const Scene& scene) {
+  if (scene.basin) return fish_basin_motions(*scene.basin, scene.sim.box.lo);
+  return {StaticMotion{}};
+}
+
 } // namespace
 
 SimulationFrame scene_frame(const Scene& scene) {
   std::vector<std::string> shape_names;
   for (const ClumpShape& shape : scene.shapes) shape_names.push_back(shape.name);
-  SimulationFrame f{scene.sim,   scene.planes,  {StaticMotion{}}, scene.law,
-                    scene.walls, scene.inserts, scene.outlets,    std::move(shape_names)};
-  if (scene.basin) f.motions = fish_basin_motions(*scene.basin, scene.sim.box.lo);
-  return f;
+  return {scene.sim,   scene.planes,  scene_motions(scene), scene.law,
+          scene.walls, scene.inserts, scene.outlets,        std::move(shape_names)};
 }
 
 std::size_t scene_wall_particles(const Scene& scene) {
@@ -187,7 +191,8 @@ std::unique_ptr<Simulation> continue_simulation(const Scene& scene, const SavedS
 void check_running_time_step(const Scene& scene, const Simulation& sim, bool force_dt,
                              BuildReport& r) {
   // (every rank's grains: the fastest, named by the first rank that has it)
-  const ImpactSpeed mine = impact_speed(scene, sim.particles(), scene_frame(scene).motions);
+  // (the motions alone: a whole frame would copy the scene's meshes)
+  const ImpactSpeed mine = impact_speed(scene, sim.particles(), scene_motions(scene));
   r.impact.speed = sim.comm().max(mine.speed);
   r.impact.source = sim.comm().first_error(mine.speed == r.impact.speed ? mine.source : "");
   check_time_step(scene, sim, force_dt, r);
