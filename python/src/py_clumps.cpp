@@ -2,6 +2,10 @@
 
 #include "py_rows.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pybind11/numpy.h>
 #include <vector>
 
@@ -37,6 +41,98 @@ py::dict clump_arrays(const Simulation& sim) {
                   "angular_velocity"_a = rows_of(omega, n, 3), "mass"_a = rows_of(mass, n, 1),
                   "inertia"_a = rows_of(inertia, n, 3), "members"_a = rows_of(members, n, 1),
                   "force"_a = rows_of(force, n, 3), "torque"_a = rows_of(torque, n, 3));
+}
+
+namespace {
+
+// Rows of `width` values, as many as `n` (n < 0: any), from an array of that shape.
+std::vector<double> rows(const DoubleRows& a, py::ssize_t width, py::ssize_t& n, const char* what) {
+  const bool fits = width == 1 ? a.ndim() == 1 : a.ndim() == 2 && a.shape(1) == width;
+  if (!fits || (n >= 0 && a.shape(0) != n))
+    throw py::value_error(
+        n >= 0 ? fmt::format("add_clumps: {} must be of shape ({}{}), one row a clump", what, n,
+                             width == 1 ? "," : fmt::format(", {}", width))
+               : fmt::format("add_clumps: {} must be of shape (n, {})", what, width));
+  n = a.shape(0);
+  return {a.data(), a.data() + a.size()};
+}
+
+// The scene's shape of that name; ValueError naming `call` and the scene's shapes where none is.
+std::vector<ClumpShape>::const_iterator named_shape(const Scene& scene, const std::string& name,
+                                                    const char* call) {
+  const auto named = std::find_if(scene.shapes.begin(), scene.shapes.end(),
+                                  [&](const ClumpShape& c) { return c.name == name; });
+  if (named != scene.shapes.end()) return named;
+  std::vector<std::string> names;
+  for (const ClumpShape& c : scene.shapes) names.push_back(c.name);
+  throw py::value_error(
+      names.empty()
+          ? fmt::format("{}: no shape '{}': the scene has no [[shape]]", call, name)
+          : fmt::format("{}: no shape '{}' (the scene's: {})", call, name, fmt::join(names, ", ")));
+}
+
+} // namespace
+
+py::dict shape_dict(const Scene& scene, const std::string& name) {
+  const ClumpShape& shape = *named_shape(scene, name, "shape");
+  std::vector<double> centres, radii;
+  for (const SphereMember& m : shape.members) {
+    centres.insert(centres.end(), {m.centre.x, m.centre.y, m.centre.z});
+    radii.push_back(m.radius);
+  }
+  const auto k = static_cast<py::ssize_t>(radii.size());
+  const Vec3& i = shape.inertia_per_density;
+  const Quaternion& f = shape.frame;
+  return py::dict("centres"_a = rows_of(centres, k, 3), "radii"_a = rows_of(radii, k, 1),
+                  "volume"_a = shape.volume,
+                  "inertia_per_density"_a = rows_of(std::vector<double>{i.x, i.y, i.z}, 3, 1),
+                  "bounding_radius"_a = shape.bounding_radius,
+                  "frame"_a = rows_of(std::vector<double>{f.w, f.x, f.y, f.z}, 4, 1),
+                  "centre"_a = rows_of(
+                      std::vector<double>{shape.centre.x, shape.centre.y, shape.centre.z}, 3, 1));
+}
+
+std::vector<PlacedClump> placed_clumps(const Scene& scene, const std::string& shape,
+                                       const DoubleRows& x, const DoubleRows& q,
+                                       const DoubleRows& v, const DoubleRows& w,
+                                       const DoubleRows& scale, const std::string& material,
+                                       bool principal) {
+  const auto named = named_shape(scene, shape, "add_clumps");
+  const auto kind = scene.material_index(material);
+  if (!kind) throw py::value_error(fmt::format("add_clumps: no material '{}'", material));
+  const double density = scene.material_properties[*kind].density;
+  if (!(density > 0))
+    throw py::value_error(fmt::format("add_clumps: material '{}' has no density", material));
+  py::ssize_t n = -1;
+  const std::vector<double> at = rows(x, 3, n, "positions"), turn = rows(q, 4, n, "orientations"),
+                            vel = rows(v, 3, n, "velocities"),
+                            spin = rows(w, 3, n, "angular_velocities"),
+                            factor = rows(scale, 1, n, "scale");
+  std::vector<PlacedClump> out;
+  const auto row3 = [](const std::vector<double>& c, std::size_t k) {
+    return Vec3{c[3 * k], c[3 * k + 1], c[3 * k + 2]};
+  };
+  for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
+    Quaternion o{turn[4 * k], turn[4 * k + 1], turn[4 * k + 2], turn[4 * k + 3]};
+    const double norm_q = std::sqrt(dot(o, o));
+    if (!(std::abs(norm_q - 1.0) <= 1e-6))
+      throw py::value_error(fmt::format(
+          "add_clumps: orientations[{}] = ({}, {}, {}, {}) has norm {:.9g}: give a unit "
+          "quaternion (w, x, y, z), such as (1, 0, 0, 0)",
+          k, o.w, o.x, o.y, o.z, norm_q));
+    o = (1.0 / norm_q) * o;
+    if (!(factor[k] > 0) || !std::isfinite(factor[k]))
+      throw py::value_error(
+          fmt::format("add_clumps: scale[{}] = {} is not positive and finite", k, factor[k]));
+    try {
+      out.push_back(make_clump(named->scaled(factor[k]), density, *kind, 0, row3(at, k),
+                               principal ? o : o * named->frame, row3(vel, k), row3(spin, k)));
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(fmt::format("add_clumps: clump {}: {}", k, e.what()));
+    }
+    out.back().body.shape = static_cast<std::int32_t>(named - scene.shapes.begin());
+  }
+  return out;
 }
 
 } // namespace yuxi::python

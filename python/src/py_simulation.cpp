@@ -365,6 +365,43 @@ std::string PySimulation::add_insert(const std::string& table_toml) {
   return spec.name;
 }
 
+void PySimulation::check_added(const char* call, const std::function<void()>& take_back) {
+  try {
+    BuildReport report;
+    check_running_time_step(run_.scene, sim(), force_dt_, report);
+  } catch (const TimeStepError& e) {
+    take_back();
+    throw TimeStepError(fmt::format("{}: none added: with them, {}", call, e.what()));
+  } catch (...) {
+    take_back();
+    throw;
+  }
+}
+
+std::vector<GlobalId> PySimulation::add_grains(std::span<const ParticleSpec> grains) {
+  collective("add_grains()");
+  const std::vector<GlobalId> ids = sim().add_grains(grains);
+  edited();
+  check_added("add_grains()", [&] { sim().remove_grains(ids); });
+  return ids;
+}
+
+std::vector<GlobalId> PySimulation::add_clumps(std::vector<PlacedClump> clumps) {
+  if (!clumps.empty() && clumps.front().members.size() == 1) {
+    std::vector<ParticleSpec> spheres;
+    for (const PlacedClump& c : clumps) spheres.push_back(lone_member_as_sphere(c));
+    return add_grains(spheres);
+  }
+  if (device_choice(run_.scene.run.device))
+    throw std::runtime_error("clumps run on the CPU engine only: this run is on the device "
+                             "engine, which refuses them (device = \"cpu\" runs them)");
+  collective("add_clumps()");
+  const std::vector<GlobalId> ids = sim().add_clumps(std::move(clumps));
+  edited();
+  check_added("add_clumps()", [&] { sim().remove_clumps(ids); });
+  return ids;
+}
+
 std::string PySimulation::checkpoint(const std::string& path) {
   RunDriver& d = driver();
   collective("checkpoint()");
@@ -518,11 +555,30 @@ void bind_simulation(py::module_& m) {
                grains[k].mass = grain.mass_of(r);
                grains[k].material = *kind;
              }
-             s.collective("add_grains()");
-             const std::vector<GlobalId> ids = s.sim().add_grains(grains);
-             s.edited();
+             const std::vector<GlobalId> ids = s.add_grains(grains);
              return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
            })
+      .def("add_clumps",
+           [](PySimulation& s, const std::string& shape, const DoubleArray& x, const DoubleArray& q,
+              const DoubleArray& v, const DoubleArray& w, const DoubleArray& scale,
+              const std::string& material, bool principal) {
+             const std::vector<GlobalId> ids = s.add_clumps(
+                 placed_clumps(s.scene(), shape, x, q, v, w, scale, material, principal));
+             return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+           })
+      .def("remove_clumps",
+           [](PySimulation& s, const py::array& ids) {
+             const auto id = ids_of(ids, "remove_clumps");
+             s.collective("remove_clumps()");
+             const std::int64_t n = s.sim().remove_clumps(id);
+             s.edited();
+             return n;
+           })
+      .def("set_clump_velocities",
+           setter(&Simulation::set_clump_velocities, "set_clump_velocities", "velocities"))
+      .def("set_clump_angular_velocities",
+           setter(&Simulation::set_clump_angular_velocities, "set_clump_angular_velocities",
+                  "angular velocities"))
       .def("remove_grains",
            [](PySimulation& s, const py::array& ids) {
              const auto id = ids_of(ids, "remove_grains");
@@ -572,6 +628,8 @@ void bind_simulation(py::module_& m) {
            })
       .def("contacts", [](PySimulation& s) { return contact_arrays(s.sim()); })
       .def("clumps", [](PySimulation& s) { return clump_arrays(s.sim()); })
+      .def("shape",
+           [](PySimulation& s, const std::string& name) { return shape_dict(s.scene(), name); })
       .def_property_readonly("shapes",
                              [](PySimulation& s) {
                                std::vector<std::string> names;

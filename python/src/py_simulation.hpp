@@ -9,10 +9,12 @@
 #include "run/run_opening.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <span>
 
 namespace yuxi::python {
 
@@ -39,6 +41,11 @@ public:
   // One more insert, from an [[insert]] table as TOML text ("[[insert]]\n..."): it joins the
   // run's scene (and so its checkpoints) and pours from the next step on; returns its name.
   std::string add_insert(const std::string& table_toml);
+  // New grains, or clumps (Simulation::add_grains, add_clumps; a shape of one member gives
+  // spheres, as a fill does). Collective. What they bring meets the time-step check that a
+  // scene's grains meet at the start, and is taken back where it fails. Returns their ids.
+  std::vector<GlobalId> add_grains(std::span<const ParticleSpec> grains);
+  std::vector<GlobalId> add_clumps(std::vector<PlacedClump> clumps);
   // Writes a checkpoint (into the run folder when `path` is empty); returns the file.
   std::string checkpoint(const std::string& path);
   pybind11::dict finish();
@@ -79,6 +86,9 @@ public:
 private:
   PySimulation() = default;
   void open_driver(bool resumed);
+  // The time-step check of what was just added (add_grains(), add_clumps()): where it fails,
+  // `take_back()`, then the error again (a time step's named as `call`'s).
+  void check_added(const char* call, const std::function<void()>& take_back);
 
   OpenedRun run_;
   std::filesystem::path folder_;

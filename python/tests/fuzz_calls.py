@@ -44,9 +44,14 @@ def scene(work, rng):
                     "region": {"shape": "box", "lo": [-1.5, -1.5, 3.5], "hi": [1.5, 1.5, 4.5]}}],
         "mesh": [{"name": "lid", "file": lid, "material": "wall", "controlled": True,
                   "servo_axis": [0, 0, -1]}],
+        "shape": [{"name": "rod", "spheres": [[-0.2, 0, 0, 0.2], [0.2, 0, 0, 0.2]]},
+                  {"name": "ball", "spheres": [[0, 0, 0, 0.3]]}],
     }
+    if rng.random() < 0.5:
+        tables["clump"] = [{"shape": "rod", "position": [0.0, 0.0, 5.0], "material": "grain",
+                            "orientation": rng.choice([[1, 0, 0, 0], [0.5, 0.5, 0.5, 0.5]])}]
     if rng.random() < 0.15:  # a broken table: the reader must refuse it with SceneError
-        victim = rng.choice(["run", "domain", "fill", "insert"])
+        victim = rng.choice(["run", "domain", "fill", "insert", "shape"])
         if isinstance(tables[victim], list):
             tables[victim][0][rng.choice(["radious", "count", "region"])] = rng.choice(
                 [None, -1, "x", [1, 2], {"a": 1}])
@@ -180,6 +185,38 @@ class Driver:
         else:
             s.remove_grains(ids(s, rng))
 
+    def clumps(self):
+        s, rng = self.sim(), self.rng
+        try:
+            have = np.asarray(s.clumps()["id"]).copy()
+        except Exception:
+            have = np.array([], dtype=np.int64)
+        chosen = rng.choice([have, have + 1, have[:1], np.array([10**9]), ids(s, rng)])
+        n = len(chosen) if hasattr(chosen, "__len__") else 1
+        op = rng.randrange(5)
+        if op == 0:
+            k = rng.randrange(0, 3)
+            where = np.array([[rng.uniform(-2.5, 2.5), rng.uniform(-2.5, 2.5), rng.uniform(0, 7)]
+                              for _ in range(k)])
+            s.add_clumps(rng.choice(["rod", "ball", "cube", anything(rng)]),
+                         where if rng.random() < 0.8 else anything(rng),
+                         orientations=rng.choice([None, [[1, 0, 0, 0]] * k, [[2, 0, 0, 0]] * k,
+                                                  anything(rng)]),
+                         velocities=rng.choice([None, np.zeros((k, 3)), anything(rng)]),
+                         angular_velocities=rng.choice([None, np.ones((k, 3)), anything(rng)]),
+                         scale=rng.choice([1.0, 0.5, [1.0] * k, 0.0, -1.0, 0.001, "x"]),
+                         material=rng.choice([None, "grain", "wall", "sand"]),
+                         frame=rng.choice(["shape", "principal", "x"]))
+        elif op == 1:
+            s.remove_clumps(chosen)
+        elif op == 2:
+            rng.choice([s.set_clump_velocities, s.set_clump_angular_velocities])(
+                chosen, vectors(n, rng))
+        elif op == 3:
+            s.shape(rng.choice(["rod", "ball", "cube", anything(rng)]))
+        else:
+            s.clumps()
+
     def sources_and_walls(self):
         s, rng = self.sim(), self.rng
         name = rng.choice(["feed", "lid", "late", "nothing", ""])
@@ -232,7 +269,7 @@ class Driver:
         if self.rng.random() < 0.5:
             self.sims.remove(s)  # (or kept, to be called after close)
 
-    CALLS = ["run", "view", "keep_particles", "read_view", "write", "add_remove",
+    CALLS = ["run", "view", "keep_particles", "read_view", "write", "add_remove", "clumps",
              "sources_and_walls", "read", "checkpoint", "close", "open"]
 
 

@@ -75,3 +75,214 @@ def test_an_insert_added_from_python_pours_clumps(box_scene, tmp_path):
     assert np.all(c["position"][64:, 2] >= 8.5)
     assert sim.energies()["grains"] == 74
     sim.close()
+
+
+def empty_rods_box(box_scene):
+    """The box with one grain of radius 0.3 in a corner (id 0) instead of its fill, and a rod of
+    three spheres written along z."""
+    box_scene["run"]["dt"] = 1.0e-4
+    box_scene["shape"] = [
+        {"name": "rod", "spheres": [[0.0, 0.0, -0.3, 0.2], [0.0, 0.0, 0.0, 0.2],
+                                    [0.0, 0.0, 0.3, 0.2]]},
+        {"name": "ball", "spheres": [[1.0, 1.0, 1.0, 0.3]]}]
+    del box_scene["fill"]
+    box_scene["particle"] = [{"position": [7.5, 7.5, 0.3], "radius": 0.3, "density": 1.0,
+                              "material": "grain"}]
+    return box_scene
+
+
+def members_of(sim, clump_id):
+    p = sim.particles
+    order = np.argsort(np.asarray(p.id))
+    ids = np.asarray(p.id)[order]
+    mine = np.asarray(p.clump)[order] == clump_id
+    return (ids[mine], np.asarray(p.position)[order][mine], np.asarray(p.velocity)[order][mine])
+
+
+def test_clumps_added_from_python_stand_as_placed_and_fly_as_free_bodies(box_scene, tmp_path):
+    """A rod added upright (the shape as written) and one turned a quarter about y: members
+    where the pose puts them; then free flight under gravity, which velocity Verlet integrates
+    exactly (x0 + v t + g t^2 / 2), spinning about the rod's axis, a principal one, at a constant
+    rate. The books take the new energy as inserted and keep their balance."""
+    sim = yuxi.Simulation(empty_rods_box(box_scene), output=tmp_path / "add", progress=False)
+    before = sim.energies()
+    h = np.sqrt(0.5)
+    ids = sim.add_clumps("rod", [[4.0, 4.0, 8.0], [2.0, 2.0, 8.0]],
+                         orientations=[[1.0, 0.0, 0.0, 0.0], [h, 0.0, h, 0.0]],
+                         velocities=[[1.0, 0.5, 2.0], [0.0, 0.0, 0.0]],
+                         angular_velocities=[[0.0, 0.0, 3.0], [0.0, 0.0, 0.0]])
+    assert list(ids) == [1, 4]
+    c = sim.clumps()
+    assert list(c["id"]) == [1, 4] and list(c["members"]) == [3, 3]
+    _, upright, v_members = members_of(sim, 1)
+    assert upright == pytest.approx(np.array([[4.0, 4.0, 7.7], [4.0, 4.0, 8.0], [4.0, 4.0, 8.3]]),
+                                    abs=1e-12)
+    assert np.allclose(v_members, [1.0, 0.5, 2.0], atol=1e-12)  # omega along the rod: no swirl
+    _, lying, _ = members_of(sim, 4)
+    assert lying == pytest.approx(np.array([[1.7, 2.0, 8.0], [2.0, 2.0, 8.0], [2.3, 2.0, 8.0]]),
+                                  abs=1e-12)
+    assert c["angular_velocity"][0] == pytest.approx([0.0, 0.0, 3.0], abs=1e-12)
+    after = sim.energies()
+    m = c["mass"][0]
+    assert after["inserted"] - before["inserted"] == pytest.approx(
+        after["mechanical"] - before["mechanical"], rel=1e-12)
+    assert after["translational"] == pytest.approx(0.5 * m * (1.0 + 0.25 + 4.0), rel=1e-12)
+    assert after["balance"] == pytest.approx(before["balance"], abs=1e-12)
+    sim.step(1000)
+    t = sim.time
+    c = sim.clumps()
+    assert c["position"][0] == pytest.approx([4.0 + t, 4.0 + 0.5 * t, 8.0 + 2.0 * t - 5.0 * t * t],
+                                             abs=1e-12)
+    assert c["angular_velocity"][0] == pytest.approx([0.0, 0.0, 3.0], abs=1e-12)
+    assert c["position"][1] == pytest.approx([2.0, 2.0, 8.0 - 5.0 * t * t], abs=1e-12)
+    assert sim.energies()["balance"] == pytest.approx(before["balance"], abs=1e-9)
+    sim.close()
+
+
+def test_a_clump_s_velocities_are_set_by_its_id(box_scene, tmp_path):
+    sim = yuxi.Simulation(empty_rods_box(box_scene), output=tmp_path / "set", progress=False)
+    ids = sim.add_clumps("rod", [[4.0, 4.0, 8.0], [2.0, 2.0, 8.0]])
+    before = sim.energies()
+    sim.set_clump_velocities(ids[1:], [[0.0, 0.0, 2.0]])
+    sim.set_clump_angular_velocities(ids[1:], [[4.0, 0.0, 0.0]])
+    c = sim.clumps()
+    assert c["velocity"][1] == pytest.approx([0.0, 0.0, 2.0])
+    assert c["angular_velocity"][1] == pytest.approx([4.0, 0.0, 0.0], abs=1e-12)
+    # the members move with it: v = V + omega x r
+    _, x, v = members_of(sim, ids[1])
+    arms = x - c["position"][1]
+    assert v == pytest.approx(np.array([0.0, 0.0, 2.0]) + np.cross([4.0, 0.0, 0.0], arms),
+                              abs=1e-12)
+    after = sim.energies()
+    assert after["inserted"] - before["inserted"] == pytest.approx(
+        after["kinetic"] - before["kinetic"], rel=1e-12)
+    assert after["rotational"] == pytest.approx(
+        0.5 * c["inertia"][1][1] * 16.0, rel=1e-12)  # about a transverse principal axis
+    with pytest.raises(ValueError, match="id 5 is member 1 of clump 4: a clump is named by"):
+        sim.set_clump_velocities([5], [[0.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="clump id 99 is not one of this rank's clumps"):
+        sim.set_clump_angular_velocities([99], [[0.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="velocity of clump 1 is not finite"):
+        sim.set_clump_velocities([1], [[np.nan, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="member of clump 4: it moves with its clump, not alone "
+                                         "\\(set the clump's motion, by its id 4\\)"):
+        sim.set_velocities([5], [[0.0, 0.0, 0.0]])
+    sim.close()
+
+
+def test_clumps_are_removed_whole_by_their_ids(box_scene, tmp_path):
+    sim = yuxi.Simulation(rods_scene(box_scene), output=tmp_path / "remove", progress=False)
+    sim.step(100)
+    c = sim.clumps()
+    gone = c["id"][:10]
+    before = sim.energies()
+    with pytest.raises(ValueError, match="remove_clumps takes clump"):
+        sim.remove_grains(gone[:1] + 1)
+    with pytest.raises(ValueError, match="is member 2 of clump"):
+        sim.remove_clumps(gone[:1] + 2)
+    assert sim.remove_clumps(np.concatenate([gone, [123456]])) == 10  # others' ids passed over
+    c = sim.clumps()
+    assert len(c["id"]) == 54 and not set(gone) & set(c["id"])
+    assert len(sim.particles) == 3 * 54
+    after = sim.energies()
+    assert after["grains"] == 54
+    assert after["removed"] > before["removed"]
+    assert after["balance"] == pytest.approx(before["balance"], rel=1e-12, abs=1e-12)
+    sim.step(100)
+    sim.close()
+
+
+def test_clumps_added_wrongly_are_refused_and_none_is_added(box_scene, tmp_path):
+    scene = empty_rods_box(box_scene)
+    sim = yuxi.Simulation(scene, output=tmp_path / "misuse", progress=False)
+    sim.add_clumps("rod", [[4.0, 4.0, 8.0]])
+    with pytest.raises(ValueError, match="member 0 of new clump 1 at \\(4, 4, 7.7\\), radius 0.2, "
+                                         "overlaps member 0 of clump 1 by 0.4"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0], [4.0, 4.0, 8.0]])
+    with pytest.raises(ValueError, match="member 0 of new clump 1 .* overlaps member 1 of new "
+                                         "clump 0 of the same call"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0], [2.0, 2.0, 8.6]])
+    with pytest.raises(ValueError, match="overlaps the flat wall 'box z hi'"):
+        sim.add_clumps("rod", [[2.0, 2.0, 11.6]])
+    with pytest.raises(ValueError, match="no shape 'cube' \\(the scene's: rod, ball\\)"):
+        sim.add_clumps("cube", [[2.0, 2.0, 8.0]])
+    with pytest.raises(ValueError, match="orientations\\[0\\] = \\(1, 1, 0, 0\\) has norm "
+                                         "1.41421356: give a unit quaternion"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], orientations=[[1.0, 1.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="1 positions but orientations of shape \\(1, 3\\)"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], orientations=[[1.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="scale\\[0\\] = -1 is not positive"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], scale=[-1.0])
+    with pytest.raises(ValueError, match="centre of mass is outside the domain"):
+        sim.add_clumps("rod", [[2.0, 2.0, 80.0]])
+    with pytest.raises(ValueError, match="frame must be 'shape' or 'principal'"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], frame="body")
+    # Clumps so small that dt cannot resolve their contacts: the time-step check of the scene,
+    # and the clumps taken back.
+    with pytest.raises(yuxi.SceneError, match="add_clumps\\(\\): none added: with them, .*run.dt"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], scale=0.01)
+    assert list(sim.clumps()["id"]) == [1]
+    sim.step(10)
+    sim.close()
+
+
+def test_a_shape_of_one_member_adds_spheres(box_scene, tmp_path):
+    sim = yuxi.Simulation(empty_rods_box(box_scene), output=tmp_path / "ball", progress=False)
+    ids = sim.add_clumps("ball", [[4.0, 4.0, 8.0]], angular_velocities=[[0.0, 1.0, 0.0]])
+    assert len(sim.clumps()["id"]) == 0
+    p = sim.particles
+    assert list(ids) == [1]
+    k = list(p.id).index(1)
+    assert p.clump[k] == -1 and p.radius[k] == 0.3
+    assert p.position[k] == pytest.approx([4.0, 4.0, 8.0])
+    assert p.angular_velocity[k] == pytest.approx([0.0, 1.0, 0.0])
+    sim.close()
+
+
+def test_clump_tables_place_clumps_in_the_scene(box_scene, tmp_path):
+    """[[clump]]: the shape as written, turned by `orientation` about its centre of mass at
+    `position`, scaled, moving; a one-member shape a sphere. The resolved scene keeps them."""
+    scene = empty_rods_box(box_scene)
+    h = np.sqrt(0.5)
+    scene["clump"] = [
+        {"shape": "rod", "position": [4.0, 4.0, 6.0], "material": "grain"},
+        {"shape": "rod", "position": [2.0, 2.0, 6.0], "orientation": [h, 0.0, h, 0.0],
+         "velocity": [1.0, 0.0, 0.0], "angular_velocity": [0.0, 0.0, 2.0], "scale": 2.0,
+         "material": "grain"},
+        {"shape": "ball", "position": [6.0, 6.0, 6.0], "material": "grain", "density": 2.0}]
+    sim = yuxi.Simulation(scene, output=tmp_path / "tables", progress=False)
+    c = sim.clumps()
+    assert list(c["id"]) == [1, 4]
+    _, upright, _ = members_of(sim, 1)
+    assert upright[:, 2] == pytest.approx([5.7, 6.0, 6.3], abs=1e-12)
+    _, lying, _ = members_of(sim, 4)
+    assert lying[:, 0] == pytest.approx([1.4, 2.0, 2.6], abs=1e-12)
+    assert c["mass"][1] == pytest.approx(8.0 * c["mass"][0], rel=1e-12)
+    assert c["velocity"][1] == pytest.approx([1.0, 0.0, 0.0])
+    assert c["angular_velocity"][1] == pytest.approx([0.0, 0.0, 2.0], abs=1e-12)
+    p = sim.particles
+    ball = (np.asarray(p.clump) == -1) & (np.asarray(p.id) == 7)
+    assert np.asarray(p.mass)[ball][0] == pytest.approx(2.0 * 4.0 / 3.0 * np.pi * 0.027)
+    sim.close()
+    resolved = yuxi.Scene.from_dict(scene)
+    tables = resolved.resolved()["clump"]
+    assert [t["shape"] for t in tables] == ["rod", "rod", "ball"]
+    assert tables[1]["scale"] == 2.0 and tables[2]["density"] == 2.0
+    assert tables[0]["density"] == scene["material"]["grain"]["density"]
+    assert yuxi.Scene.from_toml(resolved.toml()).resolved() == resolved.resolved()
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"orientation": [1.0, 0.0, 0.0]}, "clump\\[1\\].orientation: 3 numbers"),
+    ({"orientation": [2.0, 0.0, 0.0, 0.0]}, "has length 2: give a unit quaternion"),
+    ({"shape": "cube"}, "no \\[\\[shape\\]\\] named 'cube' \\(the scene's: rod, ball\\)"),
+    ({"position": [4.0, 4.0, 60.0]}, "clump\\[1\\].position: \\(4, 4, 60\\) is outside"),
+    ({"scale": 0.0}, "clump\\[1\\].scale"),
+    ({"spin": 1.0}, "spin"),
+])
+def test_clump_tables_that_are_wrong_name_the_key(box_scene, tmp_path, change, message):
+    scene = empty_rods_box(box_scene)
+    scene["clump"] = [dict({"shape": "rod", "position": [4.0, 4.0, 6.0], "material": "grain"},
+                           **change)]
+    with pytest.raises(yuxi.SceneError, match=message):
+        yuxi.Simulation(scene, output=tmp_path / "bad", progress=False)

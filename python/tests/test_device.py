@@ -120,6 +120,16 @@ def test_contacts_are_not_recorded_on_the_device(gas_scene, tmp_path):
     sim.close()
 
 
+def test_clumps_are_not_added_on_the_device(gas_scene, tmp_path):
+    gas_scene["shape"] = [{"name": "rod", "spheres": [[-0.3, 0.0, 0.0, 0.2],
+                                                      [0.3, 0.0, 0.0, 0.2]]}]
+    sim = yuxi.Simulation(gas_scene, output=tmp_path / "rods", progress=False, device="host")
+    with pytest.raises(RuntimeError, match="clumps run on the CPU engine only"):
+        sim.add_clumps("rod", [[4.0, 4.0, 11.9]])
+    sim.step(5)
+    sim.close()
+
+
 def test_a_device_run_resumes_on_the_cpu(gas_scene, tmp_path):
     sim = yuxi.Simulation(gas_scene, output=tmp_path / "run", progress=False, device="host")
     _stir(sim, 1)

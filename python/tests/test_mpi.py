@@ -93,3 +93,21 @@ def test_coarse_grained_fields_do_not_depend_on_the_ranks(tmp_path):
         for key, value in one.items():
             a, b = np.asarray(value), np.asarray(other["fields"][key])
             assert np.allclose(b, a, rtol=1e-6, atol=1e-9 * np.abs(a).max()), key
+
+
+@pytest.mark.skipif(shutil.which("mpirun") is None, reason="no mpirun")
+def test_clumps_changed_from_python_on_two_ranks_run_as_on_one(tmp_path):
+    """Clumps added across the ranks' cut, given velocities by the ranks that own them and
+    removed by ids that only some rank holds: the run of 2 ranks is the run of 1, to the
+    tolerance of the engine's MPI tests."""
+    one = run(1, tmp_path / "one", "mpi_clump_edits.py")
+    two = run(2, tmp_path / "two", "mpi_clump_edits.py")
+    assert two["ranks"] == 2
+    assert one["added"] == two["added"] and one["removed"] == two["removed"] > 1
+    assert one["ids"] == two["ids"]
+    assert np.allclose(two["x"], one["x"], rtol=0, atol=1e-7)
+    for key in ("translational", "rotational", "elastic", "gravitational", "dissipated",
+                "inserted", "removed"):
+        a, b = one["energies"][key], two["energies"][key]
+        assert b == pytest.approx(a, rel=1e-9, abs=1e-12), key
+    assert one["energies"]["grains"] == two["energies"]["grains"]

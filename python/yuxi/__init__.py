@@ -455,17 +455,9 @@ class Simulation:
         """Adds grains (the same on every rank); returns their ids. ``radii``: one radius for
         all, or one per grain. A grain that would overlap another particle or a flat wall is
         refused (ValueError naming it). Collective."""
-        positions = np.atleast_2d(np.asarray(positions, dtype=float))
-        if positions.ndim != 2 or positions.shape[1] != 3:
-            raise ValueError(f"add_grains: positions must be of shape (n, 3), not "
-                             f"{np.shape(positions)}")
+        positions = _positions(positions, "add_grains")
         n = len(positions)
-        radii = np.asarray(radii, dtype=float)
-        if radii.ndim == 0:
-            radii = np.full(n, float(radii))
-        elif radii.shape != (n,):
-            raise ValueError(f"add_grains: {n} positions but radii of shape {radii.shape}: give "
-                             f"one radius, or one per grain")
+        radii = _one_or_each(radii, n, "add_grains", "radii", "radius", "grain")
         velocities = (np.zeros_like(positions) if velocities is None
                       else np.atleast_2d(np.asarray(velocities, dtype=float)))
         if velocities.shape != positions.shape:
@@ -480,6 +472,52 @@ class Simulation:
         Collective. Their energy is booked as removed.
         """
         return self._core.remove_grains(np.atleast_1d(np.asarray(ids)))
+
+    def set_clump_velocities(self, ids, velocities):
+        """Sets the velocities of the centres of mass of clumps this rank owns, by clump id
+        (``sim.clumps()["id"]``); their members move with them."""
+        self._core.set_clump_velocities(np.asarray(ids), np.asarray(velocities))
+
+    def set_clump_angular_velocities(self, ids, angular_velocities):
+        """Sets the angular velocities (lab frame) of clumps this rank owns, by clump id."""
+        self._core.set_clump_angular_velocities(np.asarray(ids), np.asarray(angular_velocities))
+
+    def add_clumps(self, shape, positions, orientations=None, velocities=None,
+                   angular_velocities=None, scale=1.0, material=None, frame="shape"):
+        """Adds clumps of the scene's ``[[shape]]`` named ``shape`` (the same on every rank);
+        returns their ids. ``positions``: the centres of mass, (n, 3); ``orientations``: unit
+        quaternions (w, x, y, z), (n, 4), that turn the shape as its table writes it (or, with
+        ``frame="principal"``, its principal frame, as ``clumps()`` gives them) onto the lab's;
+        (1, 0, 0, 0) where not given; ``scale``: one factor for all or one per clump (1: the
+        shape's size). A member that would overlap another particle or a flat wall is refused
+        (ValueError naming it), as are clumps the time step cannot resolve (SceneError). A shape
+        of one member gives spheres. Collective."""
+        if frame not in ("shape", "principal"):
+            raise ValueError(f"add_clumps: frame must be 'shape' or 'principal', not {frame!r}")
+        positions = _positions(positions, "add_clumps")
+        n = len(positions)
+
+        def rows(values, width, what, default):
+            if values is None:
+                return np.tile(np.asarray(default, dtype=float), (n, 1))
+            values = np.atleast_2d(np.asarray(values, dtype=float))
+            if values.shape != (n, width):
+                raise ValueError(f"add_clumps: {n} positions but {what} of shape "
+                                 f"{values.shape}: give one ({width},) row per clump")
+            return values
+
+        orientations = rows(orientations, 4, "orientations", [1.0, 0.0, 0.0, 0.0])
+        velocities = rows(velocities, 3, "velocities", [0.0, 0.0, 0.0])
+        angular_velocities = rows(angular_velocities, 3, "angular_velocities", [0.0, 0.0, 0.0])
+        scale = _one_or_each(scale, n, "add_clumps", "scale", "factor", "clump")
+        material = self.materials[0] if material is None else material
+        return self._core.add_clumps(shape, positions, orientations, velocities,
+                                     angular_velocities, scale, material, frame == "principal")
+
+    def remove_clumps(self, ids):
+        """Removes the clumps of these ids, whole (where any rank owns them); returns how many
+        went. Collective. Their energy is booked as removed."""
+        return self._core.remove_clumps(np.atleast_1d(np.asarray(ids)))
 
     def set_wall_speed(self, name, speed):
         """Sets a controlled mesh's speed along its servo_axis, held until set again."""
@@ -517,9 +555,37 @@ class Simulation:
         """The names of the scene's [[shape]] tables, in order (a clump's ``shape`` indexes it)."""
         return list(self._core.shapes)
 
+    def shape(self, name):
+        """The scene's [[shape]] ``name`` in its principal frame: the members' ``centres`` (k, 3)
+        and ``radii``, ``volume``, ``inertia_per_density`` (the principal moments over the
+        density, ascending), ``bounding_radius``, and where the table gave it: ``frame``, the
+        quaternion that turns the principal frame onto the table's (``add_clumps`` with
+        ``orientations=[frame]`` places the shape as written), and ``centre``, the centre of mass
+        in the table's frame."""
+        return self._core.shape(name)
+
     def __repr__(self):
         return (f"yuxi.Simulation(step {self.step_count}, t = {self.time:.6g}, "
                 f"folder {self.folder!r}, rank {self.rank} of {self.ranks})")
+
+
+def _positions(positions, call):
+    """Positions as an (n, 3) array of floats (one position may be given alone)."""
+    positions = np.atleast_2d(np.asarray(positions, dtype=float))
+    if positions.ndim != 2 or positions.shape[1] != 3:
+        raise ValueError(f"{call}: positions must be of shape (n, 3), not {np.shape(positions)}")
+    return positions
+
+
+def _one_or_each(values, n, call, what, one, item):
+    """One number for all n items, or one per item, as an (n,) array of floats."""
+    values = np.asarray(values, dtype=float)
+    if values.ndim == 0:
+        return np.full(n, float(values))
+    if values.shape != (n,):
+        raise ValueError(f"{call}: {n} positions but {what} of shape {values.shape}: give one "
+                         f"{one}, or one per {item}")
+    return values
 
 
 def _path(output):

@@ -108,6 +108,20 @@ struct AnalysisSettings {
   double grain_samples_until = -1;  // [time]; < 0: the end of the averaging window
 };
 
+// A [[clump]]: one clump of a [[shape]] placed where the scene says (docs/scene-format.md,
+// "Clumps"): its centre of mass at `position`, the shape as written in its table turned by
+// `orientation` about it and scaled by `scale`, moving at `velocity` and turning at
+// `angular_velocity` (lab frame) [length/time, rad/time].
+struct ClumpSpec {
+  std::int32_t shape = -1; // the index of the [[shape]]
+  double scale = 1.0;
+  Vec3 position;
+  Quaternion orientation; // the table's frame -> lab
+  Vec3 velocity, angular_velocity;
+  std::uint8_t material = 0;
+  double density = 0.0; // [mass/length^3]
+};
+
 struct Scene {
   std::string source;      // file the scene was read from (for messages)
   std::string dt_location; // "file:line:column" of run.dt, for the time-step check
@@ -127,6 +141,7 @@ struct Scene {
   std::optional<AnalysisSettings> analysis;
   std::vector<ClumpShape> shapes;                       // [[shape]]: clumps of spheres, by name
   std::vector<std::vector<SphereMember>> shape_spheres; // each shape's members as given, scaled
+  std::vector<ClumpSpec> clumps;                        // [[clump]]: clumps placed one by one
   std::vector<FillSpec> fills;                          // [[fill]]: grains placed at the start
   std::vector<InsertSpec> inserts;                      // [[insert]]: grains poured during the run
   std::vector<OutletSpec> outlets;                      // [[outlet]]: where grains leave

@@ -546,6 +546,12 @@ void check_consistency(Scene& scene, TomlReader& root) {
     (grain ? grain_mat : other_mat)[p.material] = true;
     grains_of[p.material] += grain ? 1 : 0;
   }
+  for (const ClumpSpec& c : scene.clumps) {
+    for (const SphereMember& m : scene.shapes[static_cast<std::size_t>(c.shape)].members)
+      rg = std::max(rg, c.scale * m.radius);
+    grain_mat[c.material] = true;
+    grains_of[c.material] += 1;
+  }
   for (const auto& f : scene.fills) {
     rg = std::max(rg, f.grains.size.largest());
     grain_mat[f.grains.material] = true;
@@ -572,6 +578,10 @@ void check_consistency(Scene& scene, TomlReader& root) {
     }
   for (const auto& i : scene.inserts)
     scene.sim.clump_reach = std::max(scene.sim.clump_reach, i.clump_reach());
+  for (const ClumpSpec& c : scene.clumps)
+    scene.sim.clump_reach =
+        std::max(scene.sim.clump_reach,
+                 scene.shapes[static_cast<std::size_t>(c.shape)].scaled(c.scale).member_reach());
   // (a scene without grains may continue a saved state: a run that builds it from t = 0
   // refuses it, build_simulation())
   scene.largest_grain_radius = rg;

@@ -133,6 +133,21 @@ void write_sources(const Scene& s, toml::table& doc) {
     }
     doc.insert("shape", shapes);
   }
+  if (!s.clumps.empty()) {
+    toml::array clumps;
+    for (const ClumpSpec& c : s.clumps) {
+      const Quaternion& q = c.orientation;
+      clumps.push_back(toml::table{{"shape", s.shapes[static_cast<std::size_t>(c.shape)].name},
+                                   {"position", vec(c.position)},
+                                   {"orientation", toml::array{q.w, q.x, q.y, q.z}},
+                                   {"velocity", vec(c.velocity)},
+                                   {"angular_velocity", vec(c.angular_velocity)},
+                                   {"scale", c.scale},
+                                   {"material", s.materials[c.material]},
+                                   {"density", c.density}});
+    }
+    doc.insert("clump", clumps);
+  }
   if (!s.fills.empty()) {
     toml::array fills;
     for (const FillSpec& f : s.fills) {

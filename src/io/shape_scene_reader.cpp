@@ -1,12 +1,16 @@
 #include "io/shape_scene_reader.hpp"
 
 #include "io/sphere_list_reader.hpp"
+#include "io/wall_scene_reader.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <span>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 namespace yuxi {
@@ -69,9 +73,9 @@ void read_shape(Scene& scene, TomlReader& t) {
   // A fill or insert scales each clump to the bounding radius it draws: a shape's own size, and
   // so a scale or a file's unit, changes nothing. Said, rather than ignored.
   if (t.has("scale"))
-    t.fail("scale", "a shape has no size of its own: each [[fill]] and [[insert]] scales its "
+    t.fail("scale", "a shape is scaled where it is used: each [[fill]] and [[insert]] scales its "
                     "clumps to the bounding radii it draws (its radius or size distribution), "
-                    "so the members' unit does not matter; remove the key");
+                    "and a [[clump]] by its own 'scale'; remove the key");
   t.finish();
   try {
     scene.shapes.push_back(make_clump_shape(name, members));
@@ -88,10 +92,65 @@ void read_shape(Scene& scene, TomlReader& t) {
         name, pieces));
 }
 
+// A [[clump]]: one clump of a shape where the table puts it.
+void read_clump(Scene& scene, TomlReader& t) {
+  ClumpSpec c;
+  c.shape = shape_named(scene, t);
+  c.position = t.vec3("position");
+  if (!scene.sim.box.contains(c.position))
+    t.fail("position", fmt::format("({}, {}, {}) is outside the domain", c.position.x, c.position.y,
+                                   c.position.z));
+  if (t.has("orientation")) {
+    const std::vector<double> q = t.numbers("orientation");
+    if (q.size() != 4)
+      t.fail("orientation", fmt::format("{} numbers: give a unit quaternion [w, x, y, z] (the "
+                                        "turn of the shape as its table writes it)",
+                                        q.size()));
+    c.orientation = {q[0], q[1], q[2], q[3]};
+    const double length = std::sqrt(dot(c.orientation, c.orientation));
+    if (!(std::abs(length - 1.0) <= 1e-6))
+      t.fail("orientation", fmt::format("[{}, {}, {}, {}] has length {:.9g}: give a unit "
+                                        "quaternion [w, x, y, z], such as [1, 0, 0, 0]",
+                                        q[0], q[1], q[2], q[3], length));
+    c.orientation = (1.0 / length) * c.orientation;
+  }
+  c.velocity = t.vec3("velocity", {});
+  c.angular_velocity = t.vec3("angular_velocity", {});
+  c.scale = t.positive("scale", 1.0);
+  c.material = material_of(scene, t, "material");
+  const double material_density = scene.material_properties[c.material].density;
+  if (t.has("density"))
+    c.density = t.positive("density");
+  else if (std::isfinite(material_density) && material_density > 0)
+    c.density = material_density;
+  else
+    t.fail("density", fmt::format("give the clump's density here or in [material.{}]",
+                                  scene.materials[c.material]));
+  t.finish();
+  scene.clumps.push_back(c);
+}
+
 } // namespace
+
+int shape_named(const Scene& scene, TomlReader& t) {
+  const std::string name = t.string("shape");
+  std::vector<std::string_view> names;
+  int index = -1;
+  for (std::size_t k = 0; k < scene.shapes.size(); ++k) {
+    names.push_back(scene.shapes[k].name);
+    if (scene.shapes[k].name == name) index = static_cast<int>(k);
+  }
+  if (index < 0)
+    t.fail("shape", scene.shapes.empty()
+                        ? fmt::format("no [[shape]] named '{}': the scene has no [[shape]]", name)
+                        : fmt::format("no [[shape]] named '{}' (the scene's: {})", name,
+                                      fmt::join(names, ", ")));
+  return index;
+}
 
 void read_shapes(Scene& scene, TomlReader& root) {
   for (auto& t : root.tables("shape")) read_shape(scene, t);
+  for (auto& t : root.tables("clump")) read_clump(scene, t);
 }
 
 } // namespace yuxi

@@ -2,6 +2,7 @@
 
 #include "core/ball_volume.hpp"
 #include "core/units.hpp"
+#include "io/shape_scene_reader.hpp"
 #include "io/wall_scene_reader.hpp"
 
 #include <cmath>
@@ -95,18 +96,7 @@ GrainKind read_grains(const Scene& scene, TomlReader& t, std::uint64_t default_s
 // whose mass is the clump's (volume_fraction). One member: a sphere, the grains as they would be
 // without the shape.
 int read_shape_key(const Scene& scene, TomlReader& t, GrainKind& grains) {
-  const std::string name = t.string("shape");
-  std::vector<std::string_view> names;
-  int index = -1;
-  for (std::size_t k = 0; k < scene.shapes.size(); ++k) {
-    names.push_back(scene.shapes[k].name);
-    if (scene.shapes[k].name == name) index = static_cast<int>(k);
-  }
-  if (index < 0)
-    t.fail("shape", scene.shapes.empty()
-                        ? fmt::format("no [[shape]] named '{}': the scene has no [[shape]]", name)
-                        : fmt::format("no [[shape]] named '{}' (the scene's: {})", name,
-                                      fmt::join(names, ", ")));
+  const int index = shape_named(scene, t);
   const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(index)];
   if (shape.members.size() > 1)
     grains.volume_fraction = shape.volume / ball_volume(shape.bounding_radius);

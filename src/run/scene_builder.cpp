@@ -39,7 +39,8 @@ std::string speed_note(const BuildReport& r) {
 namespace {
 
 // The scene's particles at t = 0, as every rank builds them: the basin's, the [[particle]]s, the
-// fills in file order, each clear of every particle placed before it; and the clumps' bodies.
+// [[clump]]s, the fills in file order, each clear of every particle placed before it; and the
+// clumps' bodies.
 struct SceneParticles {
   ParticleStore particles;
   std::vector<ClumpBody> clumps;
@@ -79,6 +80,19 @@ SceneParticles scene_particles(const Scene& scene, BuildReport& r) {
   for (const auto& p : scene.particles) {
     particles.add(p, next++);
     (p.kind == Kind::grain ? r.grains : r.walls) += 1;
+  }
+  for (const ClumpSpec& c : scene.clumps) {
+    const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(c.shape)];
+    PlacedClump placed = make_clump(shape.scaled(c.scale), c.density, c.material, next, c.position,
+                                    c.orientation * shape.frame, c.velocity, c.angular_velocity);
+    ++r.grains;
+    if (placed.members.size() == 1) {
+      particles.add(lone_member_as_sphere(placed), next++);
+      continue;
+    }
+    placed.body.shape = c.shape;
+    for (const ParticleSpec& m : placed.members) particles.add(m, next++);
+    out.clumps.push_back(placed.body);
   }
   if (!scene.fills.empty()) {
     std::vector<ParticleSpec> placed;
@@ -143,8 +157,9 @@ std::unique_ptr<Simulation> build_simulation(const Scene& scene, bool force_dt, 
                                              Comm comm) {
   if (!(scene.largest_grain_radius > 0.0))
     throw SceneError(fmt::format("{}: the scene has no grains: add a [basin], [[fill]], "
-                                 "[[insert]] or [[particle]] entries, or start it from another "
-                                 "run's state (yuxi run --from, Python's Simulation.branch)",
+                                 "[[insert]], [[particle]] or [[clump]] entries, or start it from "
+                                 "another run's state (yuxi run --from, Python's "
+                                 "Simulation.branch)",
                                  scene.source));
   BuildReport r;
   SceneParticles built = scene_particles(scene, r);

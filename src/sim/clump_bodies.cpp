@@ -93,6 +93,11 @@ Vec3 ClumpBody::arm(std::size_t k) const {
   return to_lab(q, members[k]);
 }
 
+void ClumpBody::set_angular_velocity(const Vec3& omega) {
+  const Vec3 w_body = to_body(q, omega);
+  p = rotor_momentum(q, {inertia.x * w_body.x, inertia.y * w_body.y, inertia.z * w_body.z});
+}
+
 double ClumpBody::smallest_contact_mass() const {
   // A normal push on member k at p = b + r n has the lever p x n = b x n, whose component along
   // principal axis a is at most |e_a x b|, b's distance from that axis.
@@ -122,9 +127,7 @@ PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t mat
   b.x = x;
   b.v = v;
   b.q = orientation;
-  const Vec3 w_body = to_body(b.q, omega);
-  b.p =
-      rotor_momentum(b.q, {b.inertia.x * w_body.x, b.inertia.y * w_body.y, b.inertia.z * w_body.z});
+  b.set_angular_velocity(omega);
   b.material = material;
   double summed = 0.0; // the members' volumes, each whole (overlaps counted again)
   for (const SphereMember& m : shape.members) {
@@ -147,6 +150,14 @@ PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t mat
     out.members.push_back(m);
   }
   return out;
+}
+
+ParticleSpec lone_member_as_sphere(const PlacedClump& clump) {
+  ParticleSpec p = clump.members.front();
+  p.body = -1;
+  p.spins = true;
+  p.contact_mass = 0.0;
+  return p;
 }
 
 void ClumpBodies::set(std::vector<ClumpBody> bodies) {

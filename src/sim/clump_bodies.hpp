@@ -48,6 +48,9 @@ struct ClumpBody {
   std::size_t anchor() const { return clump_anchor(members); }
   // Member k's centre relative to the centre of mass, in the lab frame.
   Vec3 arm(std::size_t k) const;
+  // Turning at omega (lab frame) [rad/time]: NO_SQUISH's momentum p = 2 q (0, I to_body(q, omega))
+  // made from it, for the orientation q.
+  void set_angular_velocity(const Vec3& omega);
   // The smallest mass a normal contact on one of its members can meet, a lower bound of the
   // effective mass 1 / (1/M + (b x n) . I^-1 (b x n)) over every member k and normal n:
   // 1 / (1/M + max_k sum_a d_ka^2 / I_a), d_ka the distance of b_k from principal axis a (the
@@ -68,6 +71,9 @@ struct PlacedClump {
 PlacedClump make_clump(const ClumpShape& shape, double density, std::uint8_t material,
                        GlobalId first_id, const Vec3& x, const Quaternion& orientation,
                        const Vec3& v = {}, const Vec3& omega = {});
+// A clump of one member as what it is, a plain sphere: a free grain that spins by itself, of
+// the clump's mass, place and motion.
+ParticleSpec lone_member_as_sphere(const PlacedClump& clump);
 
 class ClumpBodies {
 public:
@@ -110,6 +116,10 @@ public:
   // A new body (a clump poured in), its id above every body's here; its members go into the
   // store before the next list build.
   void add(ClumpBody body);
+  // Body b (its index here), to change its velocity or angular velocity between steps (the
+  // orientation and the centre stay): the members' velocities follow at place_members(s, 0,
+  // nullptr), which the caller makes next.
+  ClumpBody& motion_of(std::size_t b) { return bodies_[b]; }
   // Removes bodies (indices here, ascending); returns the store indices of their members among
   // the owned particles of `s`, to be removed by the caller (ascending). The members are found
   // by their `body` field, so this holds between list builds too, after other removals.

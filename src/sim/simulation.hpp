@@ -280,6 +280,21 @@ public:
   // Removes the grains of these ids that this rank owns (others are passed over); returns how
   // many went on all ranks. Collective.
   std::int64_t remove_grains(std::span<const GlobalId> ids);
+  // Clumps, by their ids (a clump's id is its member 0's, ClumpBody::id; simulation_clump_edits
+  // .cpp). Velocities and angular velocities (lab frame) of clumps this rank owns (an id that is
+  // not such a clump throws std::invalid_argument naming it); the members move with them.
+  // Nothing else changes.
+  void set_clump_velocities(std::span<const GlobalId> ids, std::span<const Vec3> v);
+  void set_clump_angular_velocities(std::span<const GlobalId> ids, std::span<const Vec3> w);
+  // New clumps (make_clump(), made with any first id: each takes its ids from the counter of
+  // inserted grains, member k id + k), the same list on every rank, each kept by the rank of its
+  // anchor member; returns their ids. Collective. Throws std::invalid_argument, adding none,
+  // where a member overlaps a particle, a member of a new clump before it or a plane.
+  std::vector<GlobalId> add_clumps(std::vector<PlacedClump> clumps);
+  // Removes the clumps of these ids that this rank owns, whole (the ids of other ranks' clumps
+  // are passed over; a free grain's or a member's other than member 0 throws); returns how many
+  // went on all ranks. Collective.
+  std::int64_t remove_clumps(std::span<const GlobalId> ids);
   // Gives a controlled mesh (one with a controller: a servo, or `controlled = true`) another
   // controller. Throws std::invalid_argument if shaped wall `shaped_wall` is not such a mesh.
   void set_servo_controller(std::size_t shaped_wall, std::shared_ptr<WallController> controller) {
@@ -394,8 +409,20 @@ private:
   // an id that is not one.
   std::vector<std::size_t> grain_indices(std::span<const GlobalId> ids) const;
   // Throws std::invalid_argument naming the first new grain that overlaps a particle this rank
-  // owns, a new grain before it or a plane (add_grains()).
-  void check_clear_of_particles(std::span<const ParticleSpec> grains) const;
+  // owns, a new grain before it or a plane (add_grains()). With `clump_of` (one entry a grain:
+  // the index of the new clump it is a member of, ascending), the grains are the new clumps'
+  // members, named as such, and a clump's members may overlap one another (add_clumps()).
+  void check_clear_of_particles(std::span<const ParticleSpec> grains,
+                                std::span<const std::size_t> clump_of = {}) const;
+  // The indices in clumps_ of the clumps of these ids that this rank owns; throws
+  // std::invalid_argument naming an id that is a particle here but no clump's, and, unless
+  // `others_passed`, an id that is no clump here.
+  std::vector<std::size_t> clump_indices(std::span<const GlobalId> ids, bool others_passed) const;
+  // Writes `values` into the clumps of `ids` by `write` (a velocity, an angular velocity),
+  // booking the change of their energy, and places their members' velocities.
+  void set_clump_motions(std::span<const GlobalId> ids, std::span<const Vec3> values,
+                         const char* what,
+                         const std::function<void(ClumpBody&, const Vec3&)>& write);
   // Throws std::invalid_argument, naming `who`, where grains of `material` could touch a
   // material (a particle's of this rank, a wall's, their own) with no contact pair.
   void check_pairs_for(std::uint8_t material, const std::string& who) const;

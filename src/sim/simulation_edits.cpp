@@ -27,8 +27,9 @@ std::vector<std::size_t> Simulation::grain_indices(std::span<const GlobalId> ids
           id));
     if (store_.body[i] >= 0)
       throw std::invalid_argument(
-          fmt::format("particle id {} is a member of clump {}: it moves with its clump, not alone",
-                      id, store_.body[i]));
+          fmt::format("particle id {} is a member of clump {}: it moves with its clump, not "
+                      "alone (set the clump's motion, by its id {})",
+                      id, store_.body[i], store_.body[i]));
     out.push_back(i);
   }
   return out;
@@ -134,20 +135,34 @@ void Simulation::check_pairs_for(std::uint8_t material, const std::string& who) 
                       who, material, m));
 }
 
-void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) const {
+void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
+                                          std::span<const std::size_t> clump_of) const {
   // This rank's particles and the new grains before each, hashed on cells as wide as the
   // widest contact; along a periodic axis a grain near a face is looked for at its image too.
-  // A touch within 1e-9 of the radius (grains placed exactly in contact) is no overlap.
+  // A touch within 1e-9 of the radius (grains placed exactly in contact) is no overlap. A new
+  // clump's members join the hash once the whole clump is checked (they overlap one another).
+  const auto name = [&](std::size_t k) {
+    if (clump_of.empty()) return fmt::format("new grain {}", k);
+    std::size_t first = k;
+    while (first > 0 && clump_of[first - 1] == clump_of[k]) --first;
+    return fmt::format("member {} of new clump {}", k - first, clump_of[k]);
+  };
   double widest = 0.0;
   for (const ParticleSpec& p : grains) widest = std::max(widest, p.radius);
   for (std::size_t i = 0; i < store_.n_owned(); ++i) widest = std::max(widest, store_.radius[i]);
   const double edge = 2.0 * widest;
   BallHash owned(edge), added(edge);
-  std::vector<GlobalId> added_ids;
+  std::vector<std::size_t> added_ids;
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
     owned.add(config_.box.wrap(store_.x[i]), store_.radius[i]);
   const Box& box = config_.box;
+  std::size_t waiting = 0; // the first grain not yet in `added`
   for (std::size_t k = 0; k < grains.size(); ++k) {
+    const bool same_clump = !clump_of.empty() && waiting < k && clump_of[waiting] == clump_of[k];
+    for (; !same_clump && waiting < k; ++waiting) {
+      added.add(box.wrap(grains[waiting].position), grains[waiting].radius);
+      added_ids.push_back(waiting);
+    }
     const Vec3 x = box.wrap(grains[k].position);
     const double r = grains[k].radius * (1.0 - 1e-9);
     std::vector<Vec3> images{x};
@@ -162,25 +177,26 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains) 
     }
     const auto refuse = [&](const std::string& what, double overlap) {
       throw std::invalid_argument(fmt::format(
-          "new grain {} at ({:.6g}, {:.6g}, {:.6g}), radius {:.4g}, overlaps {} by {:.4g} ({:.3g} "
-          "% "
-          "of its radius): grains are added clear of every particle and wall (move it, or remove "
-          "what is there first)",
-          k, x.x, x.y, x.z, grains[k].radius, what, overlap, 100.0 * overlap / grains[k].radius));
+          "{} at ({:.6g}, {:.6g}, {:.6g}), radius {:.4g}, overlaps {} by {:.4g} ({:.3g} % of its "
+          "radius): grains are added clear of every particle and wall (move it, or remove what "
+          "is there first)",
+          name(k), x.x, x.y, x.z, grains[k].radius, what, overlap,
+          100.0 * overlap / grains[k].radius));
     };
     for (const Vec3& at : images) {
       if (const std::size_t b = owned.first_overlapping(at, r); b != BallHash::none)
-        refuse(fmt::format("{} {}", store_.is_grain(b) ? "grain" : "wall particle", store_.gid[b]),
+        refuse(!store_.is_grain(b)   ? fmt::format("wall particle {}", store_.gid[b])
+               : store_.body[b] >= 0 ? fmt::format("member {} of clump {}",
+                                                   store_.gid[b] - store_.body[b], store_.body[b])
+                                     : fmt::format("grain {}", store_.gid[b]),
                grains[k].radius + owned.radius(b) - norm(owned.position(b) - at));
       if (const std::size_t b = added.first_overlapping(at, r); b != BallHash::none)
-        refuse(fmt::format("new grain {} of the same call", added_ids[b]),
+        refuse(fmt::format("{} of the same call", name(added_ids[b])),
                grains[k].radius + added.radius(b) - norm(added.position(b) - at));
     }
     for (const PlaneWall& w : walls_.planes())
       if (const double d = w.distance(x, time_); d < r)
         refuse(fmt::format("the flat wall '{}'", w.name), grains[k].radius - d);
-    added.add(x, grains[k].radius);
-    added_ids.push_back(static_cast<GlobalId>(k));
   }
 }
 
@@ -235,8 +251,8 @@ std::int64_t Simulation::remove_grains(std::span<const GlobalId> ids) {
           if (const std::size_t i = index.find(id); i != OwnedIndex::none && store_.body[i] >= 0)
             throw std::invalid_argument(fmt::format(
                 "particle id {} is a member of clump {}: a clump leaves whole, not member by "
-                "member",
-                id, store_.body[i]));
+                "member (remove_clumps takes clump {})",
+                id, store_.body[i], store_.body[i]));
       },
       [&] {
         const OwnedIndex index(store_);

@@ -4,6 +4,7 @@
 #include "io/scene_writer.hpp"
 #include "run/scene_builder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <string>
+#include <vector>
 
 namespace yuxi {
 namespace {
@@ -141,6 +143,48 @@ TEST(ShapeScene, TheEchoedSceneBuildsTheSameClumps) {
   }
 }
 
+TEST(ShapeScene, ClumpTablesPlaceClumpsAsWrittenTurnedAndScaled) {
+  // The rod is written along x; turned a quarter about y it stands along z, twice as long.
+  const std::string tables = rod + R"([[clump]]
+shape = "rod"
+position = [4.0, 4.0, 4.0]
+orientation = [0.7071067811865476, 0.0, 0.7071067811865476, 0.0]
+scale = 2.0
+velocity = [1.0, 0.0, 0.0]
+angular_velocity = [0.0, 0.0, 2.0]
+material = "grain"
+density = 1.0
+)";
+  const Scene scene = read_scene_text(box_scene(tables, "", 1), "clumps.toml");
+  const auto sim = build_simulation(scene, false, nullptr, Comm::self());
+  ASSERT_EQ(sim->clumps().size(), 1u);
+  const ClumpBody& body = sim->clumps()[0];
+  EXPECT_EQ(body.id, 0);
+  EXPECT_EQ(body.shape, 0);
+  EXPECT_NEAR(body.mass, 8.0 * scene.shapes[0].volume, 1e-12);
+  const ParticleStore& p = sim->particles();
+  ASSERT_EQ(p.n_owned(), 4u); // (and the fill's grain, clear of it)
+  std::vector<double> heights;
+  for (std::size_t i = 0; i < p.n_owned(); ++i) {
+    if (p.body[i] < 0) continue;
+    EXPECT_NEAR(p.x[i].x, 4.0, 1e-12);
+    EXPECT_NEAR(p.x[i].y, 4.0, 1e-12);
+    EXPECT_NEAR(p.radius[i], 0.6, 1e-15);
+    heights.push_back(p.x[i].z);
+  }
+  ASSERT_EQ(heights.size(), 3u);
+  std::sort(heights.begin(), heights.end());
+  EXPECT_NEAR(heights[0], 2.8, 1e-12);
+  EXPECT_NEAR(heights[2], 5.2, 1e-12);
+  EXPECT_NEAR(norm(body.angular_velocity() - Vec3{0.0, 0.0, 2.0}), 0.0, 1e-12);
+  // The echoed scene places the same bits.
+  const Scene again = read_scene_text(resolved_scene_toml(scene), "echo.toml");
+  const auto echoed = build_simulation(again, false, nullptr, Comm::self());
+  EXPECT_EQ(echoed->clumps()[0].x, body.x);
+  EXPECT_EQ(echoed->clumps()[0].q, body.q);
+  EXPECT_EQ(echoed->clumps()[0].p, body.p);
+}
+
 TEST(ShapeScene, AShapeFromAFile) {
   const auto dir = std::filesystem::temp_directory_path() / "yuxi-shape-scene";
   std::filesystem::create_directories(dir);
@@ -168,7 +212,8 @@ TEST(ShapeScene, BadShapesAreRefusedByName) {
           "row 1 has 3 numbers, not 4");
   refused(box_scene("[[shape]]\nname = \"x\"\nfile = \"no-such-file.csv\"\n", ""), "shape");
   refused(box_scene(rod, "shape = \"rod\"\nkind = \"wall\""), "wall particles are spheres");
-  refused(box_scene(rod + "scale = 2.0\n", "shape = \"rod\""), "a shape has no size of its own");
+  refused(box_scene(rod + "scale = 2.0\n", "shape = \"rod\""),
+          "a shape is scaled where it is used");
   refused(box_scene("[[shape]]\nname = \"x\"\nspheres = []\n", ""), "the array is empty");
   // (allowed, with a warning: members that touch nothing of one another)
   const Scene apart = read_scene_text(
