@@ -365,24 +365,30 @@ std::string PySimulation::add_insert(const std::string& table_toml) {
   return spec.name;
 }
 
-void PySimulation::check_added(const char* call, const std::function<void()>& take_back) {
+void PySimulation::check_added(const char* call, const EnergyBooks& books_before,
+                               const std::function<void()>& take_back) {
+  const auto undo = [&] {
+    take_back();
+    sim().put_back_books(books_before);
+  };
   try {
     BuildReport report;
     check_running_time_step(run_.scene, sim(), force_dt_, report);
   } catch (const TimeStepError& e) {
-    take_back();
+    undo();
     throw TimeStepError(fmt::format("{}: none added: with them, {}", call, e.what()));
   } catch (...) {
-    take_back();
+    undo();
     throw;
   }
 }
 
 std::vector<GlobalId> PySimulation::add_grains(std::span<const ParticleSpec> grains) {
   collective("add_grains()");
+  const EnergyBooks books = sim().cumulative_books();
   const std::vector<GlobalId> ids = sim().add_grains(grains);
   edited();
-  check_added("add_grains()", [&] { sim().remove_grains(ids); });
+  check_added("add_grains()", books, [&] { sim().remove_grains(ids); });
   return ids;
 }
 
@@ -396,9 +402,10 @@ std::vector<GlobalId> PySimulation::add_clumps(std::vector<PlacedClump> clumps) 
     throw std::runtime_error("clumps run on the CPU engine only: this run is on the device "
                              "engine, which refuses them (device = \"cpu\" runs them)");
   collective("add_clumps()");
+  const EnergyBooks books = sim().cumulative_books();
   const std::vector<GlobalId> ids = sim().add_clumps(std::move(clumps));
   edited();
-  check_added("add_clumps()", [&] { sim().remove_clumps(ids); });
+  check_added("add_clumps()", books, [&] { sim().remove_clumps(ids); });
   return ids;
 }
 

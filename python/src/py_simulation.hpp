@@ -87,8 +87,10 @@ private:
   PySimulation() = default;
   void open_driver(bool resumed);
   // The time-step check of what was just added (add_grains(), add_clumps()): where it fails,
-  // `take_back()`, then the error again (a time step's named as `call`'s).
-  void check_added(const char* call, const std::function<void()>& take_back);
+  // `take_back()` and the books put back as they were (`books_before`), then the error again (a
+  // time step's named as `call`'s).
+  void check_added(const char* call, const EnergyBooks& books_before,
+                   const std::function<void()>& take_back);
 
   OpenedRun run_;
   std::filesystem::path folder_;

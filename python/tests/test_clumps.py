@@ -219,9 +219,16 @@ def test_clumps_added_wrongly_are_refused_and_none_is_added(box_scene, tmp_path)
         sim.add_clumps("rod", [[2.0, 2.0, 8.0]], frame="body")
     # Clumps so small that dt cannot resolve their contacts: the time-step check of the scene,
     # and the clumps taken back.
+    before = sim.energies()
     with pytest.raises(yuxi.SceneError, match="add_clumps\\(\\): none added: with them, .*run.dt"):
         sim.add_clumps("rod", [[2.0, 2.0, 8.0]], scale=0.01)
     assert list(sim.clumps()["id"]) == [1]
+    after = sim.energies()  # (nothing booked in and out)
+    for book in ("inserted", "removed", "mechanical", "balance"):
+        assert after[book] == before[book], book
+    with pytest.raises(yuxi.SceneError, match="add_grains\\(\\): none added"):
+        sim.add_grains([[2.0, 2.0, 8.0]], 0.001)
+    assert sim.energies()["removed"] == before["removed"]
     sim.step(10)
     sim.close()
 

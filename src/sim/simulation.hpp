@@ -181,6 +181,11 @@ public:
   // True where books `e` (of this run: this simulation's or another engine's running it) gained
   // energy that nothing put in: the check that stops an unstable run.
   bool books_unstable(const EnergyBooks& e) const { return ledger_.unstable_gain(e).has_value(); }
+  // This rank's cumulative books (inserted, removed, dissipated, ...), and the same put back:
+  // an edit taken back whole (grains added, then removed again) leaves the books as it found
+  // them, not with the energy booked in and out.
+  EnergyBooks cumulative_books() const { return ledger_.books(); }
+  void put_back_books(const EnergyBooks& books) { ledger_.books() = books; }
   // Records every contact's force and stored energy at each force evaluation (costs memory
   // and time; for stress and per-grain energy analyses). Aligned with neighbor_list().
   void record_contacts(bool on) { contacts_.record_contacts(on); }
