@@ -92,6 +92,21 @@ py::dict shape_dict(const Scene& scene, const std::string& name) {
                       std::vector<double>{shape.centre.x, shape.centre.y, shape.centre.z}, 3, 1));
 }
 
+std::vector<Quaternion> unit_quaternions(std::span<const double> rows, const char* call) {
+  std::vector<Quaternion> out;
+  for (std::size_t k = 0; 4 * k + 3 < rows.size(); ++k) {
+    const Quaternion o{rows[4 * k], rows[4 * k + 1], rows[4 * k + 2], rows[4 * k + 3]};
+    const double norm_q = std::sqrt(dot(o, o));
+    if (!(std::abs(norm_q - 1.0) <= 1e-6))
+      throw py::value_error(
+          fmt::format("{}: orientations[{}] = ({}, {}, {}, {}) has norm {:.9g}: give a unit "
+                      "quaternion (w, x, y, z), such as (1, 0, 0, 0)",
+                      call, k, o.w, o.x, o.y, o.z, norm_q));
+    out.push_back((1.0 / norm_q) * o);
+  }
+  return out;
+}
+
 std::vector<PlacedClump> placed_clumps(const Scene& scene, const std::string& shape,
                                        const DoubleRows& x, const DoubleRows& q,
                                        const DoubleRows& v, const DoubleRows& w,
@@ -112,15 +127,9 @@ std::vector<PlacedClump> placed_clumps(const Scene& scene, const std::string& sh
   const auto row3 = [](const std::vector<double>& c, std::size_t k) {
     return Vec3{c[3 * k], c[3 * k + 1], c[3 * k + 2]};
   };
+  const std::vector<Quaternion> unit = unit_quaternions(turn, "add_clumps");
   for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) {
-    Quaternion o{turn[4 * k], turn[4 * k + 1], turn[4 * k + 2], turn[4 * k + 3]};
-    const double norm_q = std::sqrt(dot(o, o));
-    if (!(std::abs(norm_q - 1.0) <= 1e-6))
-      throw py::value_error(fmt::format(
-          "add_clumps: orientations[{}] = ({}, {}, {}, {}) has norm {:.9g}: give a unit "
-          "quaternion (w, x, y, z), such as (1, 0, 0, 0)",
-          k, o.w, o.x, o.y, o.z, norm_q));
-    o = (1.0 / norm_q) * o;
+    const Quaternion& o = unit[k];
     if (!(factor[k] > 0) || !std::isfinite(factor[k]))
       throw py::value_error(
           fmt::format("add_clumps: scale[{}] = {} is not positive and finite", k, factor[k]));

@@ -5,6 +5,7 @@
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ pybind11::dict clump_arrays(const Simulation& sim);
 // (w, x, y, z: the principal frame onto the table's) and centre (of mass, in the table's frame).
 // Raises ValueError naming the scene's shapes where none has that name.
 pybind11::dict shape_dict(const Scene& scene, const std::string& name);
+
+// Rows of four numbers (w, x, y, z) as unit quaternions, each made unit where within 1e-6 of
+// it; ValueError naming `call` and the row that is not.
+std::vector<Quaternion> unit_quaternions(std::span<const double> rows, const char* call);
 
 using DoubleRows = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 

@@ -581,6 +581,23 @@ void bind_simulation(py::module_& m) {
              s.edited();
              return n;
            })
+      .def("set_clump_poses",
+           [](PySimulation& s, const py::array& ids, const DoubleArray& x,
+              const std::optional<DoubleArray>& q) {
+             const auto id = ids_of(ids, "set_clump_poses");
+             const auto at = vec3s(x, "positions");
+             std::vector<Quaternion> turn;
+             if (q) {
+               if (q->ndim() != 2 || q->shape(1) != 4)
+                 throw py::value_error("set_clump_poses: orientations: expected an array of "
+                                       "shape (n, 4)");
+               turn = unit_quaternions({q->data(), static_cast<std::size_t>(q->size())},
+                                       "set_clump_poses");
+             }
+             s.collective("set_clump_poses()"); // (a list build: collective)
+             s.sim().set_clump_poses(id, at, turn);
+             s.edited();
+           })
       .def("set_clump_velocities",
            setter(&Simulation::set_clump_velocities, "set_clump_velocities", "velocities"))
       .def("set_clump_angular_velocities",

@@ -193,7 +193,7 @@ class Driver:
             have = np.array([], dtype=np.int64)
         chosen = rng.choice([have, have + 1, have[:1], np.array([10**9]), ids(s, rng)])
         n = len(chosen) if hasattr(chosen, "__len__") else 1
-        op = rng.randrange(5)
+        op = rng.randrange(6)
         if op == 0:
             k = rng.randrange(0, 3)
             where = np.array([[rng.uniform(-2.5, 2.5), rng.uniform(-2.5, 2.5), rng.uniform(0, 7)]
@@ -214,6 +214,10 @@ class Driver:
                 chosen, vectors(n, rng))
         elif op == 3:
             s.shape(rng.choice(["rod", "ball", "cube", anything(rng)]))
+        elif op == 4:
+            s.set_clump_poses(chosen, vectors(n, rng),
+                              orientations=rng.choice([None, [[1, 0, 0, 0]] * n,
+                                                       [[0, 0, 0, 0]] * n, anything(rng)]))
         else:
             s.clumps()
 

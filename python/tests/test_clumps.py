@@ -293,3 +293,38 @@ def test_clump_tables_that_are_wrong_name_the_key(box_scene, tmp_path, change, m
                            **change)]
     with pytest.raises(yuxi.SceneError, match=message):
         yuxi.Simulation(scene, output=tmp_path / "bad", progress=False)
+
+
+def test_a_clump_is_moved_and_turned_by_its_id(box_scene, tmp_path):
+    """set_clump_poses: a new centre and orientation (of the principal frame, as clumps() gives
+    it); the velocity and the angular velocity in the lab frame stay, the members stand anew,
+    and the change of energy is booked as inserted."""
+    sim = yuxi.Simulation(empty_rods_box(box_scene), output=tmp_path / "pose", progress=False)
+    ids = sim.add_clumps("rod", [[4.0, 4.0, 8.0]], velocities=[[0.5, 0.0, 0.0]],
+                         angular_velocities=[[1.0, 2.0, 0.0]])
+    before = sim.energies()
+    h = np.sqrt(0.5)
+    # The principal frame's axis 1 (the rod's length) turned from x onto y: a quarter about z.
+    sim.set_clump_poses(ids, [[2.0, 3.0, 6.0]], orientations=[[h, 0.0, 0.0, h]])
+    c = sim.clumps()
+    assert c["position"][0] == pytest.approx([2.0, 3.0, 6.0])
+    assert c["orientation"][0] == pytest.approx([h, 0.0, 0.0, h])
+    assert c["velocity"][0] == pytest.approx([0.5, 0.0, 0.0])
+    assert c["angular_velocity"][0] == pytest.approx([1.0, 2.0, 0.0], abs=1e-12)
+    _, x, _ = members_of(sim, ids[0])
+    assert x == pytest.approx(np.array([[2.0, 2.7, 6.0], [2.0, 3.0, 6.0], [2.0, 3.3, 6.0]]),
+                              abs=1e-12)
+    after = sim.energies()
+    assert after["gravitational"] - before["gravitational"] == pytest.approx(
+        -c["mass"][0] * 10.0 * 2.0, rel=1e-12)
+    assert after["balance"] == pytest.approx(before["balance"], abs=1e-12)
+    sim.set_clump_poses(ids, [[2.0, 3.0, 7.0]])  # orientation kept
+    assert sim.clumps()["orientation"][0] == pytest.approx([h, 0.0, 0.0, h])
+    with pytest.raises(ValueError, match="orientations\\[0\\] = \\(2, 0, 0, 0\\) has norm 2"):
+        sim.set_clump_poses(ids, [[2.0, 3.0, 6.0]], orientations=[[2.0, 0.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="position \\(2, 3, 60\\) of clump 1 is outside"):
+        sim.set_clump_poses(ids, [[2.0, 3.0, 60.0]])
+    with pytest.raises(ValueError, match="id 2 is member 1 of clump 1"):
+        sim.set_clump_poses(ids + 1, [[2.0, 3.0, 6.0]])
+    sim.step(10)
+    sim.close()

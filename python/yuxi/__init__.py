@@ -482,6 +482,14 @@ class Simulation:
         """Sets the angular velocities (lab frame) of clumps this rank owns, by clump id."""
         self._core.set_clump_angular_velocities(np.asarray(ids), np.asarray(angular_velocities))
 
+    def set_clump_poses(self, ids, positions, orientations=None):
+        """Moves clumps this rank owns (by clump id) to these centres of mass and, where given,
+        orientations (unit quaternions w, x, y, z of the principal frame, as ``clumps()`` gives
+        them); each keeps its velocity and angular velocity. The neighbour list is rebuilt.
+        Collective."""
+        self._core.set_clump_poses(np.asarray(ids), np.asarray(positions),
+                                   None if orientations is None else np.asarray(orientations))
+
     def add_clumps(self, shape, positions, orientations=None, velocities=None,
                    angular_velocities=None, scale=1.0, material=None, frame="shape"):
         """Adds clumps of the scene's ``[[shape]]`` named ``shape`` (the same on every rank);

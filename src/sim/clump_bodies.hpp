@@ -116,9 +116,9 @@ public:
   // A new body (a clump poured in), its id above every body's here; its members go into the
   // store before the next list build.
   void add(ClumpBody body);
-  // Body b (its index here), to change its velocity or angular velocity between steps (the
-  // orientation and the centre stay): the members' velocities follow at place_members(s, 0,
-  // nullptr), which the caller makes next.
+  // Body b (its index here), to change its motion or its pose between steps: the caller places
+  // the members next (place_members(); with `moved2` null, the velocities alone, where the pose
+  // stayed).
   ClumpBody& motion_of(std::size_t b) { return bodies_[b]; }
   // Removes bodies (indices here, ascending); returns the store indices of their members among
   // the owned particles of `s`, to be removed by the caller (ascending). The members are found

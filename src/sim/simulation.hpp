@@ -291,6 +291,12 @@ public:
   // Nothing else changes.
   void set_clump_velocities(std::span<const GlobalId> ids, std::span<const Vec3> v);
   void set_clump_angular_velocities(std::span<const GlobalId> ids, std::span<const Vec3> w);
+  // Centres of mass `x` of clumps this rank owns and, where `q` is not empty, their orientations
+  // (unit quaternions, the principal frame onto the lab's, one a clump); each keeps its velocity
+  // and its angular velocity in the lab frame, and its members are placed anew. Collective, as
+  // set_positions().
+  void set_clump_poses(std::span<const GlobalId> ids, std::span<const Vec3> x,
+                       std::span<const Quaternion> q);
   // New clumps (make_clump(), made with any first id: each takes its ids from the counter of
   // inserted grains, member k id + k), the same list on every rank, each kept by the rank of its
   // anchor member; returns their ids. Collective. Throws std::invalid_argument, adding none,

@@ -7,6 +7,7 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
 namespace yuxi {
@@ -82,6 +83,44 @@ void Simulation::set_clump_angular_velocities(std::span<const GlobalId> ids,
                                               std::span<const Vec3> w) {
   set_clump_motions(ids, w, "angular velocity",
                     [](ClumpBody& b, const Vec3& value) { b.set_angular_velocity(value); });
+}
+
+void Simulation::set_clump_poses(std::span<const GlobalId> ids, std::span<const Vec3> x,
+                                 std::span<const Quaternion> q) {
+  if (ids.size() != x.size() || (!q.empty() && q.size() != ids.size()))
+    throw std::invalid_argument(fmt::format("clump poses: {} ids but {} positions and {} "
+                                            "orientations",
+                                            ids.size(), x.size(), q.size()));
+  edit_particles(
+      [&] {
+        clump_indices(ids, false); // (throws for an id that is not one)
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+          if (!is_finite(x[k]) || !config_.box.contains(config_.box.wrap(x[k])))
+            throw std::invalid_argument(
+                fmt::format("position ({}, {}, {}) of clump {} is outside the domain", x[k].x,
+                            x[k].y, x[k].z, ids[k]));
+          if (!q.empty() && !(std::abs(dot(q[k], q[k]) - 1.0) < 1e-9))
+            throw std::invalid_argument(
+                fmt::format("orientation ({}, {}, {}, {}) of clump {} is not a unit quaternion",
+                            q[k].w, q[k].x, q[k].y, q[k].z, ids[k]));
+        }
+      },
+      [&] {
+        // (found again: the list build may have taken escaped clumps out before this)
+        const std::vector<std::size_t> at = clump_indices(ids, true);
+        for (std::size_t k = 0, b = 0; k < ids.size(); ++k) {
+          if (b == at.size() || clumps_.bodies()[at[b]].id != ids[k]) continue;
+          ClumpBody& body = clumps_.motion_of(at[b++]);
+          body.x = x[k];
+          if (q.empty()) continue;
+          const Vec3 omega = body.angular_velocity();
+          body.q = q[k];
+          body.set_angular_velocity(omega);
+        }
+        clumps_.index_members(store_); // (escapes may have moved the members since)
+        double moved2 = 0.0;
+        clumps_.place_members(store_, 0.0, &moved2);
+      });
 }
 
 std::vector<GlobalId> Simulation::add_clumps(std::vector<PlacedClump> clumps) {
