@@ -8,7 +8,7 @@ import pytest
 from conftest import REPO
 
 EXAMPLES = ["restitution.py", "servo_silo.py", "basin_sweep.py", "silo_stress.py",
-            "basin_fields.py"]
+            "basin_fields.py", "tumbling_clump.py"]
 
 
 @pytest.mark.parametrize("example", EXAMPLES)
