@@ -27,6 +27,15 @@ public:
       reach_ = 0.0;
     inverse_extent_ = 1.0 / grid_.averaged_extent();
     inverse_cell_ = 1.0 / grid_.cell_volume();
+    if (function_ && function_->kind() == CgKind::gaussian) {
+      // (fill_gaussian()'s constants: 1 / (2 w^2), and along each axis the ratio of neighbours'
+      // ratios, exp(-h^2 / w^2))
+      inverse_2w2_ = 0.5 / (function_->width() * function_->width());
+      for (int a = 0; a < 3; ++a)
+        if (!grid_.averaged[static_cast<std::size_t>(a)])
+          step_ratio_[static_cast<std::size_t>(a)] =
+              std::exp(-2.0 * grid_.spacing(a) * grid_.spacing(a) * inverse_2w2_);
+    }
     for (std::size_t a = 0; a < 3; ++a)
       if (grid_.averaged[a]) {
         axes_[a].hold(1);
@@ -157,7 +166,7 @@ private:
       if (++wrapped == n) wrapped = 0;
     }
     if (function_->kind() == CgKind::gaussian)
-      fill_gaussian(out.d2.data(), out.gauss.data(), out.count, h);
+      fill_gaussian(out.d2.data(), out.gauss.data(), out.count, a);
     else
       std::fill_n(out.gauss.begin(), out.count, 1.0);
     return true;
@@ -166,9 +175,9 @@ private:
   // neighbours, exp(-(2 d h + h^2) / (2 w^2)), whose own ratio is exp(-h^2 / w^2): two
   // exponentials for the run, and a fresh one every 8 points to bound the rounding (the
   // Greengard-Lee "fast Gaussian gridding" recurrence, SIAM Review 46:443, 2004).
-  void fill_gaussian(const double* d2, double* gauss, std::size_t count, double h) const {
-    const double inv_2w2 = 0.5 / (function_->width() * function_->width());
-    const double step_ratio = std::exp(-2.0 * h * h * inv_2w2);
+  void fill_gaussian(const double* d2, double* gauss, std::size_t count, int axis) const {
+    const double inv_2w2 = inverse_2w2_;
+    const double step_ratio = step_ratio_[static_cast<std::size_t>(axis)];
     double ratio = 0.0;
     for (std::size_t k = 0; k < count; ++k) {
       if (k % 8 == 0) {
@@ -293,6 +302,8 @@ private:
   mutable std::array<AxisReach, 3> axes_; // scratch of at_point
   std::optional<CgFunction> function_;
   double inverse_extent_ = 1.0, inverse_cell_ = 1.0;
+  double inverse_2w2_ = 0.0;                        // 1 / (2 w^2) of the Gaussian
+  std::array<double, 3> step_ratio_{1.0, 1.0, 1.0}; // exp(-h^2 / w^2) along each axis
 };
 
 } // namespace
