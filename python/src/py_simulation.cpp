@@ -367,9 +367,16 @@ std::string PySimulation::add_insert(const std::string& table_toml) {
 
 void PySimulation::check_added(const char* call, const EnergyBooks& books_before,
                                const std::function<void()>& take_back) {
+  // The books after the addition: its list build booked the grains that had escaped since the
+  // last one as removed, which stands. What the addition and the taking back booked does not:
+  // `inserted` as before the call, `removed` as after the addition.
+  const EnergyBooks added = sim().cumulative_books();
   const auto undo = [&] {
     take_back();
-    sim().put_back_books(books_before);
+    EnergyBooks books = sim().cumulative_books();
+    books.inserted = books_before.inserted;
+    books.removed = added.removed;
+    sim().put_back_books(books);
   };
   try {
     BuildReport report;

@@ -87,8 +87,9 @@ private:
   PySimulation() = default;
   void open_driver(bool resumed);
   // The time-step check of what was just added (add_grains(), add_clumps()): where it fails,
-  // `take_back()` and the books put back as they were (`books_before`), then the error again (a
-  // time step's named as `call`'s).
+  // `take_back()` and the books put back as they were (`books_before`: what the addition and the
+  // taking back booked undone, escapes its list build found kept), then the error again (a time
+  // step's named as `call`'s).
   void check_added(const char* call, const EnergyBooks& books_before,
                    const std::function<void()>& take_back);
 

@@ -286,6 +286,8 @@ def test_clump_tables_place_clumps_in_the_scene(box_scene, tmp_path):
     ({"position": [4.0, 4.0, 60.0]}, "clump\\[1\\].position: \\(4, 4, 60\\) is outside"),
     ({"scale": 0.0}, "clump\\[1\\].scale"),
     ({"spin": 1.0}, "spin"),
+    ({"position": [4.0, 4.0, 11.9]}, "clump\\[1\\].position: member 2 of the clump would stand at "
+                                     "\\(4, 4, 12.2\\), outside the domain"),
 ])
 def test_clump_tables_that_are_wrong_name_the_key(box_scene, tmp_path, change, message):
     scene = empty_rods_box(box_scene)
@@ -326,6 +328,11 @@ def test_a_clump_is_moved_and_turned_by_its_id(box_scene, tmp_path):
         sim.set_clump_poses(ids, [[2.0, 3.0, 60.0]])
     with pytest.raises(ValueError, match="id 2 is member 1 of clump 1"):
         sim.set_clump_poses(ids + 1, [[2.0, 3.0, 6.0]])
+    with pytest.raises(ValueError, match="member 2 of clump 1 would stand at \\(2, 8.2, 6\\), "
+                                         "outside the domain"):
+        sim.set_clump_poses(ids, [[2.0, 7.9, 6.0]])
+    with pytest.raises(ValueError, match="1 ids but 2 positions"):
+        sim.set_clump_poses(ids, [[2.0, 3.0, 6.0], [2.0, 3.0, 6.0]])
     sim.step(10)
     sim.close()
 
@@ -372,3 +379,47 @@ def test_clumps_added_from_python_resume_bit_for_bit(box_scene, tmp_path):
     later = again.add_clumps("rod", [[4.0, 4.0, 11.75]])  # (just above the first one)
     assert later[0] >= ids[0] + 3
     again.close()
+
+
+def test_a_refused_addition_keeps_the_books_of_a_grain_that_escaped_meanwhile(box_scene,
+                                                                              tmp_path):
+    """A grain that left through an open top since the last list build is booked as removed by
+    the addition's list build; the addition refused and taken back, that booking stands, and
+    the books keep their balance."""
+    scene = empty_rods_box(box_scene)
+    scene["domain"]["boundary"] = ["wall", "wall", "open"]
+    scene["domain"]["on_escape"] = "remove"
+    scene["plane"] = [{"name": "floor", "point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0],
+                       "material": "wall"}]
+    sim = yuxi.Simulation(scene, output=tmp_path / "escape", progress=False)
+    sim.add_grains([[4.0, 4.0, 11.9999]], 0.3, velocities=[[0.0, 0.0, 2.0]])
+    sim.step(1)  # (out of the box, less than half the skin from where it was listed)
+    before = sim.energies()
+    assert before["escaped"] == 0
+    with pytest.raises(yuxi.SceneError, match="add_clumps\\(\\): none added"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], scale=0.01)
+    after = sim.energies()
+    assert after["escaped"] == 1 and after["removed"] > before["removed"]
+    assert after["inserted"] == before["inserted"]
+    assert after["balance"] == pytest.approx(before["balance"], rel=1e-12, abs=1e-12)
+
+
+def test_clumps_too_long_for_the_sub_domains_are_refused_before_anything_changes(box_scene,
+                                                                                  tmp_path):
+    """A periodic axis 2.5 long: a rod (written along y) whose members stand 2 from its anchor
+    member, and which may turn to lie along x, needs ghosts reaching farther than the box holds.
+    Refused, nothing added, and the run goes on."""
+    scene = empty_rods_box(box_scene)
+    scene["domain"]["hi"][0] = 2.5
+    scene["domain"]["boundary"] = ["periodic", "wall", "wall"]
+    scene["particle"][0]["position"] = [1.0, 7.5, 0.3]
+    scene["shape"].append({"name": "long", "spheres": [[0.0, 0.5 * k, 0.0, 0.25]
+                                                       for k in range(9)]})
+    sim = yuxi.Simulation(scene, output=tmp_path / "long", progress=False)
+    with pytest.raises(ValueError, match="a sub-domain along axis 0 \\(2.5 wide\\) is "
+                                         "narrower than the cells' edge plus that"):
+        sim.add_clumps("long", [[1.25, 4.0, 6.0]])
+    assert len(sim.clumps()["id"]) == 0
+    sim.add_clumps("rod", [[1.25, 4.0, 6.0]])  # (a short one fits)
+    sim.step(10)
+    sim.close()

@@ -568,8 +568,9 @@ class Simulation:
         and ``radii``, ``volume``, ``inertia_per_density`` (the principal moments over the
         density, ascending), ``bounding_radius``, and where the table gave it: ``frame``, the
         quaternion that turns the principal frame onto the table's (``add_clumps`` with
-        ``orientations=[frame]`` places the shape as written), and ``centre``, the centre of mass
-        in the table's frame."""
+        ``orientations=[frame], frame="principal"`` places the shape as written, as the default
+        frame does with no orientation), and ``centre``, the centre of mass in the table's
+        frame."""
         return self._core.shape(name)
 
     def __repr__(self):

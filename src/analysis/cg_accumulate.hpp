@@ -94,10 +94,11 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
   for (std::size_t i = 0; i < n_grains; ++i) {
     const double m = grains.mass[i];
     const Vec3 v = grains.v[i];
-    const Vec3 p_i = m * v;
-    const double q[own] = {m,           1.0,         grains.volume[i], p_i.x,       p_i.y,
-                           p_i.z,       p_i.x * v.x, p_i.x * v.y,      p_i.x * v.z, p_i.y * v.x,
-                           p_i.y * v.y, p_i.y * v.z, p_i.z * v.x,      p_i.z * v.y, p_i.z * v.z};
+    // (m (v_a v_b): the flux's tensor exactly symmetric)
+    const double xy = m * (v.x * v.y), xz = m * (v.x * v.z), yz = m * (v.y * v.z);
+    const double q[own] = {
+        m,  1.0, grains.volume[i], m * v.x, m * v.y, m * v.z, m * (v.x * v.x), xy,
+        xz, xy,  m * (v.y * v.y),  yz,      xz,      yz,      m * (v.z * v.z)};
     const double kinetic = 0.5 * m * norm2(v);
     const bool touched = !grain_contacts.empty() && grain_contacts[i] > 0.0;
     weights.at_point(grains.x[i], [&](std::size_t p, double w) {

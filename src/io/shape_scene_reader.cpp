@@ -117,6 +117,17 @@ void read_clump(Scene& scene, TomlReader& t) {
   c.velocity = t.vec3("velocity", {});
   c.angular_velocity = t.vec3("angular_velocity", {});
   c.scale = t.positive("scale", 1.0);
+  // Every member inside the domain, where the table puts it.
+  const ClumpShape& shape = scene.shapes[static_cast<std::size_t>(c.shape)];
+  const Quaternion turn = c.orientation * shape.frame;
+  const Box& box = scene.sim.box;
+  for (std::size_t k = 0; k < shape.members.size(); ++k) {
+    const Vec3 member = c.position + to_lab(turn, c.scale * shape.members[k].centre);
+    if (!box.contains(box.wrap(member)))
+      t.fail("position", fmt::format("member {} of the clump would stand at ({:.6g}, {:.6g}, "
+                                     "{:.6g}), outside the domain",
+                                     k, member.x, member.y, member.z));
+  }
   c.material = material_of(scene, t, "material");
   const double material_density = scene.material_properties[c.material].density;
   if (t.has("density"))

@@ -429,6 +429,9 @@ private:
   // std::invalid_argument naming an id that is a particle here but no clump's, and, unless
   // `others_passed`, an id that is no clump here.
   std::vector<std::size_t> clump_indices(std::span<const GlobalId> ids, bool others_passed) const;
+  // add_clumps()'s edit: the checks on every rank, then the clumps in the list build.
+  void add_clumps_in_edit(std::vector<PlacedClump>& clumps, std::span<const ParticleSpec> members,
+                          std::span<const std::size_t> clump_of);
   // Writes `values` into the clumps of `ids` by `write` (a velocity, an angular velocity),
   // booking the change of their energy, and places their members' velocities.
   void set_clump_motions(std::span<const GlobalId> ids, std::span<const Vec3> values,

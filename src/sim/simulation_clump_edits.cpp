@@ -87,13 +87,14 @@ void Simulation::set_clump_angular_velocities(std::span<const GlobalId> ids,
 
 void Simulation::set_clump_poses(std::span<const GlobalId> ids, std::span<const Vec3> x,
                                  std::span<const Quaternion> q) {
-  if (ids.size() != x.size() || (!q.empty() && q.size() != ids.size()))
-    throw std::invalid_argument(fmt::format("clump poses: {} ids but {} positions and {} "
-                                            "orientations",
-                                            ids.size(), x.size(), q.size()));
   edit_particles(
       [&] {
-        clump_indices(ids, false); // (throws for an id that is not one)
+        // (every check in here, so that every rank throws together)
+        if (ids.size() != x.size() || (!q.empty() && q.size() != ids.size()))
+          throw std::invalid_argument(fmt::format("clump poses: {} ids but {} positions and {} "
+                                                  "orientations",
+                                                  ids.size(), x.size(), q.size()));
+        const std::vector<std::size_t> at = clump_indices(ids, false); // (throws for a non-clump)
         for (std::size_t k = 0; k < ids.size(); ++k) {
           if (!is_finite(x[k]) || !config_.box.contains(config_.box.wrap(x[k])))
             throw std::invalid_argument(
@@ -103,6 +104,17 @@ void Simulation::set_clump_poses(std::span<const GlobalId> ids, std::span<const 
             throw std::invalid_argument(
                 fmt::format("orientation ({}, {}, {}, {}) of clump {} is not a unit quaternion",
                             q[k].w, q[k].x, q[k].y, q[k].z, ids[k]));
+          // Every member inside the domain, where the pose puts it.
+          const ClumpBody& body = clumps_.bodies()[at[k]];
+          const Quaternion turn = q.empty() ? body.q : q[k];
+          for (std::size_t m = 0; m < body.members.size(); ++m) {
+            const Vec3 member = x[k] + to_lab(turn, body.members[m]);
+            if (!config_.box.contains(config_.box.wrap(member)))
+              throw std::invalid_argument(fmt::format(
+                  "member {} of clump {} would stand at ({:.6g}, {:.6g}, {:.6g}), outside the "
+                  "domain",
+                  m, ids[k], member.x, member.y, member.z));
+          }
         }
       },
       [&] {
@@ -158,9 +170,35 @@ std::vector<GlobalId> Simulation::add_clumps(std::vector<PlacedClump> clumps) {
     next += static_cast<GlobalId>(clumps[c].members.size());
   }
   // A clump's members stand up to `reach` outside the sub-domain of its owner: the ghosts reach
-  // as far from this list build on (the same list on every rank: the same reach).
-  if (ghosts_reach_for_clumps() && reach > exchange_.clump_reach())
+  // as far from this list build on (the same list on every rank: the same reach), which every
+  // sub-domain crossed by ghosts must be wide enough for; where the edit fails, the reach is
+  // put back.
+  const double old_reach = exchange_.clump_reach();
+  const bool wider = ghosts_reach_for_clumps() && reach > old_reach;
+  if (wider) {
+    const Decomposition& d = exchange_.decomposition();
+    for (int a = 0; a < 3; ++a)
+      if ((d.dims()[a] > 1 || config_.box.periodic(a)) &&
+          d.min_width(a) < exchange_.cell_edge() + reach)
+        throw std::invalid_argument(fmt::format(
+            "the new clumps' members stand up to {:.4g} from their anchor members, and a "
+            "sub-domain along axis {} ({:.4g} wide) is narrower than the cells' edge plus that "
+            "({:.4g}): use fewer ranks along that axis",
+            reach, a, d.min_width(a), exchange_.cell_edge() + reach));
     exchange_.set_clump_reach(reach);
+  }
+  try {
+    add_clumps_in_edit(clumps, members, clump_of);
+  } catch (...) {
+    if (wider) exchange_.set_clump_reach(old_reach);
+    throw;
+  }
+  return ids;
+}
+
+void Simulation::add_clumps_in_edit(std::vector<PlacedClump>& clumps,
+                                    std::span<const ParticleSpec> members,
+                                    std::span<const std::size_t> clump_of) {
   // (edit_particles books their energy with the change of the contacts')
   edit_particles(
       [&] {
@@ -187,7 +225,6 @@ std::vector<GlobalId> Simulation::add_clumps(std::vector<PlacedClump> clumps) {
           clumps_.add(std::move(body));
         }
       });
-  return ids;
 }
 
 std::int64_t Simulation::remove_clumps(std::span<const GlobalId> ids) {
@@ -206,6 +243,8 @@ std::int64_t Simulation::remove_clumps(std::span<const GlobalId> ids) {
                    const std::vector<std::size_t> members = clumps_.remove(store_, gone);
                    store_.remove_owned(members);
                  });
+  // (the ghosts' reach of the clumps left, as a run resumed from here computes it)
+  update_clump_reach();
   return comm().sum(removed);
 }
 
