@@ -390,12 +390,23 @@ void PySimulation::check_added(const char* call, const EnergyBooks& books_before
   }
 }
 
+bool PySimulation::time_step_holds() {
+  try {
+    BuildReport report;
+    check_running_time_step(run_.scene, sim(), force_dt_, report);
+    return true;
+  } catch (const TimeStepError&) {
+    return false;
+  }
+}
+
 std::vector<GlobalId> PySimulation::add_grains(std::span<const ParticleSpec> grains) {
   collective("add_grains()");
+  const bool held = time_step_holds(); // (judged only where the run's own state passes)
   const EnergyBooks books = sim().cumulative_books();
   const std::vector<GlobalId> ids = sim().add_grains(grains);
   edited();
-  check_added("add_grains()", books, [&] { sim().remove_grains(ids); });
+  if (held) check_added("add_grains()", books, [&] { sim().remove_grains(ids); });
   return ids;
 }
 
@@ -409,10 +420,11 @@ std::vector<GlobalId> PySimulation::add_clumps(std::vector<PlacedClump> clumps) 
     throw std::runtime_error("clumps run on the CPU engine only: this run is on the device "
                              "engine, which refuses them (device = \"cpu\" runs them)");
   collective("add_clumps()");
+  const bool held = time_step_holds();
   const EnergyBooks books = sim().cumulative_books();
   const std::vector<GlobalId> ids = sim().add_clumps(std::move(clumps));
   edited();
-  check_added("add_clumps()", books, [&] { sim().remove_clumps(ids); });
+  if (held) check_added("add_clumps()", books, [&] { sim().remove_clumps(ids); });
   return ids;
 }
 

@@ -86,6 +86,9 @@ public:
 private:
   PySimulation() = default;
   void open_driver(bool resumed);
+  // Whether the run as it stands passes the time-step check (collective): an addition is
+  // refused only where it makes a passing check fail, not for the speeds of grains already there.
+  bool time_step_holds();
   // The time-step check of what was just added (add_grains(), add_clumps()): where it fails,
   // `take_back()` and the books put back as they were (`books_before`: what the addition and the
   // taking back booked undone, escapes its list build found kept), then the error again (a time

@@ -423,3 +423,29 @@ def test_clumps_too_long_for_the_sub_domains_are_refused_before_anything_changes
     sim.add_clumps("rod", [[1.25, 4.0, 6.0]])  # (a short one fits)
     sim.step(10)
     sim.close()
+
+
+def test_an_addition_is_not_judged_by_the_speed_of_grains_already_there(box_scene, tmp_path):
+    """Hertz-Mindlin's contact time falls with the impact speed: a grain set moving far faster
+    than the scene's fall makes the run's own state fail the time-step check. An addition that
+    changes nothing of that is not refused for it; one that is too small is, where the run
+    passes the check."""
+    scene = empty_rods_box(box_scene)
+    scene["material"] = {"grain": {"density": 1.0, "youngs_modulus": 1.0e5,
+                                   "poisson_ratio": 0.3},
+                         "wall": {"youngs_modulus": 1.0e5, "poisson_ratio": 0.3}}
+    scene["contact"] = {"model": "hertz_mindlin", "pair": [
+        {"materials": ["grain", "grain"], "restitution": 0.8, "friction": 0.5},
+        {"materials": ["grain", "wall"], "restitution": 0.8, "friction": 0.5}]}
+    sim = yuxi.Simulation(scene, output=tmp_path / "hertz", progress=False)
+    with pytest.raises(yuxi.SceneError, match="add_clumps\\(\\): none added"):
+        sim.add_clumps("rod", [[2.0, 2.0, 8.0]], scale=0.002)
+    sim.set_velocities([0], [[1.0e8, 0.0, 0.0]])
+    # (the run's own state fails the check now: an insert, checked whatever the state, says so)
+    with pytest.raises(yuxi.SceneError, match="meeting at 1e\\+08"):
+        sim.add_insert({"name": "more", "material": "grain", "radius": 0.3, "rate": 10.0,
+                        "total": 1, "region": {"shape": "box", "lo": [1.0, 1.0, 9.0],
+                                               "hi": [3.0, 3.0, 11.0]}})
+    ids = sim.add_clumps("rod", [[2.0, 2.0, 8.0]])
+    assert list(sim.clumps()["id"]) == list(ids)
+    sim.close()
