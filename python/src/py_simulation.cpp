@@ -150,6 +150,24 @@ auto setter(void (Simulation::*write)(std::span<const GlobalId>, std::span<const
   };
 }
 
+// A binding of one of Simulation's collective removals by id (grains, clumps): returns how many
+// went on all ranks.
+auto remover(std::int64_t (Simulation::*remove)(std::span<const GlobalId>), const char* name,
+             const char* call) {
+  return [remove, name, call](PySimulation& s, const py::array& ids) {
+    const auto id = ids_of(ids, name);
+    s.collective(call);
+    const std::int64_t n = (s.sim().*remove)(id);
+    s.edited();
+    return n;
+  };
+}
+
+// New particles' ids as a numpy array.
+py::array_t<std::int64_t> id_array(const std::vector<GlobalId>& ids) {
+  return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+}
+
 py::dict books_dict(const EnergyBooks& e) {
   py::dict d;
   d["step"] = e.step;
@@ -582,7 +600,7 @@ void bind_simulation(py::module_& m) {
                grains[k].material = *kind;
              }
              const std::vector<GlobalId> ids = s.add_grains(grains);
-             return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+             return id_array(ids);
            })
       .def("add_clumps",
            [](PySimulation& s, const std::string& shape, const DoubleArray& x, const DoubleArray& q,
@@ -590,16 +608,9 @@ void bind_simulation(py::module_& m) {
               const std::string& material, bool principal) {
              const std::vector<GlobalId> ids = s.add_clumps(
                  placed_clumps(s.scene(), shape, x, q, v, w, scale, material, principal));
-             return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+             return id_array(ids);
            })
-      .def("remove_clumps",
-           [](PySimulation& s, const py::array& ids) {
-             const auto id = ids_of(ids, "remove_clumps");
-             s.collective("remove_clumps()");
-             const std::int64_t n = s.sim().remove_clumps(id);
-             s.edited();
-             return n;
-           })
+      .def("remove_clumps", remover(&Simulation::remove_clumps, "remove_clumps", "remove_clumps()"))
       .def("set_clump_poses",
            [](PySimulation& s, const py::array& ids, const DoubleArray& x,
               const std::optional<DoubleArray>& q) {
@@ -622,14 +633,7 @@ void bind_simulation(py::module_& m) {
       .def("set_clump_angular_velocities",
            setter(&Simulation::set_clump_angular_velocities, "set_clump_angular_velocities",
                   "angular velocities"))
-      .def("remove_grains",
-           [](PySimulation& s, const py::array& ids) {
-             const auto id = ids_of(ids, "remove_grains");
-             s.collective("remove_grains()");
-             const std::int64_t n = s.sim().remove_grains(id);
-             s.edited();
-             return n;
-           })
+      .def("remove_grains", remover(&Simulation::remove_grains, "remove_grains", "remove_grains()"))
       .def("set_wall_speed",
            [](PySimulation& s, const std::string& name, double speed) {
              const std::size_t w = wall_index(s.sim(), name);

@@ -36,6 +36,11 @@ YUXI_HD constexpr Quaternion conjugate(const Quaternion& a) {
 YUXI_HD constexpr double dot(const Quaternion& a, const Quaternion& b) {
   return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
 }
+// Whether q has unit length to 1e-9 (false for NaN): an orientation.
+YUXI_HD constexpr bool is_unit(const Quaternion& q) {
+  const double d = dot(q, q) - 1.0;
+  return d < 1e-9 && d > -1e-9;
+}
 YUXI_HD inline Quaternion normalized(const Quaternion& a) {
   return (1.0 / std::sqrt(dot(a, a))) * a;
 }

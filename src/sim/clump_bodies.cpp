@@ -14,10 +14,6 @@ namespace yuxi {
 
 namespace {
 
-bool is_unit(const Quaternion& q) {
-  return std::abs(dot(q, q) - 1.0) < 1e-9; // (false for NaN)
-}
-
 // Velocity Verlet's half kick of the centre and NO_SQUISH's of the momentum, over half_dt.
 void half_kick(ClumpBody& b, double half_dt) {
   const double kick = half_dt / b.mass;

@@ -100,7 +100,7 @@ void Simulation::set_clump_poses(std::span<const GlobalId> ids, std::span<const 
             throw std::invalid_argument(
                 fmt::format("position ({}, {}, {}) of clump {} is outside the domain", x[k].x,
                             x[k].y, x[k].z, ids[k]));
-          if (!q.empty() && !(std::abs(dot(q[k], q[k]) - 1.0) < 1e-9))
+          if (!q.empty() && !is_unit(q[k]))
             throw std::invalid_argument(
                 fmt::format("orientation ({}, {}, {}, {}) of clump {} is not a unit quaternion",
                             q[k].w, q[k].x, q[k].y, q[k].z, ids[k]));
