@@ -44,16 +44,15 @@ py::dict contact_arrays(const Simulation& sim) {
   const ContactStates& states = sim.contact_states();
   ContactColumns c;
   // Pairs: the normal points from the partner b to a; the point is the middle of the overlap.
-  for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!rec.holds_pair(k)) continue;
-    const std::uint32_t i = list.rows[k], j = list.partners[k];
+  for (const PairContactRecord& r : rec.pairs) {
+    const std::uint32_t k = r.pair, i = list.rows[k], j = list.partners[k];
     const Vec3 d = p.x[i] - p.x[j];
     const double dist = norm(d);
     const Vec3 n = d * (1.0 / dist);
     const double overlap = p.radius[i] + p.radius[j] - dist;
-    c.add(p.gid[i], p.gid[j], "", -1, rec.pair_force[k], n,
-          p.x[i] - n * (p.radius[i] - 0.5 * overlap), overlap, rec.pair_elastic[k]);
-    states.pair_state(static_cast<std::uint32_t>(k), c.state);
+    c.add(p.gid[i], p.gid[j], "", -1, r.force, n, p.x[i] - n * (p.radius[i] - 0.5 * overlap),
+          overlap, r.elastic);
+    states.pair_state(k, c.state);
   }
   // Flat walls: the normal points from the wall to the grain; the point is on the wall.
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {

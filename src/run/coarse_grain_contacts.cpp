@@ -19,7 +19,7 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
   const ParticleStore& p = sim.particles();
   const NeighborList& list = sim.neighbor_list();
   out.clear();
-  out.reserve(rec.wall.size() + list.planes.size() / 2 + list.partners.size() / 4);
+  out.reserve(rec.wall.size() + list.planes.size() / 2 + rec.pairs.size());
   const auto place = [&](std::size_t i) -> std::int64_t {
     return i < grain_of.size() ? grain_of[i] : -1;
   };
@@ -29,25 +29,37 @@ void gather_contacts(const Simulation& sim, std::span<const std::int64_t> grain_
   const double per_second = 1.0 / sim.config().dt;
   const auto add = [&](std::size_t i, double r, const Vec3& f, const Vec3& b, const Vec3& at,
                        double r_b, std::size_t j, double e, double q, double e_r, double u) {
+    // (filled field by field in place: a whole struct built on the stack and copied in costs
+    // a stalled load for each of its wider parts)
     const bool wall = r_b < 0;
-    out.push_back({p.x[i], ball_volume(r), wall, wall ? 0.0 : ball_volume(r_b), f, b, at, e,
-                   place(i), wall ? -1 : place(j), q * per_second, e_r, u * per_second});
+    analysis::CgContact& c = out.emplace_back();
+    c.centre = p.x[i];
+    c.volume = ball_volume(r);
+    c.wall = wall;
+    c.volume_b = wall ? 0.0 : ball_volume(r_b);
+    c.force = f;
+    c.branch = b;
+    c.point = at;
+    c.elastic = e;
+    c.grain = place(i);
+    c.grain_b = wall ? -1 : place(j);
+    c.dissipation = q * per_second;
+    c.relaxation = e_r;
+    c.wall_power = u * per_second;
   };
-  for (std::size_t k = 0; k < list.partners.size() && k < rec.pair_force.size(); ++k) {
-    if (!rec.holds_pair(k)) continue;
-    std::uint32_t i = list.rows[k], j = list.partners[k];
-    Vec3 f = rec.pair_force[k];
+  for (const PairContactRecord& r : rec.pairs) {
+    std::uint32_t i = list.rows[r.pair], j = list.partners[r.pair];
+    Vec3 f = r.force;
     if (!p.is_grain(i)) std::swap(i, j), f = -f;
     if (!p.is_grain(i)) continue; // two wall particles
     const Vec3 d = p.x[i] - p.x[j];
     const double dist = norm(d), overlap = p.radius[i] + p.radius[j] - dist;
     const Vec3 at = p.x[i] - d * ((p.radius[i] - 0.5 * overlap) / dist);
     if (p.is_grain(j))
-      add(i, p.radius[i], f, d, at, p.radius[j], j, rec.pair_elastic[k], rec.pair_dissipated[k],
-          rec.pair_relaxation[k], 0.0);
+      add(i, p.radius[i], f, d, at, p.radius[j], j, r.elastic, r.dissipated, r.relaxation, 0.0);
     else
-      add(i, p.radius[i], f, p.x[i] - at, at, -1.0, j, rec.pair_elastic[k], rec.pair_dissipated[k],
-          rec.pair_relaxation[k], rec.pair_wall_work[k]);
+      add(i, p.radius[i], f, p.x[i] - at, at, -1.0, j, r.elastic, r.dissipated, r.relaxation,
+          r.wall_work);
   }
   for (std::size_t k = 0; k < list.planes.size() && k < rec.plane_force.size(); ++k) {
     if (!rec.holds_plane(k)) continue;

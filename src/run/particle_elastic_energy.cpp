@@ -11,11 +11,9 @@ std::vector<double> particle_elastic_energy(const Simulation& sim) {
   const NeighborList& list = sim.neighbor_list();
   if (!record.enabled) throw std::logic_error("particle_elastic_energy needs contact recording");
   std::vector<analysis::ContactEnergy> contacts;
-  contacts.reserve(list.n_pairs() + list.planes.size());
-  for (std::uint32_t i = 0; i + 1 < list.offsets.size(); ++i)
-    for (std::uint32_t p = list.offsets[i]; p < list.offsets[i + 1]; ++p)
-      if (record.holds_pair(p) && record.pair_elastic[p] != 0.0)
-        contacts.push_back({i, list.partners[p], record.pair_elastic[p]});
+  contacts.reserve(record.pairs.size() + list.planes.size());
+  for (const PairContactRecord& r : record.pairs)
+    if (r.elastic != 0.0) contacts.push_back({list.rows[r.pair], list.partners[r.pair], r.elastic});
   for (std::size_t k = 0; k < list.planes.size(); ++k)
     if (record.holds_plane(k) && record.plane_elastic[k] != 0.0)
       contacts.push_back(

@@ -75,7 +75,7 @@ public:
     walls_still_ = walls_still;
     near_ = near && near->hold() ? near : nullptr;
     set_ = set;
-    if (record.enabled && set != PairSet::owned) record.start(list.n_pairs(), list.planes.size());
+    if (record.enabled && set != PairSet::owned) record.start(list.planes.size());
     bool batched = false;
     if constexpr (BatchedModel<Model>) {
       if (batch_) {

@@ -81,46 +81,50 @@ struct WallContactRecord {
   double wall_work = 0;        // work of the wall's motion on the grain this step [energy]
 };
 
+// A touching pair's results, as the record keeps them.
+struct PairContactRecord {
+  std::uint32_t pair = 0;                // index in NeighborList::partners (and rows)
+  Vec3 force;                            // on the row particle i from its partner j [force]
+  double elastic = 0;                    // energy stored in the contact [energy]
+  double dissipated = 0, relaxation = 0; // as WallContactRecord's
+  double wall_work = 0; // of a moving wall particle on its grain (0 between grains) [energy]
+};
+
 // Per-contact results of one force evaluation, recorded only on request (stress and per-grain
-// energy analyses): aligned with NeighborList::partners and NeighborList::planes, and the
-// contacts with shaped walls as a list. A contact that does not touch has zero force and
-// energy. Only the slots the step writes are stamped with its generation (holds_pair,
-// holds_plane): the others keep what an earlier record left, so that a record costs the
-// contacts it holds, not a clearing of every listed pair.
+// energy analyses): the touching pairs as a list, in the order the evaluation met them (list
+// order, or the ghost pairs' then the owned pairs' where the evaluation is split in two); the
+// plane candidates aligned with NeighborList::planes; the contacts with shaped walls as a list.
+// A plane candidate apart has zero force and energy. Only the plane slots the step writes are
+// stamped with its generation (holds_plane): the others keep what an earlier record left, so
+// that a record costs the contacts it holds, not a clearing of every candidate. The pairs are
+// a list for the same reason, and so that a reader visits the touching pairs alone: a record
+// aligned with the list wrote and scanned about 60 bytes a listed pair, a dozen listed pairs
+// a touching one in a dense flow.
 // (The energy that a contact's ending releases is booked as dissipated by the engine, not
 // recorded at a contact: the record holds the contacts that touch after the step.)
 struct ContactRecord {
   bool enabled = false;
-  std::vector<Vec3> pair_force;     // force on the row particle i from its partner j
-  std::vector<double> pair_elastic; // energy stored in the contact
-  std::vector<double> pair_dissipated, pair_relaxation; // as WallContactRecord's
-  std::vector<double> pair_wall_work; // of a moving wall particle on its grain (0 between grains)
-  std::vector<Vec3> plane_force;      // force on the grain from the flat wall
+  std::vector<PairContactRecord> pairs; // the touching pairs (a nonzero force or energy)
+  std::vector<Vec3> plane_force;        // force on the grain from the flat wall
   std::vector<double> plane_elastic, plane_dissipated, plane_relaxation, plane_wall_work;
   std::vector<WallContactRecord> wall;
   std::uint32_t generation = 0; // of the record now held
-  std::vector<std::uint32_t> pair_stamp, plane_stamp;
+  std::vector<std::uint32_t> plane_stamp;
 
-  // A new record for `pairs` listed pairs and `planes` plane candidates.
-  void start(std::size_t pairs, std::size_t planes) {
+  // A new record for `planes` plane candidates.
+  void start(std::size_t planes) {
     if (++generation == 0) { // wrapped: no stale stamp may equal a new generation
-      std::fill(pair_stamp.begin(), pair_stamp.end(), 0u);
       std::fill(plane_stamp.begin(), plane_stamp.end(), 0u);
       generation = 1;
     }
-    pair_force.resize(pairs), plane_force.resize(planes);
-    for (auto* v : {&pair_elastic, &pair_dissipated, &pair_relaxation, &pair_wall_work})
-      v->resize(pairs);
+    pairs.clear();
+    plane_force.resize(planes);
     for (auto* v : {&plane_elastic, &plane_dissipated, &plane_relaxation, &plane_wall_work})
       v->resize(planes);
-    pair_stamp.resize(pairs), plane_stamp.resize(planes);
+    plane_stamp.resize(planes);
     wall.clear();
   }
-  // Whether pair slot p (plane candidate k) holds a touching contact of this record.
-  bool holds_pair(std::size_t p) const {
-    return p < pair_stamp.size() && pair_stamp[p] == generation &&
-           touched(pair_force[p], pair_elastic[p]);
-  }
+  // Whether plane candidate k holds a touching contact of this record.
   bool holds_plane(std::size_t k) const {
     return k < plane_stamp.size() && plane_stamp[k] == generation &&
            touched(plane_force[k], plane_elastic[k]);
@@ -128,13 +132,9 @@ struct ContactRecord {
 
   void keep_pair(std::size_t p, const Vec3& force, double elastic, double dissipated,
                  double relaxation, double wall_work) {
-    if (!enabled) return;
-    pair_force[p] = force;
-    pair_elastic[p] = elastic;
-    pair_dissipated[p] = dissipated;
-    pair_relaxation[p] = relaxation;
-    pair_wall_work[p] = wall_work;
-    pair_stamp[p] = generation;
+    if (enabled && touched(force, elastic))
+      pairs.push_back(
+          {static_cast<std::uint32_t>(p), force, elastic, dissipated, relaxation, wall_work});
   }
   void keep_plane(std::size_t k, const Vec3& force, double elastic, double dissipated,
                   double relaxation, double wall_work) {
@@ -149,8 +149,8 @@ struct ContactRecord {
   void keep_wall(const WallContactRecord& r) {
     if (enabled) wall.push_back(r);
   }
-  // Whether a pair's or a plane's slot holds a touching contact (a listed pair or candidate
-  // apart keeps a zero force and no energy).
+  // Whether a pair's or a plane's results are a touching contact's (a listed pair or
+  // candidate apart has a zero force and no energy).
   static bool touched(const Vec3& force, double elastic) {
     return !(force.x == 0 && force.y == 0 && force.z == 0 && elastic == 0);
   }
