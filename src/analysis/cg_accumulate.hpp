@@ -22,11 +22,11 @@ struct Sum {
     volume = 2,          // sum V phi
     momentum = 3,        // sum m v phi (3)
     momentum_flux = 6,   // sum m v v phi (9)
-    contact_stress = 15, // sum f b psi (9)
-    wall_force = 24,     // sum over wall contacts f phi (3)
-    contacts = 27,       // sum over contacts (phi_a + phi_b): sum z phi
-    fabric = 28,         // sum over contacts (V_a phi_a + V_b phi_b) n n (9)
-    kinetic = 37,        // sum m v^2 / 2 phi
+    kinetic = 15,        // sum m v^2 / 2 phi
+    contact_stress = 16, // sum f b psi (9)
+    wall_force = 25,     // sum over wall contacts f phi (3)
+    contacts = 28,       // sum over contacts (phi_a + phi_b): sum z phi
+    fabric = 29,         // sum over contacts (V_a phi_a + V_b phi_b) n n (9)
     elastic = 38,        // sum over contacts E phi(r - c)
     dissipation = 39,    // sum over contacts P phi(r - c)
     relaxation = 40,     // sum over contacts E_R phi(r - c)
@@ -39,6 +39,13 @@ static_assert(cg_sums_per_point == Sum::wall_power + 1);
 inline void add_outer(double* t, const Vec3& a, const Vec3& b, double w) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) t[3 * r + c] += a[r] * b[c] * w;
+}
+
+// sums[k] += q[k] w for k < n: a point's sums, weighed. (restrict: the compiler then knows the
+// point's sums and the quantities apart, and vectorises.)
+inline void add_weighted(double* __restrict sums, const double* __restrict q, std::size_t n,
+                         double w) {
+  for (std::size_t k = 0; k < n; ++k) sums[k] += q[k] * w;
 }
 
 // Adds the grains' and contacts' sums into `sums` (cg_sums_per_point a point) with the weights
@@ -86,11 +93,11 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
       if (b) count(c.grain_b, c.volume_b);
     }
 
-  // A grain's own quantities in the order of its sums mass .. momentum_flux, made once and
-  // weighed at each point in one loop the compiler vectorises.
+  // A grain's own quantities in the order of its sums mass .. kinetic, made once and weighed
+  // at each point in one loop the compiler vectorises (16 doubles: whole vectors).
   static_assert(Sum::number == 1 && Sum::volume == 2 && Sum::momentum == 3 &&
-                Sum::momentum_flux == 6);
-  constexpr std::size_t own = Sum::momentum_flux + 9;
+                Sum::momentum_flux == 6 && Sum::kinetic == 15);
+  constexpr std::size_t own = Sum::kinetic + 1;
   for (std::size_t i = 0; i < n_grains; ++i) {
     const double m = grains.mass[i];
     const Vec3 v = grains.v[i];
@@ -98,26 +105,28 @@ void add_sums(const CgGrains& grains, std::span<const CgContact> contacts, const
     const double xy = m * (v.x * v.y), xz = m * (v.x * v.z), yz = m * (v.y * v.z);
     const double q[own] = {
         m,  1.0, grains.volume[i], m * v.x, m * v.y, m * v.z, m * (v.x * v.x), xy,
-        xz, xy,  m * (v.y * v.y),  yz,      xz,      yz,      m * (v.z * v.z)};
-    const double kinetic = 0.5 * m * norm2(v);
+        xz, xy,  m * (v.y * v.y),  yz,      xz,      yz,      m * (v.z * v.z), 0.5 * m * norm2(v)};
     const bool touched = !grain_contacts.empty() && grain_contacts[i] > 0.0;
     weights.at_point(grains.x[i], [&](std::size_t p, double w) {
-      double* point = at(p, 0);
-      for (std::size_t k = 0; k < own; ++k) point[k] += q[k] * w;
-      point[Sum::kinetic] += kinetic * w;
+      add_weighted(at(p, 0), q, own, w);
       if (touched) {
         *at(p, Sum::contacts) += grain_contacts[i] * w;
-        for (int k = 0; k < 9; ++k) at(p, Sum::fabric)[k] += grain_fabric[9 * i + k] * w;
+        add_weighted(at(p, Sum::fabric), &grain_fabric[9 * i], 9, w);
       }
     });
   }
   for (const CgContact& c : contacts) {
     const Vec3 x_a = c.centre, from = x_a - c.branch;
     // The branch, from b's centre or the wall's contact point to a's centre.
-    if (parts.branches)
+    if (parts.branches) {
+      // f b^T, made once: (f_r b_c) w is what add_outer would add, bit for bit.
+      double fb[9];
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) fb[3 * r + k] = c.force[r] * c.branch[k];
       weights.along(from, c.branch, [&](std::size_t p, double w) {
-        add_outer(at(p, Sum::contact_stress), c.force, c.branch, w);
+        add_weighted(at(p, Sum::contact_stress), fb, 9, w);
       });
+    }
     if (parts.contact_points)
       weights.at_point(c.point, [&](std::size_t p, double w) {
         *at(p, Sum::elastic) += c.elastic * w;

@@ -98,13 +98,6 @@ CgFunction::CgFunction(CgKind kind, double width, double cutoff, int dimension)
   norm_ = 1.0 / (gaussian - shift_ * ball);
 }
 
-double CgFunction::at(double r2) const {
-  if (!(r2 < cutoff_ * cutoff_)) return 0.0;
-  if (kind_ == CgKind::gaussian) return norm_ * (std::exp(-r2 / (2.0 * width_ * width_)) - shift_);
-  const double u = std::sqrt(r2) / cutoff_, v = 1.0 - u;
-  return norm_ * (1.0 + 3.0 * u) * v * v * v;
-}
-
 double CgFunction::along(const Vec3& q, const Vec3& b) const {
   const double length2 = norm2(b);
   if (length2 == 0.0) return at(norm2(q));
@@ -140,30 +133,6 @@ double CgFunction::along(const Vec3& q, const Vec3& b) const {
     sum += part * half_width;
   }
   return sum;
-}
-
-double CgFunction::along_axis(double q, double b) const {
-  if (b == 0.0) return at(q * q);
-  // psi = (1 / |b|) times the integral of phi over the u between q - b and q, within [-c, c].
-  const double lo = std::max(std::min(q - b, q), -cutoff_),
-               hi = std::min(std::max(q - b, q), cutoff_);
-  if (!(hi > lo)) return 0.0;
-  const double length = std::abs(b);
-  if (kind_ == CgKind::gaussian) {
-    const double scale = std::numbers::sqrt2 * width_;
-    return norm_ *
-           (scale * std::sqrt(pi) / 2.0 * erf_difference(lo / scale, hi / scale) -
-            shift_ * (hi - lo)) /
-           length;
-  }
-  // Lucy in 1-D: phi = A (1 - 6 t^2 + 8 t^3 - 3 t^4), t = |u| / c, whose integral from 0 to u
-  // is sign(u) A c (t - 2 t^3 + 2 t^4 - 3 t^5 / 5).
-  const auto integral = [this](double u) {
-    const double t = std::abs(u) / cutoff_;
-    const double value = norm_ * cutoff_ * t * (1.0 + t * t * (-2.0 + t * (2.0 - 0.6 * t)));
-    return u < 0.0 ? -value : value;
-  };
-  return (integral(hi) - integral(lo)) / length;
 }
 
 } // namespace yuxi::analysis

@@ -40,12 +40,21 @@ public:
       if (grid_.averaged[a]) {
         axes_[a].hold(1);
         axes_[a].index[0] = 0, axes_[a].d2[0] = 0.0, axes_[a].gauss[0] = 1.0;
+      } else {
+        profile_axis_ = static_cast<int>(a);
       }
+    if (grid_.dimension() != 1) profile_axis_ = -1;
+    for (int a = 0; a < 3; ++a)
+      inverse_spacing_[static_cast<std::size_t>(a)] = 1.0 / grid_.spacing(a);
   }
 
   // f(index, weight) for each point that a grain (or contact point) at x weighs on.
   template <class F> void at_point(const Vec3& x, F&& f) const {
     if (!within_averaged(x)) return;
+    if (function_ && profile_axis_ >= 0) {
+      at_point_on_axis(x[profile_axis_], f);
+      return;
+    }
     if (!function_) {
       std::array<int, 3> k{};
       for (int a = 0; a < 3; ++a) {
@@ -85,6 +94,49 @@ public:
       }
   }
 
+  // at_point on a profile (one resolved axis, profile_axis_), without reach_along's scratch
+  // arrays; xa the position's coordinate along the axis.
+  template <class F> void at_point_on_axis(double xa, F&& f) const {
+    const int a = profile_axis_;
+    const auto s = static_cast<std::size_t>(a);
+    const double h = grid_.spacing(a), lo = grid_.lo[a];
+    auto [first, last] = within_reach(a, xa, xa);
+    const long n = grid_.n[s];
+    const bool periodic = grid_.periodic[s];
+    if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
+    if (last < first) return;
+    long wrapped = periodic ? ((first % n) + n) % n : first;
+    const double c2 = reach_ * reach_;
+    const auto offset = [&](long k) { return lo + (static_cast<double>(k) + 0.5) * h - xa; };
+    const auto visit = [&](long k, double w) {
+      const auto at = static_cast<std::size_t>(wrapped);
+      if (++wrapped == n) wrapped = 0;
+      const double d = offset(k);
+      if (d * d < c2 && w != 0.0) f(at, w * inverse_extent_);
+    };
+    if (function_->kind() != CgKind::gaussian) {
+      for (long k = first; k <= last; ++k) {
+        const double d = offset(k);
+        visit(k, function_->at(d * d));
+      }
+      return;
+    }
+    // fill_gaussian's recurrence, point by point.
+    const double inv_2w2 = inverse_2w2_, step_ratio = step_ratio_[s];
+    double ratio = 0.0, gauss = 0.0;
+    for (long k = first; k <= last; ++k) {
+      if ((k - first) % 8 == 0) {
+        const double d = offset(k), next = offset(k + 1);
+        gauss = std::exp(-(d * d) * inv_2w2);
+        if (k < last) ratio = std::exp(-(next * next - d * d) * inv_2w2);
+      } else {
+        gauss *= ratio;
+        ratio *= step_ratio;
+      }
+      visit(k, function_->gaussian_from(gauss));
+    }
+  }
+
   // f(index, weight) for each point that the segment from `from` to `from + b` weighs on.
   template <class F> void along(const Vec3& whole_from, const Vec3& whole_b, F&& f) const {
     // The part of the segment within the averaged axes' span, as its own segment: psi over it
@@ -103,20 +155,36 @@ public:
       });
       return;
     }
-    if (grid_.dimension() == 1) {
-      // One resolved axis a: psi in closed form along it, point by point.
-      int a = 0;
-      while (grid_.averaged[static_cast<std::size_t>(a)]) ++a;
-      const double h = grid_.spacing(a), lo = grid_.lo[a];
-      const auto [first, last] = within_reach(a, low[a], high[a]);
-      for (long k = first; k <= last; ++k) {
-        const std::optional<int> at = wrap(a, k);
-        if (!at) continue;
-        const double q = lo + (static_cast<double>(k) + 0.5) * h - from[a];
-        const double w = function_->along_axis(q, b[a]);
-        if (w != 0.0)
-          f(grid_.index(a == 0 ? *at : 0, a == 1 ? *at : 0, a == 2 ? *at : 0),
-            part * w * inverse_extent_);
+    if (profile_axis_ >= 0) {
+      // One resolved axis a: psi in closed form along it, for a run of points at a time (its
+      // weights first, each point's apart from the others', then their sums).
+      const int a = profile_axis_;
+      const auto s = static_cast<std::size_t>(a);
+      const double h = grid_.spacing(a), lo = grid_.lo[a], from_a = from[a], b_a = b[a];
+      auto [first, last] = within_reach(a, low[a], high[a]);
+      // (a profile's index is the point's along its axis; a branch longer than the axis's
+      // period visits a point more than once)
+      const long n = grid_.n[s];
+      const bool periodic = grid_.periodic[s];
+      if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
+      long wrapped = periodic ? ((first % n) + n) % n : first;
+      constexpr long run = 16;
+      std::array<double, run> w; // (filled before it is read)
+      const std::optional<CgFunction::AxisBranch> branch =
+          b_a != 0.0 ? std::optional<CgFunction::AxisBranch>(std::in_place, *function_, b_a)
+                     : std::nullopt;
+      for (long k0 = first; k0 <= last; k0 += run) {
+        const long count = std::min(run, last - k0 + 1);
+        for (long m = 0; m < count; ++m) {
+          const double q = lo + (static_cast<double>(k0 + m) + 0.5) * h - from_a;
+          w[static_cast<std::size_t>(m)] = branch ? (*branch)(q) : function_->at(q * q);
+        }
+        for (long m = 0; m < count; ++m) {
+          const auto at = static_cast<std::size_t>(wrapped);
+          if (++wrapped == n) wrapped = 0;
+          const double psi = w[static_cast<std::size_t>(m)];
+          if (psi != 0.0) f(at, part * psi * inverse_extent_);
+        }
       }
       return;
     }
@@ -141,10 +209,13 @@ private:
     }
   };
   // The points along axis a (unwrapped, unclamped indices) within reach of [low, high].
+  // (A point at the reach's very edge weighs nothing, so the rounding of the product with 1 / h
+  // can take it or leave it.)
   std::pair<long, long> within_reach(int a, double low, double high) const {
-    const double h = grid_.spacing(a), lo = grid_.lo[a];
-    return {static_cast<long>(std::ceil((low - reach_ - lo) / h - 0.5)),
-            static_cast<long>(std::floor((high + reach_ - lo) / h - 0.5))};
+    const auto s = static_cast<std::size_t>(a);
+    const double per_h = inverse_spacing_[s], lo = grid_.lo[a];
+    return {static_cast<long>(std::ceil((low - reach_ - lo) * per_h - 0.5)),
+            static_cast<long>(std::floor((high + reach_ - lo) * per_h - 0.5))};
   }
   // Fills `out` for coordinate x along axis a; false where no point is within reach.
   bool reach_along(int a, double x, AxisReach& out) const {
@@ -299,7 +370,9 @@ private:
 
   const CgGrid& grid_;
   double reach_;
-  mutable std::array<AxisReach, 3> axes_; // scratch of at_point
+  int profile_axis_ = -1; // a profile's one resolved axis (-1: two or three resolved)
+  std::array<double, 3> inverse_spacing_{}; // 1 / h along each axis
+  mutable std::array<AxisReach, 3> axes_;   // scratch of at_point
   std::optional<CgFunction> function_;
   double inverse_extent_ = 1.0, inverse_cell_ = 1.0;
   double inverse_2w2_ = 0.0;                        // 1 / (2 w^2) of the Gaussian
