@@ -225,10 +225,14 @@ int run_command(const RunCommandOptions& o) {
   if (s.device.empty())
     spdlog::info(
         "time: pair {:.1f}%  neighbour {:.1f}%  comm {:.1f}%  integrate {:.1f}%  output "
-        "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%)  ({} list builds){}",
+        "and analysis {:.1f}% (snapshots {:.1f}%, checkpoints {:.1f}%{})  ({} list builds){}",
         100 * t.pair / wall, 100 * t.neighbor / wall, 100 * t.comm / wall, 100 * t.integrate / wall,
         100 * (wall - t.total()) / wall, 100 * s.snapshot_seconds / wall,
-        100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before,
+        100 * s.checkpoint_seconds / wall,
+        s.coarse_grain_seconds > 0.0
+            ? fmt::format(", coarse-graining {:.1f}%", 100 * s.coarse_grain_seconds / wall)
+            : std::string(),
+        sim->list_builds() - builds_before,
         sim->comm().size() > 1 ? fmt::format("; rank 0's times; load max/mean {:.3f} in particles, "
                                              "{:.3f} in listed pairs, {:.3f} in compute time",
                                              imbalance, pair_imbalance, busy_imbalance)

@@ -353,7 +353,11 @@ bool RunDriver::advance(std::int64_t until, const StepHook& hook) {
         if (energy_row) d.write_energies();
       }
       if (analysis_due) d.analysis->after_step(sim);
-      if (coarse_due) d.coarse->sample(sim); // collective
+      if (coarse_due) {
+        const auto t0 = std::chrono::steady_clock::now();
+        d.coarse->sample(sim); // collective
+        d.summary.coarse_grain_seconds += seconds_since(t0);
+      }
       if (recording) sim.record_contacts(false), recording = false;
       if (frame) d.snapshot();
       // Every rank calls the hook at the same step, and any one that says stop stops them all

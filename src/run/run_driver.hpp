@@ -56,6 +56,7 @@ struct RunSummary {
   double particle_steps_per_second = 0.0; // (owned particles, grains and walls) x steps / s
   double snapshot_seconds = 0.0;          // wall time writing VTK and LAMMPS dump frames
   double checkpoint_seconds = 0.0;        // wall time writing checkpoints
+  double coarse_grain_seconds = 0.0;      // wall time sampling and writing [[coarse_grain]] tables
   // On the device engine: its name, its memory per particle, and the wall time stepping there
   // and handing the state back to the host.
   std::string device;

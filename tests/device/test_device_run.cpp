@@ -167,6 +167,11 @@ TEST(DeviceRunCoarseGraining, KineticFieldsRunOnTheDeviceAndContactFieldsAreRefu
   const Finished cpu = run_into(open_scene(with_table(kinetic), false), dir / "cpu", false);
   const Finished device = run_into(open_scene(with_table(kinetic), false), dir / "device", true);
   ASSERT_FALSE(cpu.summary.failed || device.summary.failed);
+  // The run times its samples (the log's "coarse-graining X%"): within its wall time.
+  for (const RunSummary* s : {&cpu.summary, &device.summary}) {
+    EXPECT_GT(s->coarse_grain_seconds, 0.0);
+    EXPECT_LT(s->coarse_grain_seconds, s->wall_seconds);
+  }
   for (const char* step : {"000000100", "000000300"}) {
     const std::string name = std::string("coarse_grain/flow/flow_") + step + ".csv";
     const auto a = csv_rows(dir / "device" / name), b = csv_rows(dir / "cpu" / name);
