@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import yuxi
+from conftest import add_square_mesh
 
 
 @pytest.fixture
@@ -111,6 +112,41 @@ def test_a_grain_added_on_another_is_refused_by_name(sim):
     (new,) = sim.add_grains([[4.0, 4.0, 11.0]], 0.5)
     sim.run(steps=50)
     assert sim.energies()["grains"] == n + 1 and new >= 343
+
+
+def test_grains_and_clumps_added_into_a_mesh_or_a_cylinder_are_refused_by_name(box_scene,
+                                                                                  tmp_path):
+    """The shaped walls are checked as the flat ones are: a new grain or clump member that would
+    overlap a cylinder or a mesh is refused, naming the wall and the overlap, and nothing is
+    added."""
+    box_scene["cylinder"] = [{"name": "silo", "center": [4.0, 4.0, 0.0], "radius": 3.5,
+                              "lo": 0.1, "hi": 11.9, "material": "wall"}]
+    add_square_mesh(box_scene, tmp_path, "lid", 10.0)
+    box_scene["shape"] = [{"name": "rod", "spheres": [[0.0, 0.0, -0.3, 0.2], [0.0, 0.0, 0.0, 0.2],
+                                                      [0.0, 0.0, 0.3, 0.2]]}]
+    del box_scene["fill"]
+    box_scene["particle"] = [{"position": [4.0, 4.0, 1.0], "radius": 0.5, "density": 1.0,
+                              "material": "grain"}]
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "walls", progress=False)
+    sim.run(steps=10)
+    n = sim.energies()["grains"]
+    with pytest.raises(ValueError, match="new grain 0 at \\(7.3, 4, 5\\), radius 0.5, overlaps the "
+                                         "cylinder 'silo' by 0.3 "):
+        sim.add_grains([[7.3, 4.0, 5.0]], 0.5)
+    with pytest.raises(ValueError, match="new grain 1 .* overlaps the mesh 'lid' by 0.2 "):
+        sim.add_grains([[4.0, 4.0, 5.0], [3.0, 2.5, 9.7]], 0.5)
+    with pytest.raises(ValueError, match="member 2 of new clump 0 .* overlaps the mesh 'lid' by "
+                                         "0.1 "):
+        sim.add_clumps("rod", [[4.0, 4.0, 9.6]])
+    with pytest.raises(ValueError, match="member 0 of new clump 0 .* overlaps the cylinder "
+                                         "'silo' by 0.1 "):
+        sim.add_clumps("rod", [[2.0, 4.0, 0.5]])
+    assert sim.energies()["grains"] == n  # nothing was added
+    sim.add_grains([[4.0, 4.0, 5.0]], 0.5)
+    sim.add_clumps("rod", [[5.0, 5.0, 5.0]])
+    sim.run(steps=50)
+    assert sim.energies()["grains"] == n + 2
+    sim.close()
 
 
 def test_add_grains_checks_its_lengths(sim):

@@ -453,8 +453,8 @@ class Simulation:
 
     def add_grains(self, positions, radii, velocities=None, material=None):
         """Adds grains (the same on every rank); returns their ids. ``radii``: one radius for
-        all, or one per grain. A grain that would overlap another particle or a flat wall is
-        refused (ValueError naming it). Collective."""
+        all, or one per grain. A grain that would overlap another particle or a wall (flat, mesh
+        or cylinder) is refused (ValueError naming it). Collective."""
         positions = _positions(positions, "add_grains")
         n = len(positions)
         radii = _one_or_each(radii, n, "add_grains", "radii", "radius", "grain")
@@ -497,7 +497,7 @@ class Simulation:
         quaternions (w, x, y, z), (n, 4), that turn the shape as its table writes it (or, with
         ``frame="principal"``, its principal frame, as ``clumps()`` gives them) onto the lab's;
         (1, 0, 0, 0) where not given; ``scale``: one factor for all or one per clump (1: the
-        shape's size). A member that would overlap another particle or a flat wall is refused
+        shape's size). A member that would overlap another particle or a wall is refused
         (ValueError naming it), as are clumps the time step cannot resolve (SceneError). A shape
         of one member gives spheres. Collective."""
         if frame not in ("shape", "principal"):

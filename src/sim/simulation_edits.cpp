@@ -4,10 +4,12 @@
 // (docs/ARCHITECTURE.md, "Energy books"), so the books keep closing.
 #include "contact/contact_history.hpp"
 #include "scene/ball_hash.hpp"
+#include "scene/closest_point_on_triangle.hpp"
 #include "sim/simulation.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <variant>
 
 namespace yuxi {
 
@@ -156,6 +158,48 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
   for (std::size_t i = 0; i < store_.n_owned(); ++i)
     owned.add(config_.box.wrap(store_.x[i]), store_.radius[i]);
   const Box& box = config_.box;
+  // The shaped walls as they stand now, those active: a cylinder is asked for its touches; a
+  // mesh is taken whole (a rank holds only the triangles near its own grains), its corners
+  // placed where it stands, and the triangles whose boxes meet the new grains' box listed
+  // once; a grain overlaps it where one of those comes closer than its radius.
+  struct PlacedMesh {
+    const TriangleMesh* mesh = nullptr;
+    std::vector<Vec3> corners;
+    std::vector<std::uint32_t> near;
+  };
+  const auto boxes_meet = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& lo,
+                             const Vec3& hi) {
+    for (int k = 0; k < 3; ++k)
+      if (std::max({a[k], b[k], c[k]}) < lo[k] || std::min({a[k], b[k], c[k]}) > hi[k])
+        return false;
+    return true;
+  };
+  std::vector<const ShapedWall*> shaped;
+  std::vector<PlacedMesh> meshes; // aligned with `shaped` (empty for a cylinder)
+  if (!grains.empty()) {
+    Vec3 low = box.wrap(grains[0].position), high = low;
+    for (const ParticleSpec& p : grains) {
+      const Vec3 x = box.wrap(p.position);
+      for (int a = 0; a < 3; ++a)
+        low[a] = std::min(low[a], x[a]), high[a] = std::max(high[a], x[a]);
+    }
+    const Vec3 reach{widest, widest, widest};
+    for (const ShapedWall& wall : walls_.shaped()) {
+      if (!wall_active(wall, time_)) continue;
+      shaped.push_back(&wall);
+      PlacedMesh& placed = meshes.emplace_back();
+      if (const auto* mesh = std::get_if<MeshWall>(&wall)) {
+        placed.mesh = &mesh->whole_mesh();
+        placed.corners = mesh->placed_whole();
+        for (std::size_t t = 0; t < placed.mesh->triangles.size(); ++t) {
+          const auto& tri = placed.mesh->triangles[t];
+          if (boxes_meet(placed.corners[tri[0]], placed.corners[tri[1]], placed.corners[tri[2]],
+                         low - reach, high + reach))
+            placed.near.push_back(static_cast<std::uint32_t>(t));
+        }
+      }
+    }
+  }
   std::size_t waiting = 0; // the first grain not yet in `added`
   for (std::size_t k = 0; k < grains.size(); ++k) {
     const bool same_clump = !clump_of.empty() && waiting < k && clump_of[waiting] == clump_of[k];
@@ -197,6 +241,30 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
     for (const PlaneWall& w : walls_.planes())
       if (const double d = w.distance(x, time_); d < r)
         refuse(fmt::format("the flat wall '{}'", w.name), grains[k].radius - d);
+    for (std::size_t m = 0; m < shaped.size(); ++m) {
+      const auto what = [&] {
+        return fmt::format("the {} '{}'", meshes[m].mesh ? "mesh" : "cylinder",
+                           wall_name(*shaped[m]));
+      };
+      if (!meshes[m].mesh) {
+        WallTouches touches;
+        std::get<CylinderWall>(*shaped[m]).touches(x, r, touches);
+        for (std::size_t c = 0; c < touches.n; ++c)
+          if (touches.at[c].distance < r) refuse(what(), grains[k].radius - touches.at[c].distance);
+        continue;
+      }
+      const PlacedMesh& placed = meshes[m];
+      const Vec3 around{r, r, r};
+      double nearest = r; // the closest triangle's distance, where closer than r
+      for (const std::uint32_t t : placed.near) {
+        const auto& tri = placed.mesh->triangles[t];
+        const Vec3 &a = placed.corners[tri[0]], &b = placed.corners[tri[1]],
+                   &c = placed.corners[tri[2]];
+        if (boxes_meet(a, b, c, x - around, x + around))
+          nearest = std::min(nearest, norm(x - closest_point_on_triangle(x, a, b, c).point));
+      }
+      if (nearest < r) refuse(what(), grains[k].radius - nearest);
+    }
   }
 }
 
