@@ -133,7 +133,7 @@ BENCHMARK(BM_EveryHundredSteps)
     ->ArgName("flow")
     ->Arg(0)
     ->Arg(1)
-    ->Iterations(60)
+    ->Iterations(100)
     ->Unit(benchmark::kMillisecond);
 
 } // namespace
