@@ -100,24 +100,22 @@ public:
     const int a = profile_axis_;
     const auto s = static_cast<std::size_t>(a);
     const double h = grid_.spacing(a), lo = grid_.lo[a];
-    auto [first, last] = within_reach(a, xa, xa);
-    const long n = grid_.n[s];
-    const bool periodic = grid_.periodic[s];
-    if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
+    const auto [first, last, start] = run_along(a, xa, xa);
     if (last < first) return;
-    long wrapped = periodic ? ((first % n) + n) % n : first;
+    const long n = grid_.n[s];
+    long wrapped = start;
     const double c2 = reach_ * reach_;
     const auto offset = [&](long k) { return lo + (static_cast<double>(k) + 0.5) * h - xa; };
-    const auto visit = [&](long k, double w) {
+    // f for the point at squared offset d2 (the next along the axis) with weight w.
+    const auto visit = [&](double d2, double w) {
       const auto at = static_cast<std::size_t>(wrapped);
       if (++wrapped == n) wrapped = 0;
-      const double d = offset(k);
-      if (d * d < c2 && w != 0.0) f(at, w * inverse_extent_);
+      if (d2 < c2 && w != 0.0) f(at, w * inverse_extent_);
     };
     if (function_->kind() != CgKind::gaussian) {
       for (long k = first; k <= last; ++k) {
         const double d = offset(k);
-        visit(k, function_->at(d * d));
+        visit(d * d, function_->at(d * d));
       }
       return;
     }
@@ -125,15 +123,18 @@ public:
     const double inv_2w2 = inverse_2w2_, step_ratio = step_ratio_[s];
     double ratio = 0.0, gauss = 0.0;
     for (long k = first; k <= last; ++k) {
+      const double d = offset(k);
       if ((k - first) % 8 == 0) {
-        const double d = offset(k), next = offset(k + 1);
         gauss = std::exp(-(d * d) * inv_2w2);
-        if (k < last) ratio = std::exp(-(next * next - d * d) * inv_2w2);
+        if (k < last) {
+          const double next = offset(k + 1);
+          ratio = std::exp(-(next * next - d * d) * inv_2w2);
+        }
       } else {
         gauss *= ratio;
         ratio *= step_ratio;
       }
-      visit(k, function_->gaussian_from(gauss));
+      visit(d * d, function_->gaussian_from(gauss));
     }
   }
 
@@ -161,13 +162,11 @@ public:
       const int a = profile_axis_;
       const auto s = static_cast<std::size_t>(a);
       const double h = grid_.spacing(a), lo = grid_.lo[a], from_a = from[a], b_a = b[a];
-      auto [first, last] = within_reach(a, low[a], high[a]);
       // (a profile's index is the point's along its axis; a branch longer than the axis's
       // period visits a point more than once)
+      const auto [first, last, start] = run_along(a, low[a], high[a]);
       const long n = grid_.n[s];
-      const bool periodic = grid_.periodic[s];
-      if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
-      long wrapped = periodic ? ((first % n) + n) % n : first;
+      long wrapped = start;
       constexpr long run = 16;
       std::array<double, run> w; // (filled before it is read)
       const std::optional<CgFunction::AxisBranch> branch =
@@ -217,18 +216,30 @@ private:
     return {static_cast<long>(std::ceil((low - reach_ - lo) * per_h - 0.5)),
             static_cast<long>(std::floor((high + reach_ - lo) * per_h - 0.5))};
   }
+  // The points along axis a within reach of [low, high] on the grid: first..last (unwrapped
+  // indices, clamped to the grid along a bounded axis) and first's index on the grid (wrapped
+  // along a periodic one). Empty where last < first.
+  struct AxisRun {
+    long first, last, start;
+  };
+  AxisRun run_along(int a, double low, double high) const {
+    const auto s = static_cast<std::size_t>(a);
+    auto [first, last] = within_reach(a, low, high);
+    const long n = grid_.n[s];
+    if (!grid_.periodic[s])
+      return {std::max(first, 0L), std::min(last, n - 1), std::max(first, 0L)};
+    return {first, last, ((first % n) + n) % n};
+  }
   // Fills `out` for coordinate x along axis a; false where no point is within reach.
   bool reach_along(int a, double x, AxisReach& out) const {
     const auto s = static_cast<std::size_t>(a);
     if (grid_.averaged[s]) return true;
     const double h = grid_.spacing(a), lo = grid_.lo[a];
-    auto [first, last] = within_reach(a, x, x);
-    const long n = grid_.n[s];
-    const bool periodic = grid_.periodic[s];
-    if (!periodic) first = std::max(first, 0L), last = std::min(last, n - 1);
+    const auto [first, last, start] = run_along(a, x, x);
     if (last < first) return false;
+    const long n = grid_.n[s];
     out.hold(static_cast<std::size_t>(last - first + 1));
-    long wrapped = periodic ? ((first % n) + n) % n : first; // (no division where bounded)
+    long wrapped = start;
     for (long k = first; k <= last; ++k) {
       const auto m = static_cast<std::size_t>(k - first);
       const double d = lo + (static_cast<double>(k) + 0.5) * h - x;
