@@ -46,6 +46,8 @@ struct HertzMindlin {
     double beta = 0;        // ln e / sqrt(ln^2 e + pi^2), derived from e [-]
     double mu_r = 0;        // rolling friction coefficient [-]; 0: no rolling resistance
     RollingModel rolling_model = RollingModel::elastic_plastic;
+
+    YUXI_HD bool rolling() const { return mu_r > 0; }
   };
 
   // Derived coefficients from the two materials (a rigid material has E = infinity).
@@ -88,7 +90,7 @@ YUXI_ALWAYS_INLINE YUXI_HD ContactResult HertzMindlin::evaluate(const ContactGeo
   r.elastic = 0.4 * (4.0 / 3.0) * c.e_star * root * g.overlap * g.overlap + s.tangential.stored();
   r.dissipated = eta_n * vn * vn * g.dt + t.dissipated;
   // (epsd: LIGGGHTS epsd2's torque stiffness 2.25 mu_r^2 S_n R*^2, as a force on u_r)
-  if (c.mu_r > 0)
+  if (c.rolling())
     add_rolling_resistance(
         r, g, c.rolling_model, c.mu_r, fn,
         SliderLaw{2.25 * c.mu_r * c.mu_r * s_n, 0.0, c.mu_r, c.mu_r, CapOn::total},

@@ -52,6 +52,9 @@ enum class ViscosityChannel : std::uint8_t { relaxation, heat };
 
 struct Thermodynamic {
   static constexpr std::string_view name = "thermodynamic";
+  // Its contacts hold energy in a relaxation buffer (ContactResult::relaxation); the other laws'
+  // is always zero, and the device engine keeps no room for it.
+  static constexpr bool holds_relaxation = true;
 
   struct Coeffs {
     double e_star = 0;      // E* of the pair (as for Hertz-Mindlin) [force/length^2]

@@ -9,6 +9,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/luding.hpp"
 #include "contact/thermodynamic.hpp"
+#include "device/kept_state.hpp"
 #include "device/step_phases.hpp"
 
 #include <algorithm>
@@ -55,6 +56,9 @@ template <class T> const T* raw(const DeviceVector<T>& v) {
 }
 template <class T> std::size_t bytes(const DeviceVector<T>& v) {
   return v.capacity() * sizeof(T);
+}
+template <class... Vectors> std::size_t bytes_of(const Vectors&... vectors) {
+  return (bytes(vectors) + ...);
 }
 
 // v holds n elements afterwards, of unspecified values: every caller writes them all. Within
@@ -333,13 +337,15 @@ struct IsZero {
   YUXI_HD bool operator()(std::uint32_t b) const { return b == 0; }
 };
 
-template <class Model> class Engine final : public LawEngine<Model> {
+// The engine of law Model, keeping its contacts' states as Kept says (kept_state.hpp).
+template <class Model, class Kept> class Engine final : public LawEngine<Model> {
 public:
-  using State = typename Model::State;
+  using State = typename Kept::State; // as kept on the device
+  using Whole = typename Model::State;
   using Coeffs = typename Model::Coeffs;
 
   Engine(const DeviceScene& scene, const std::vector<Coeffs>& coeffs,
-         const std::vector<KeyedState<State>>& contacts) {
+         const std::vector<KeyedState<Whole>>& contacts) {
     const HostParticles& hp = scene.particles;
     if (hp.size() >= (std::size_t{1} << 31))
       throw std::invalid_argument("device engine: more than 2^31 particles");
@@ -370,7 +376,6 @@ public:
     gid_ = hp.gid;
     kind_ = hp.kind;
     material_ = hp.material;
-    x_rest_ = hp.x_rest.size() == hp.size() ? hp.x_rest : hp.x;
     if (hp.motion.size() == hp.size())
       motion_ = hp.motion;
     else
@@ -385,6 +390,10 @@ public:
         throw std::invalid_argument("device engine: a wall particle of motion " +
                                     std::to_string(m) + ", beyond the scene's " +
                                     std::to_string(motions_.size()));
+    // Rest positions and the walls' work on the grains only where a wall particle moves: a
+    // standing one stays where it stands (x is its rest position) and does no work.
+    for (const DeviceMotion& m : motions_) moving_walls_ = moving_walls_ || m.radial_cosine;
+    if (moving_walls_) x_rest_ = hp.x_rest.size() == hp.size() ? hp.x_rest : hp.x;
     coeffs_ = coeffs;
     n_materials_ = static_cast<std::uint32_t>(scene.n_materials);
 
@@ -445,16 +454,17 @@ public:
     }
     // The open contacts at the start, sorted by key: the first list build takes them back.
     std::vector<std::pair<std::uint64_t, State>> pairs, planes;
-    for (const KeyedState<State>& c : contacts) {
+    for (const KeyedState<Whole>& c : contacts) {
       if (c.second >= 0) {
-        pairs.push_back({contact_key(c.first, c.second), c.state});
+        pairs.push_back({contact_key(c.first, c.second), Kept::kept(c.state)});
         continue;
       }
       const GlobalId plane = -c.second - 1;
       if (plane >= static_cast<GlobalId>(n_planes_))
         throw std::invalid_argument("device engine: a contact with plane " + std::to_string(plane) +
                                     ", beyond the scene's " + std::to_string(n_planes_));
-      planes.push_back({plane_key(c.first, static_cast<std::uint32_t>(plane)), c.state});
+      planes.push_back(
+          {plane_key(c.first, static_cast<std::uint32_t>(plane)), Kept::kept(c.state)});
     }
     Stash start_pairs = stash_of(std::move(pairs)), start_planes = stash_of(std::move(planes));
     // A run continued mid-way makes its last list build again, where the particles stood then
@@ -496,7 +506,10 @@ public:
     get(gid_, sorted.gid);
     get(kind_, sorted.kind);
     get(material_, sorted.material);
-    get(x_rest_, sorted.x_rest);
+    if (moving_walls_)
+      get(x_rest_, sorted.x_rest);
+    else
+      sorted.x_rest = sorted.x;
     get(x_build_, sorted.x_build);
     get(motion_, sorted.motion);
     std::vector<std::uint32_t> order(n_);
@@ -540,7 +553,8 @@ public:
     };
     e.contacts = touching(open_) + touching(plane_open_);
     e.elastic = sums_(elastic_, flagged_) + sums_(plane_elastic_);
-    e.relaxation = sums_(relaxation_, flagged_) + sums_(plane_relaxation_);
+    e.relaxation =
+        (holds_relaxation ? sums_(relaxation_, flagged_) : 0.0) + sums_(plane_relaxation_);
     e.dissipated = dissipated_total_;
     e.gravity_work = gravity_work_total_;
     e.wall_work = wall_work_total_;
@@ -549,23 +563,23 @@ public:
     return e;
   }
 
-  std::vector<KeyedState<State>> open_contacts() const override {
-    std::vector<KeyedState<State>> out;
+  std::vector<KeyedState<Whole>> open_contacts() const override {
+    std::vector<KeyedState<Whole>> out;
     DeviceVector<std::uint64_t> keys;
     DeviceVector<State> states;
     stash_open_contacts(keys, states);
     std::vector<std::uint64_t> k = to_host(keys);
     std::vector<State> st = to_host(states);
     for (std::size_t c = 0; c < k.size(); ++c)
-      out.push_back(
-          {static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu), st[c]});
+      out.push_back({static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu),
+                     Kept::whole(st[c])});
     // The grain-plane contacts, keyed as the CPU engine keys them: (grain, -(plane + 1)).
     stash_open_planes(keys, states);
     k = to_host(keys);
     st = to_host(states);
     for (std::size_t c = 0; c < k.size(); ++c)
-      out.push_back(
-          {static_cast<GlobalId>(k[c] >> 8), -static_cast<GlobalId>(k[c] & 0xffu) - 1, st[c]});
+      out.push_back({static_cast<GlobalId>(k[c] >> 8), -static_cast<GlobalId>(k[c] & 0xffu) - 1,
+                     Kept::whole(st[c])});
     return out;
   }
 
@@ -605,20 +619,22 @@ public:
   }
   std::size_t listed_pairs() const override { return partner_.size(); }
 
-  std::size_t device_bytes() const override {
-    return bytes(x_) + bytes(v_) + bytes(w_) + bytes(f_) + bytes(torque_) + bytes(x_build_) +
-           bytes(radius_) + bytes(mass_) + bytes(inv_mass_) + bytes(inv_inertia_) + bytes(gid_) +
-           bytes(x_rest_) + bytes(motion_) + bytes(wall_work_) + bytes(kind_) + bytes(material_) +
-           bytes(cell_) + bytes(order_) + bytes(cell_start_) + bytes(count_) + bytes(row_start_) +
-           bytes(partner_) + bytes(pair_row_) + bytes(image_) + bytes(reverse_start_) +
-           bytes(reverse_pair_) + bytes(carried_) + bytes(states_) + bytes(open_) + bytes(slot_) +
-           bytes(touch_pair_) + bytes(force_) + bytes(torque_i_) + bytes(torque_j_) +
-           bytes(elastic_) + bytes(relaxation_) + bytes(dissipated_) + bytes(gravity_work_) +
-           bytes(moved_far_) + sums_.device_bytes() + step_sums_.device_bytes() +
-           scratch().bytes() + bytes(coeffs_) + bytes(plane_start_) + bytes(plane_row_) +
-           bytes(plane_of_) + bytes(plane_state_) + bytes(plane_open_) + bytes(plane_force_) +
-           bytes(plane_torque_) + bytes(plane_elastic_) + bytes(plane_relaxation_) +
-           bytes(plane_dissipated_) + bytes(plane_work_);
+  DeviceMemory device_memory() const override {
+    DeviceMemory m;
+    m.particles =
+        bytes_of(x_, v_, w_, f_, torque_, x_build_, x_rest_, radius_, mass_, inv_mass_,
+                 inv_inertia_, gid_, kind_, material_, motion_, gravity_work_, moved_far_);
+    m.cells = bytes_of(cell_start_);
+    m.pairs = bytes_of(row_start_, partner_, pair_row_, image_, reverse_start_, reverse_pair_,
+                       open_, slot_);
+    m.contacts = bytes_of(carried_, states_, touch_pair_, force_, torque_i_, torque_j_, elastic_,
+                          relaxation_, dissipated_, wall_work_);
+    m.planes = bytes_of(plane_point_, plane_normal_, plane_material_, plane_excursion_,
+                        plane_offset_, plane_velocity_, plane_start_, plane_row_, plane_of_,
+                        plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
+                        plane_relaxation_, plane_dissipated_, plane_work_);
+    m.work = sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_);
+    return m;
   }
 
   std::string device_name() const override {
@@ -663,9 +679,15 @@ private:
     return PlaneOutput{raw(plane_force_),      raw(plane_torque_),     raw(plane_elastic_),
                        raw(plane_relaxation_), raw(plane_dissipated_), raw(plane_work_)};
   }
+  // (relaxation and wall_work null where the law holds none or no wall particle moves)
   PairOutput pair_output() {
-    return PairOutput{raw(force_),      raw(torque_i_),   raw(torque_j_), raw(elastic_),
-                      raw(relaxation_), raw(dissipated_), raw(wall_work_)};
+    return PairOutput{raw(force_),
+                      raw(torque_i_),
+                      raw(torque_j_),
+                      raw(elastic_),
+                      holds_relaxation ? raw(relaxation_) : nullptr,
+                      raw(dissipated_),
+                      moving_walls_ ? raw(wall_work_) : nullptr};
   }
 
   // field[k] = field[order[k]], through scratch.
@@ -702,8 +724,9 @@ private:
   // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
   void permute_particles(const DeviceVector<std::uint32_t>& order) {
     DeviceVector<Vec3> v3;
-    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_, &x_rest_})
+    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_})
       permute_by(order, *field, v3);
+    if (moving_walls_) permute_by(order, x_rest_, v3);
     if (!x_now_.empty()) permute_by(order, x_now_, v3);
     DeviceVector<double> d;
     for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
@@ -778,9 +801,8 @@ private:
     const std::uint32_t n_open = static_cast<std::uint32_t>(open.size());
     resize(keys, n_open);
     resize(stashed, n_open);
-    for_each_index(n_open,
-                   StashPlane<Model>{view(), raw(plane_row_), raw(plane_of_), raw(plane_state_),
-                                     raw(open), raw(keys), raw(stashed)});
+    for_each_index(n_open, StashPlane<Kept>{view(), raw(plane_row_), raw(plane_of_),
+                                            raw(plane_state_), raw(open), raw(keys), raw(stashed)});
     sort_stash(keys, stashed);
   }
 
@@ -790,8 +812,8 @@ private:
     const std::uint32_t n_open = static_cast<std::uint32_t>(open_pairs.size());
     resize(keys, n_open);
     resize(stashed, n_open);
-    for_each_index(n_open, StashContact<Model>{view(), pair_list(), raw(carried_), raw(slot_),
-                                               raw(open_pairs), raw(keys), raw(stashed)});
+    for_each_index(n_open, StashContact<Kept>{view(), pair_list(), raw(carried_), raw(slot_),
+                                              raw(open_pairs), raw(keys), raw(stashed)});
     sort_stash(keys, stashed);
   }
 
@@ -820,23 +842,29 @@ private:
     // 2. Wrap, sort by (cell, global id), and find each cell's start.
     DeviceVector<std::uint64_t> key(n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(key)});
-    resize(order_, n_);
-    thrust::sequence(on_device(), raw(order_), last(order_));
-    sort_by_key(raw(key), last(key), raw(order_));
-    permute_particles(order_);
-    resize(cell_, n_);
-    for_each_index(n_, CellOfKey{raw(key), raw(cell_)});
-    resize(cell_start_, cells_.count() + 1);
-    thrust::lower_bound(
-        on_device(), raw(cell_), last(cell_), thrust::counting_iterator<std::uint32_t>(0),
-        thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
+    // (order, cell and count live for the build only: the steps between builds need none)
+    {
+      DeviceVector<std::uint32_t> order, cell;
+      resize_all(n_, order, cell);
+      thrust::sequence(on_device(), raw(order), last(order));
+      sort_by_key(raw(key), last(key), raw(order));
+      permute_particles(order);
+      for_each_index(n_, CellOfKey{raw(key), raw(cell)});
+      resize(cell_start_, cells_.count() + 1);
+      thrust::lower_bound(
+          on_device(), raw(cell), last(cell), thrust::counting_iterator<std::uint32_t>(0),
+          thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
+    }
+    DeviceVector<std::uint64_t>().swap(key);
 
     // 3. The half list: count, offsets, fill.
-    resize(count_, n_);
-    FindPartners find{view(),      box_,    cells_,  raw(cell_start_), skin_,
-                      raw(count_), nullptr, nullptr, nullptr};
+    DeviceVector<std::uint32_t> count;
+    resize(count, n_);
+    FindPartners find{view(),     box_,    cells_,  raw(cell_start_), skin_,
+                      raw(count), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
-    const std::uint32_t total = offsets_of(count_, row_start_);
+    const std::uint32_t total = offsets_of(count, row_start_);
+    DeviceVector<std::uint32_t>().swap(count);
     resize_all(total, partner_, image_, pair_row_);
     find.count = nullptr;
     find.out_start = raw(row_start_);
@@ -859,8 +887,8 @@ private:
     // stash's slots, where the next evaluation carries them from (CarryState).
     resize_all(total, open_, slot_);
     make_room(carried_, n_stashed);
-    for_each_index(total, RestoreContact<Model>{view(), pair_list(), raw(keys), raw(stashed),
-                                                n_stashed, raw(carried_), raw(slot_), raw(open_)});
+    for_each_index(total, RestoreContact<Kept>{view(), pair_list(), raw(keys), raw(stashed),
+                                               n_stashed, raw(carried_), raw(slot_), raw(open_)});
 
     // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
     DeviceVector<std::uint32_t> plane_count(n_);
@@ -875,10 +903,10 @@ private:
     for_each_index(n_, find_planes);
     resize_all(candidates, plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
                plane_relaxation_, plane_dissipated_, plane_work_);
-    for_each_index(candidates, RestorePlane<Model>{view(), raw(plane_row_), raw(plane_of_),
-                                                   raw(planes.keys), raw(planes.states),
-                                                   static_cast<std::uint32_t>(planes.keys.size()),
-                                                   raw(plane_state_), raw(plane_open_)});
+    for_each_index(candidates, RestorePlane<Kept>{view(), raw(plane_row_), raw(plane_of_),
+                                                  raw(planes.keys), raw(planes.states),
+                                                  static_cast<std::uint32_t>(planes.keys.size()),
+                                                  raw(plane_state_), raw(plane_open_)});
     ++builds_;
     scratch().trim(); // the sorts' temporary storage: the steps until the next build need little
   }
@@ -892,21 +920,23 @@ private:
                           : static_cast<std::uint32_t>(thrust::count_if(on_device(), raw(open_),
                                                                         last(open_), IsFlagged{}));
     make_room_all(flagged_, touch_pair_, states_, force_, torque_i_, torque_j_, elastic_,
-                  relaxation_, dissipated_, wall_work_);
+                  dissipated_);
+    if (holds_relaxation) make_room(relaxation_, flagged_);
+    if (moving_walls_) make_room(wall_work_, flagged_);
     if (flagged_ > 0)
       thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                       thrust::counting_iterator<std::uint32_t>(pairs), raw(open_), raw(touch_pair_),
                       IsFlagged{});
-    for_each_index(flagged_, CarryState<Model>{raw(open_), raw(touch_pair_), raw(carried_),
-                                               raw(states_), raw(slot_)});
+    for_each_index(flagged_, CarryState<Kept>{raw(open_), raw(touch_pair_), raw(carried_),
+                                              raw(states_), raw(slot_)});
     for_each_index(flagged_,
-                   PairForces<Model>{view(), pair_list(), box_, raw(coeffs_), n_materials_, dt,
-                                     raw(states_), raw(open_), raw(touch_pair_), pair_output()});
+                   PairForces<Kept>{view(), pair_list(), box_, raw(coeffs_), n_materials_, dt,
+                                    raw(states_), raw(open_), raw(touch_pair_), pair_output()});
     carried_.swap(states_); // this evaluation's states, for the next
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
-                   PlaneForces<Model>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
-                                      raw(coeffs_), n_materials_, dt, raw(plane_state_),
-                                      raw(plane_open_), plane_output()});
+                   PlaneForces<Kept>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
+                                     raw(coeffs_), n_materials_, dt, raw(plane_state_),
+                                     raw(plane_open_), plane_output()});
     for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(open_), raw(slot_),
                                  raw(plane_start_), plane_output(), gravity_});
   }
@@ -932,12 +962,12 @@ private:
     clock.add_to(phases_.integration);
     step_sums_.add(dissipated_, flagged_);
     step_sums_.add(plane_dissipated_);
-    step_sums_.add(wall_work_, flagged_);
+    if (moving_walls_) step_sums_.add(wall_work_, flagged_);
     const std::vector<double> booked = step_sums_.collect();
     gravity_work_total_ += booked[0];
     dissipated_total_ += booked[1];
     dissipated_total_ += booked[2];
-    wall_work_total_ += booked[3];
+    if (moving_walls_) wall_work_total_ += booked[3];
     if (any_oscillating_) book_plane_work();
     clock.add_to(phases_.books);
   }
@@ -1003,11 +1033,16 @@ private:
   std::vector<DevicePlane> planes_;
   std::vector<double> plane_work_total_;
   bool any_oscillating_ = false;
+  bool moving_walls_ = false; // a wall particle moves: x_rest_ and wall_work_ are kept
+  // The law's contacts hold energy in a relaxation buffer: relaxation_ is kept.
+  static constexpr bool holds_relaxation = requires {
+    requires Model::holds_relaxation;
+  };
   DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
   DeviceVector<GlobalId> gid_;
   DeviceVector<Kind> kind_;
   DeviceVector<std::uint8_t> material_;
-  DeviceVector<std::uint32_t> cell_, order_, cell_start_, count_;
+  DeviceVector<std::uint32_t> cell_start_;
   DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
   DeviceVector<std::uint8_t> image_;
   DeviceVector<State> carried_, states_;   // per slot: the last evaluation's, this one's
@@ -1058,7 +1093,11 @@ YUXI_ENGINE_FACTORY(const DeviceScene& scene, const std::vector<typename Model::
   if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0)
     throw std::runtime_error("device engine: this build runs on a GPU, and no CUDA GPU was found");
 #endif
-  return std::make_unique<Engine<Model>>(scene, coeffs, contacts);
+  // The tangential spring alone where the law's state holds a rolling one that no pair uses.
+  if constexpr (std::is_same_v<typename Model::State, TangentialRollingState>)
+    if (TangentialOnly<Model>::fits(coeffs, contacts))
+      return std::make_unique<Engine<Model, TangentialOnly<Model>>>(scene, coeffs, contacts);
+  return std::make_unique<Engine<Model, WholeState<Model>>>(scene, coeffs, contacts);
 }
 
 #define YUXI_INSTANTIATE_ENGINE(Model)                                                             \

@@ -127,6 +127,17 @@ struct DevicePhaseSeconds {
   double books = 0;       // the energy books' fixed-order sums
 };
 
+// Bytes held on the device, by what they hold.
+struct DeviceMemory {
+  std::size_t particles = 0; // per particle: state, properties, the list's reference positions
+  std::size_t cells = 0;     // each cell's first particle
+  std::size_t pairs = 0;     // per listed pair: partner, image, flag, slot, the reverse list
+  std::size_t contacts = 0;  // per touching pair: the state, force, torques and energies
+  std::size_t planes = 0;    // the planes and the grain-plane candidates
+  std::size_t work = 0;      // the fixed-order sums' partial sums and Thrust's kept scratch
+  std::size_t total() const { return particles + cells + pairs + contacts + planes + work; }
+};
+
 class DeviceEngine {
 public:
   virtual ~DeviceEngine() = default;
@@ -145,8 +156,9 @@ public:
   // Each plane's load at the last force evaluation, summed in a fixed order.
   virtual std::vector<PlaneLoad> plane_loads() const = 0;
   virtual std::size_t listed_pairs() const = 0;
-  // Bytes held on the device now (particles, cells, list, contact states, per-pair results).
-  virtual std::size_t device_bytes() const = 0;
+  // Bytes held on the device now, by part, and in all.
+  virtual DeviceMemory device_memory() const = 0;
+  std::size_t device_bytes() const { return device_memory().total(); }
   // "cuda: <device name>" or "host (Thrust CPP)".
   virtual std::string device_name() const = 0;
 };

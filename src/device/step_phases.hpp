@@ -284,9 +284,9 @@ struct PairOutput {
   Vec3* torque_i; // on i
   Vec3* torque_j; // on j
   double* elastic;
-  double* relaxation; // held in the contact's relaxation buffer (the thermodynamic law)
+  double* relaxation; // held in the contact's relaxation buffer (null: the law holds none)
   double* dissipated; // this step, releases of parted contacts included
-  double* wall_work;  // this step, by a moving wall particle on its partner
+  double* wall_work;  // this step, by a moving wall particle on its partner (null: none moves)
 };
 
 // The contact law on each flagged pair (contact_forces.hpp's sweep and compute_pairs), in its
@@ -326,9 +326,9 @@ template <class Model> struct PairForces {
     out.torque_i[c] = r.torque_i;
     out.torque_j[c] = r.torque_j;
     out.elastic[c] = r.elastic;
-    out.relaxation[c] = r.relaxation;
+    if (out.relaxation) out.relaxation[c] = r.relaxation;
     out.dissipated[c] = r.dissipated + released;
-    out.wall_work[c] = work;
+    if (out.wall_work) out.wall_work[c] = work;
   }
 };
 

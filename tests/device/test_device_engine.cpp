@@ -4,6 +4,7 @@
 // steps to 1e-9, and its own runs repeated to the bit. Its sums run in another order than the CPU
 // engine's, so the two agree to round-off, not to the bit (docs/ARCHITECTURE.md, "The device
 // engine"). Label "device".
+#include "contact/hertz_mindlin.hpp"
 #include "io/scene_reader.hpp"
 #include "run/device_run.hpp"
 #include "run/scene_builder.hpp"
@@ -133,8 +134,25 @@ TEST_P(DeviceEngineLaw, AgreesWithTheCpuEngine) {
   EXPECT_LE(relative_difference(got.w, owned(expected.w)), 1e-8);
 }
 
+// A law with rolling resistance keeps each contact's rolling spring on the device (the others
+// keep the tangential spring alone, device/kept_state.hpp): the springs come back whole.
+TEST(DeviceEngine, KeepsTheRollingSpringsOfALawThatRolls) {
+  const auto sim = scene_simulation("chute-laws/chute-rolling.toml");
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  engine->run(100);
+  const auto* law = dynamic_cast<const device::LawEngine<HertzMindlin>*>(engine.get());
+  ASSERT_NE(law, nullptr);
+  std::size_t rolling = 0, open = 0;
+  for (const auto& c : law->open_contacts()) {
+    ++open;
+    if (norm2(c.state.rolling.spring) > 0.0) ++rolling;
+  }
+  EXPECT_GT(open, 5000u);
+  EXPECT_GT(rolling, open / 2) << "most touching contacts roll a little";
+}
+
 INSTANTIATE_TEST_SUITE_P(Laws, DeviceEngineLaw,
-                         testing::Values("hooke", "hertz", "luding", "thermo"),
+                         testing::Values("hooke", "hertz", "luding", "thermo", "rolling"),
                          [](const testing::TestParamInfo<const char*>& law) {
                            return std::string(law.param);
                          });
