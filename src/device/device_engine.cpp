@@ -233,19 +233,6 @@ template <class T> void write_one(DeviceVector<T>& v, std::size_t k, const T& va
 struct IsOpen {
   YUXI_HD bool operator()(std::uint8_t b) const { return (b & touches_now) != 0; }
 };
-// A pair whose contact PairForces evaluates or releases this step (FindTouches).
-struct IsFlagged {
-  YUXI_HD bool operator()(std::uint8_t b) const { return b != 0; }
-};
-
-// Row i's pairs learn their row.
-struct MarkRows {
-  const std::uint32_t* row_start;
-  std::uint32_t* pair_row;
-  YUXI_HD void operator()(std::uint32_t i) const {
-    for (std::uint32_t k = row_start[i]; k < row_start[i + 1]; ++k) pair_row[k] = i;
-  }
-};
 
 // 1 for a grain outside the box along an open axis (NaN too), and its mechanical energy
 // (core/particle_energy.hpp); 0 for the others.
@@ -277,7 +264,8 @@ class OrderedSums {
 public:
   static constexpr std::uint32_t first_width = 65536, second_width = 256;
 
-  OrderedSums() : first_(first_width), second_(16 * second_width) {}
+  // (the first level's room grows to the widest sum asked for: a small scene keeps little)
+  OrderedSums() : second_(16 * second_width) {}
 
   // Queues the sum of v's first n values (all of them by default); collect() returns it, in the
   // order of the calls to add.
@@ -286,6 +274,7 @@ public:
     const std::uint32_t n = static_cast<std::uint32_t>(count);
     const std::uint32_t wide = std::min(n, first_width), narrow = std::min(wide, second_width);
     if (used_ + narrow > second_.size()) second_.resize(2 * (used_ + narrow)); // keeps the sums
+    if (first_.size() < wide) resize(first_, wide);
     for_each_index(wide, StridedSum{raw(v), n, wide, raw(first_)});
     for_each_index(narrow, StridedSum{raw(first_), wide, narrow, raw(second_) + used_});
     widths_.push_back(narrow);
@@ -373,7 +362,7 @@ public:
     mass_ = hp.mass;
     inv_mass_ = hp.inv_mass;
     inv_inertia_ = hp.inv_inertia;
-    gid_ = hp.gid;
+    gid_ = std::vector<std::uint32_t>(hp.gid.begin(), hp.gid.end()); // (checked above)
     kind_ = hp.kind;
     material_ = hp.material;
     if (hp.motion.size() == hp.size())
@@ -423,7 +412,7 @@ public:
       throw std::invalid_argument("device engine: the box holds 2^31 cells or more of " +
                                   std::to_string(edge) + "; it indexes cells with 31 bits");
     resize(gravity_work_, n_);
-    resize(moved_far_, n_);
+    resize(tally_, n_ + 1);
     if (scene.planes.size() > 255)
       throw std::invalid_argument("device engine: " + std::to_string(scene.planes.size()) +
                                   " planes; it runs at most 255");
@@ -503,7 +492,8 @@ public:
     get(mass_, sorted.mass);
     get(inv_mass_, sorted.inv_mass);
     get(inv_inertia_, sorted.inv_inertia);
-    get(gid_, sorted.gid);
+    const std::vector<std::uint32_t> ids = to_host(gid_);
+    sorted.gid.assign(ids.begin(), ids.end());
     get(kind_, sorted.kind);
     get(material_, sorted.material);
     if (moving_walls_)
@@ -603,12 +593,12 @@ public:
 
   std::vector<PairEnergy> pair_energies() const override {
     const std::vector<double> elastic = to_host(elastic_);
-    const std::vector<std::uint32_t> row = to_host(pair_row_), partner = to_host(partner_),
+    const std::vector<std::uint32_t> row = to_host(touch_row_), partner = to_host(partner_),
                                      pair = to_host(touch_pair_);
-    const std::vector<GlobalId> gid = to_host(gid_);
+    const std::vector<std::uint32_t> gid = to_host(gid_);
     std::vector<PairEnergy> out;
     for (std::size_t c = 0; c < flagged_; ++c)
-      if (elastic[c] != 0.0) out.push_back({gid[row[pair[c]]], gid[partner[pair[c]]], elastic[c]});
+      if (elastic[c] != 0.0) out.push_back({gid[row[c]], gid[partner[pair[c]]], elastic[c]});
     const std::vector<double> plane_elastic = to_host(plane_elastic_);
     const std::vector<std::uint32_t> plane_row = to_host(plane_row_);
     const std::vector<std::uint8_t> plane = to_host(plane_of_);
@@ -621,14 +611,12 @@ public:
 
   DeviceMemory device_memory() const override {
     DeviceMemory m;
-    m.particles =
-        bytes_of(x_, v_, w_, f_, torque_, x_build_, x_rest_, radius_, mass_, inv_mass_,
-                 inv_inertia_, gid_, kind_, material_, motion_, gravity_work_, moved_far_);
+    m.particles = bytes_of(x_, v_, w_, f_, torque_, x_build_, x_rest_, radius_, mass_, inv_mass_,
+                           inv_inertia_, gid_, kind_, material_, motion_, gravity_work_, tally_);
     m.cells = bytes_of(cell_start_);
-    m.pairs = bytes_of(row_start_, partner_, pair_row_, image_, reverse_start_, reverse_pair_,
-                       open_, slot_);
-    m.contacts = bytes_of(carried_, states_, touch_pair_, force_, torque_i_, torque_j_, elastic_,
-                          relaxation_, dissipated_, wall_work_);
+    m.pairs = bytes_of(row_start_, partner_, image_, reverse_start_, reverse_pair_, open_, slot_);
+    m.contacts = bytes_of(carried_, states_, touch_pair_, touch_row_, force_, torque_i_, torque_j_,
+                          elastic_, relaxation_, dissipated_, wall_work_);
     m.planes = bytes_of(plane_point_, plane_normal_, plane_material_, plane_excursion_,
                         plane_offset_, plane_velocity_, plane_start_, plane_row_, plane_of_,
                         plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
@@ -663,8 +651,8 @@ private:
                      raw(material_),    n_};
   }
   PairList pair_list() const {
-    return PairList{raw(row_start_), raw(partner_),       raw(pair_row_),
-                    raw(image_),     raw(reverse_start_), raw(reverse_pair_)};
+    return PairList{raw(row_start_),     raw(partner_),      raw(image_),
+                    raw(reverse_start_), raw(reverse_pair_), n_};
   }
   PlaneSet plane_set() const {
     return PlaneSet{raw(plane_point_),
@@ -718,7 +706,7 @@ private:
     permute_particles(keep);
     n_ -= n_gone;
     resize(gravity_work_, n_);
-    resize(moved_far_, n_);
+    resize(tally_, n_ + 1);
   }
 
   // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
@@ -731,7 +719,7 @@ private:
     DeviceVector<double> d;
     for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
       permute_by(order, *field, d);
-    DeviceVector<GlobalId> g;
+    DeviceVector<std::uint32_t> g;
     permute_by(order, gid_, g);
     DeviceVector<Kind> k;
     permute_by(order, kind_, k);
@@ -865,13 +853,12 @@ private:
     for_each_index(n_, find);
     const std::uint32_t total = offsets_of(count, row_start_);
     DeviceVector<std::uint32_t>().swap(count);
-    resize_all(total, partner_, image_, pair_row_);
+    resize_all(total, partner_, image_);
     find.count = nullptr;
     find.out_start = raw(row_start_);
     find.partner = raw(partner_);
     find.image = raw(image_);
     for_each_index(n_, find);
-    for_each_index(n_, MarkRows{raw(row_start_), raw(pair_row_)});
 
     // 4. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
@@ -884,11 +871,11 @@ private:
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
     // 5. Per-pair room, and the open contacts back in their new pairs: their states in the
-    // stash's slots, where the next evaluation carries them from (CarryState).
+    // stash's slots, where the next evaluation carries them from (GatherTouches).
     resize_all(total, open_, slot_);
     make_room(carried_, n_stashed);
-    for_each_index(total, RestoreContact<Kept>{view(), pair_list(), raw(keys), raw(stashed),
-                                               n_stashed, raw(carried_), raw(slot_), raw(open_)});
+    for_each_index(n_, RestoreContact<Kept>{view(), pair_list(), raw(keys), raw(stashed), n_stashed,
+                                            raw(carried_), raw(slot_), raw(open_)});
 
     // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
     DeviceVector<std::uint32_t> plane_count(n_);
@@ -912,26 +899,23 @@ private:
   }
 
   void compute_forces(double dt) {
-    // The pairs that touch or have just come apart, gathered (FindTouches), their states carried
-    // into their new slots, then their laws.
-    const std::uint32_t pairs = static_cast<std::uint32_t>(partner_.size());
-    for_each_index(pairs, FindTouches{view(), pair_list(), box_, raw(open_)});
-    flagged_ = pairs == 0 ? 0
-                          : static_cast<std::uint32_t>(thrust::count_if(on_device(), raw(open_),
-                                                                        last(open_), IsFlagged{}));
-    make_room_all(flagged_, touch_pair_, states_, force_, torque_i_, torque_j_, elastic_,
-                  dissipated_);
+    // The pairs that touch or have just come apart, flagged and counted by row (FindTouches),
+    // gathered into this step's slots with their states (GatherTouches), then their laws.
+    for_each_index(n_, FindTouches{view(), pair_list(), box_, raw(open_), raw(tally_)});
+    // (each row's count becomes its first slot, in place; the last entry the total)
+    write_one(tally_, n_, std::uint32_t{0});
+    thrust::exclusive_scan(on_device(), raw(tally_), last(tally_), raw(tally_));
+    flagged_ = read_one(tally_, n_);
+    make_room_all(flagged_, touch_pair_, touch_row_, states_, force_, torque_i_, torque_j_,
+                  elastic_, dissipated_);
     if (holds_relaxation) make_room(relaxation_, flagged_);
     if (moving_walls_) make_room(wall_work_, flagged_);
-    if (flagged_ > 0)
-      thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
-                      thrust::counting_iterator<std::uint32_t>(pairs), raw(open_), raw(touch_pair_),
-                      IsFlagged{});
-    for_each_index(flagged_, CarryState<Kept>{raw(open_), raw(touch_pair_), raw(carried_),
-                                              raw(states_), raw(slot_)});
-    for_each_index(flagged_,
-                   PairForces<Kept>{view(), pair_list(), box_, raw(coeffs_), n_materials_, dt,
-                                    raw(states_), raw(open_), raw(touch_pair_), pair_output()});
+    for_each_index(n_, GatherTouches<Kept>{pair_list(), raw(open_), raw(tally_), raw(carried_),
+                                           raw(states_), raw(slot_), raw(touch_pair_),
+                                           raw(touch_row_)});
+    for_each_index(flagged_, PairForces<Kept>{view(), pair_list(), box_, raw(coeffs_), n_materials_,
+                                              dt, raw(states_), raw(open_), raw(touch_pair_),
+                                              raw(touch_row_), pair_output()});
     carried_.swap(states_); // this evaluation's states, for the next
     for_each_index(static_cast<std::uint32_t>(plane_row_.size()),
                    PlaneForces<Kept>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
@@ -944,13 +928,13 @@ private:
   void step_once() {
     PhaseClock clock;
     for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, g_periodic_, raw(gravity_work_),
-                                 raw(moved_far_)});
+                                 raw(tally_)});
     time_ += dt_;
     ++step_;
     place_walls();
     if (any_oscillating_) place_planes(); // (still planes stay where the start put them)
-    const bool build = thrust::reduce(on_device(), raw(moved_far_), last(moved_far_),
-                                      std::uint32_t{0}, thrust::maximum<std::uint32_t>()) != 0;
+    const bool build = thrust::reduce(on_device(), raw(tally_), raw(tally_) + n_, std::uint32_t{0},
+                                      thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
     step_sums_.add(gravity_work_); // queued: collected with the contacts' books below
     clock.add_to(phases_.books);
@@ -1000,7 +984,7 @@ private:
   // The wall particles of each started motion at time_ (RadialCosineMotion::at_time, on the
   // host: the same sine and cosine for every backend).
   void place_walls() {
-    PlaceWalls place{view(), raw(x_rest_), raw(motion_), {}, 0.25 * skin_ * skin_, raw(moved_far_)};
+    PlaceWalls place{view(), raw(x_rest_), raw(motion_), {}, 0.25 * skin_ * skin_, raw(tally_)};
     bool any = false;
     for (std::size_t k = 0; k < motions_.size(); ++k) {
       const DeviceMotion& m = motions_[k];
@@ -1039,21 +1023,25 @@ private:
     requires Model::holds_relaxation;
   };
   DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
-  DeviceVector<GlobalId> gid_;
+  DeviceVector<std::uint32_t> gid_; // (ids beyond 32 bits are refused)
   DeviceVector<Kind> kind_;
   DeviceVector<std::uint8_t> material_;
   DeviceVector<std::uint32_t> cell_start_;
-  DeviceVector<std::uint32_t> row_start_, partner_, pair_row_, reverse_start_, reverse_pair_;
+  DeviceVector<std::uint32_t> row_start_, partner_, reverse_start_, reverse_pair_;
   DeviceVector<std::uint8_t> image_;
   DeviceVector<State> carried_, states_;   // per slot: the last evaluation's, this one's
   DeviceVector<std::uint8_t> open_;        // per pair: FindTouches's flag
   DeviceVector<std::uint32_t> slot_;       // per pair: its slot among the flagged
-  DeviceVector<std::uint32_t> touch_pair_; // the flagged pairs, in order
+  DeviceVector<std::uint32_t> touch_pair_; // per slot: the flagged pairs, in pair order
+  DeviceVector<std::uint32_t> touch_row_;  // per slot: the flagged pair's row
   std::uint32_t flagged_ = 0;              // how many pairs are flagged: the per-slot arrays' count
   DeviceVector<Vec3> force_, torque_i_, torque_j_;
   DeviceVector<double> elastic_, relaxation_, dissipated_;
   DeviceVector<double> gravity_work_;
-  DeviceVector<std::uint32_t> moved_far_;
+  // Per particle and one more, a step's scratch: whether the particle moved more than half the
+  // skin (KickDrift, PlaceWalls: the list-build test), then how many of its row's pairs are
+  // flagged and, summed, the row's first slot (compute_forces).
+  DeviceVector<std::uint32_t> tally_;
   mutable OrderedSums sums_; // one sum at a time
   OrderedSums step_sums_;    // the books of a step, queued
   DeviceVector<Coeffs> coeffs_;

@@ -74,20 +74,36 @@ YUXI_HD inline Vec3 separation(const Vec3& xi, const Vec3& xj, std::uint8_t imag
 struct Particles {
   Vec3 *x, *v, *w, *f, *torque, *x_build;
   const double *radius, *mass, *inv_mass, *inv_inertia;
-  const GlobalId* gid;
+  const std::uint32_t* gid; // the global id (the engine refuses ids beyond 32 bits)
   const Kind* kind;
   const std::uint8_t* material;
   std::uint32_t n;
 };
 
 // The half list in compressed rows: particle i's partners j > i are partner[row_start[i] ..
-// row_start[i + 1]), each with its image; pair_row[p] is the row of pair p.
+// row_start[i + 1]), each with its image. A pair's row is not kept (4 bytes a listed pair, most
+// of which never touch): the phases run by row, and the touching pairs' list keeps theirs.
 struct PairList {
-  const std::uint32_t *row_start, *partner, *pair_row;
+  const std::uint32_t *row_start, *partner;
   const std::uint8_t* image;
   // The pairs where a particle is the partner, in pair order: reverse_pair[reverse_start[j] ..
   // reverse_start[j + 1]).
   const std::uint32_t *reverse_start, *reverse_pair;
+  std::uint32_t n; // particles (rows)
+
+  // The row of pair `pair`: the last i with row_start[i] <= pair (a binary search, for the
+  // phases of a list build).
+  YUXI_HD std::uint32_t row_of(std::uint32_t pair) const {
+    std::uint32_t lo = 0, hi = n; // row_start[lo] <= pair < row_start[hi]
+    while (hi - lo > 1) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (row_start[mid] <= pair)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    return lo;
+  }
 };
 
 // Each particle's sort key at a list build (after wrapping it into the periodic box): its cell,
@@ -205,22 +221,23 @@ constexpr std::uint8_t touches_now = 1, touched_before = 2;
 template <class Model> struct StashContact {
   Particles p;
   PairList list;
-  const typename Model::State* state; // per slot (the contacts' states, CarryState)
+  const typename Model::State* state; // per slot (the contacts' states, GatherTouches)
   const std::uint32_t* slot;          // per pair
   const std::uint32_t* open_pairs;
   std::uint64_t* key;
   typename Model::State* stashed;
   YUXI_HD void operator()(std::uint32_t k) const {
     const std::uint32_t pair = open_pairs[k];
-    const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
+    const GlobalId gi = p.gid[list.row_of(pair)], gj = p.gid[list.partner[pair]];
     const typename Model::State& s = state[slot[pair]];
     key[k] = contact_key(gi, gj);
     stashed[k] = gi < gj ? s : s.mirrored();
   }
 };
 
-// After a list build: each pair finds its stashed contact (binary search on the sorted keys).
-// A found one is open and takes the stash's slot: its state goes there, as the pair sees it.
+// After a list build: each pair of row i finds its stashed contact (binary search on the sorted
+// keys). A found one is open and takes the stash's slot: its state goes there, as the pair sees
+// it.
 template <class Model> struct RestoreContact {
   Particles p;
   PairList list;
@@ -230,50 +247,71 @@ template <class Model> struct RestoreContact {
   typename Model::State* state; // per slot
   std::uint32_t* slot;          // per pair
   std::uint8_t* open;
-  YUXI_HD void operator()(std::uint32_t pair) const {
-    const GlobalId gi = p.gid[list.pair_row[pair]], gj = p.gid[list.partner[pair]];
-    const std::uint32_t at = find_key(key, n_stashed, contact_key(gi, gj));
-    const bool found = at < n_stashed;
-    open[pair] = found ? touches_now : 0; // (the next evaluation reads it as touched_before)
-    if (!found) return;
-    slot[pair] = at;
-    state[at] = gi < gj ? stashed[at] : stashed[at].mirrored();
+  YUXI_HD void operator()(std::uint32_t i) const {
+    const GlobalId gi = p.gid[i];
+    for (std::uint32_t pair = list.row_start[i]; pair < list.row_start[i + 1]; ++pair) {
+      const GlobalId gj = p.gid[list.partner[pair]];
+      const std::uint32_t at = find_key(key, n_stashed, contact_key(gi, gj));
+      const bool found = at < n_stashed;
+      open[pair] = found ? touches_now : 0; // (the next evaluation reads it as touched_before)
+      if (!found) continue;
+      slot[pair] = at;
+      state[at] = gi < gj ? stashed[at] : stashed[at].mirrored();
+    }
   }
 };
 
-// Which listed pairs touch this step (the overlap test of contact_forces.hpp's sweep). A pair
-// with either flag bit is flagged: the flagged pairs are gathered into one list, so that the
-// laws run on full warps (most listed pairs do not touch: 83 % on the chute), and only they have
-// a state (CarryState). A pair that touched and does not touch any more releases its springs
-// (PairForces).
+// Which pairs of row i touch this step (the overlap test of contact_forces.hpp's sweep), and
+// how many of them are flagged. A pair with either flag bit is flagged: the flagged pairs are
+// gathered into one list (GatherTouches), so that the laws run on full warps (most listed pairs
+// do not touch: 83 % on the chute), and only they have a state. A pair that touched and does not
+// touch any more releases its springs (PairForces).
 struct FindTouches {
   Particles p;
   PairList list;
   DeviceBox box;
   std::uint8_t* open;
-  YUXI_HD void operator()(std::uint32_t pair) const {
-    const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
-    const double touch = p.radius[i] + p.radius[j];
-    const bool overlaps = norm2(separation(p.x[i], p.x[j], list.image[pair], box)) < touch * touch;
-    open[pair] = static_cast<std::uint8_t>((overlaps ? touches_now : 0) |
-                                           ((open[pair] & touches_now) ? touched_before : 0));
+  std::uint32_t* flagged; // per row
+  YUXI_HD void operator()(std::uint32_t i) const {
+    std::uint32_t count = 0;
+    for (std::uint32_t pair = list.row_start[i]; pair < list.row_start[i + 1]; ++pair) {
+      const std::uint32_t j = list.partner[pair];
+      const double touch = p.radius[i] + p.radius[j];
+      const bool overlaps =
+          norm2(separation(p.x[i], p.x[j], list.image[pair], box)) < touch * touch;
+      const auto flag = static_cast<std::uint8_t>(
+          (overlaps ? touches_now : 0) | ((open[pair] & touches_now) ? touched_before : 0));
+      open[pair] = flag;
+      if (flag != 0) ++count;
+    }
+    flagged[i] = count;
   }
 };
 
-// Each flagged pair's state for this step, in its slot c: the state it had at its last slot
-// where it touched then, a fresh one otherwise; the pair learns its new slot. States live in
-// slots only, two arrays of them in turn (the last evaluation's, this one's), so that a pair
-// that does not touch holds none.
-template <class Model> struct CarryState {
+// Row i's flagged pairs into the list of this step, in pair order from the row's first slot
+// c = first_slot[i]: each slot learns its pair and row, and takes the pair's state, the one it
+// had at its last slot where it touched then, a fresh one otherwise; the pair learns its new
+// slot. States live in slots only, two arrays of them in turn (the last evaluation's, this
+// one's), so that a pair that does not touch holds none.
+template <class Model> struct GatherTouches {
+  PairList list;
   const std::uint8_t* open;
-  const std::uint32_t* touch_pair;
+  const std::uint32_t* first_slot;      // per row
   const typename Model::State* carried; // per slot of the last evaluation
   typename Model::State* state;         // per slot of this one
   std::uint32_t* slot;                  // per pair
-  YUXI_HD void operator()(std::uint32_t c) const {
-    const std::uint32_t pair = touch_pair[c];
-    state[c] = (open[pair] & touched_before) ? carried[slot[pair]] : typename Model::State{};
-    slot[pair] = c;
+  std::uint32_t* touch_pair;            // per slot
+  std::uint32_t* touch_row;             // per slot
+  YUXI_HD void operator()(std::uint32_t i) const {
+    std::uint32_t c = first_slot[i];
+    for (std::uint32_t pair = list.row_start[i]; pair < list.row_start[i + 1]; ++pair) {
+      if (open[pair] == 0) continue;
+      state[c] = (open[pair] & touched_before) ? carried[slot[pair]] : typename Model::State{};
+      slot[pair] = c;
+      touch_pair[c] = pair;
+      touch_row[c] = i;
+      ++c;
+    }
   }
 };
 
@@ -301,12 +339,13 @@ template <class Model> struct PairForces {
   double dt;
   typename Model::State* state; // per slot
   const std::uint8_t* open;
-  const std::uint32_t* touch_pair;
+  const std::uint32_t* touch_pair; // per slot
+  const std::uint32_t* touch_row;  // per slot
   PairOutput out;
 
   YUXI_HD void operator()(std::uint32_t c) const {
     const std::uint32_t pair = touch_pair[c];
-    const std::uint32_t i = list.pair_row[pair], j = list.partner[pair];
+    const std::uint32_t i = touch_row[c], j = list.partner[pair];
     const typename Model::Coeffs& k = coeffs[p.material[i] * n_materials + p.material[j]];
     ContactResult r;
     double released = 0.0, work = 0.0;
