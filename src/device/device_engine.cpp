@@ -270,13 +270,17 @@ public:
   // Queues the sum of v's first n values (all of them by default); collect() returns it, in the
   // order of the calls to add.
   void add(const DeviceVector<double>& v) { add(v, v.size()); }
-  void add(const DeviceVector<double>& v, std::size_t count) {
+  void add(const DeviceVector<double>& v, std::size_t count) { add_values(raw(v), count); }
+  // Queues the sum of values[0, count), values an array or values computed as they are read
+  // (step_phases.hpp, GravityWork).
+  template <class Values> void add_values(const Values& values, std::size_t count) {
     const std::uint32_t n = static_cast<std::uint32_t>(count);
     const std::uint32_t wide = std::min(n, first_width), narrow = std::min(wide, second_width);
     if (used_ + narrow > second_.size()) second_.resize(2 * (used_ + narrow)); // keeps the sums
     if (first_.size() < wide) resize(first_, wide);
-    for_each_index(wide, StridedSum{raw(v), n, wide, raw(first_)});
-    for_each_index(narrow, StridedSum{raw(first_), wide, narrow, raw(second_) + used_});
+    for_each_index(wide, StridedSum<Values>{values, n, wide, raw(first_)});
+    for_each_index(narrow,
+                   StridedSum<const double*>{raw(first_), wide, narrow, raw(second_) + used_});
     widths_.push_back(narrow);
     used_ += narrow;
   }
@@ -411,7 +415,6 @@ public:
     if (static_cast<double>(cells_.n[0]) * cells_.n[1] * cells_.n[2] >= 2147483648.0)
       throw std::invalid_argument("device engine: the box holds 2^31 cells or more of " +
                                   std::to_string(edge) + "; it indexes cells with 31 bits");
-    resize(gravity_work_, n_);
     resize(tally_, n_ + 1);
     if (scene.planes.size() > 255)
       throw std::invalid_argument("device engine: " + std::to_string(scene.planes.size()) +
@@ -530,14 +533,17 @@ public:
 
   DeviceEnergies energies() const override {
     DeviceEnergies e;
-    DeviceVector<double> translation(n_), rotation(n_), gravitational(n_);
-    DeviceVector<std::uint32_t> grain(n_);
-    for_each_index(n_, GrainEnergies{view(), g_potential_, raw(translation), raw(rotation),
-                                     raw(gravitational), raw(grain)});
-    e.translational = sums_(translation);
-    e.rotational = sums_(rotation);
-    e.gravitational = sums_(gravitational);
-    e.grains = n_ == 0 ? 0 : thrust::reduce(on_device(), raw(grain), last(grain), std::uint32_t{0});
+    DeviceVector<double> rotation;
+    resize(rotation, n_);
+    for_each_index(n_, RotationalEnergy{view(), raw(rotation)});
+    sums_.add_values(TranslationalEnergy{view()}, n_);
+    sums_.add(rotation);
+    sums_.add_values(GravitationalEnergy{view(), g_potential_}, n_);
+    const std::vector<double> kinetic = sums_.collect();
+    e.translational = kinetic[0];
+    e.rotational = kinetic[1];
+    e.gravitational = kinetic[2];
+    e.grains = n_ == 0 ? 0 : thrust::count(on_device(), raw(kind_), last(kind_), Kind::grain);
     const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
       return open.empty() ? 0 : thrust::count_if(on_device(), raw(open), last(open), IsOpen{});
     };
@@ -612,7 +618,7 @@ public:
   DeviceMemory device_memory() const override {
     DeviceMemory m;
     m.particles = bytes_of(x_, v_, w_, f_, torque_, x_build_, x_rest_, radius_, mass_, inv_mass_,
-                           inv_inertia_, gid_, kind_, material_, motion_, gravity_work_, tally_);
+                           inv_inertia_, gid_, kind_, material_, motion_, tally_);
     m.cells = bytes_of(cell_start_);
     m.pairs = bytes_of(row_start_, partner_, image_, reverse_start_, reverse_pair_, open_, slot_);
     m.contacts = bytes_of(carried_, states_, touch_pair_, touch_row_, force_, torque_i_, torque_j_,
@@ -705,7 +711,6 @@ private:
                     thrust::counting_iterator<std::uint32_t>(n_), raw(gone), raw(keep), IsZero{});
     permute_particles(keep);
     n_ -= n_gone;
-    resize(gravity_work_, n_);
     resize(tally_, n_ + 1);
   }
 
@@ -927,8 +932,7 @@ private:
 
   void step_once() {
     PhaseClock clock;
-    for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, g_periodic_, raw(gravity_work_),
-                                 raw(tally_)});
+    for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, raw(tally_)});
     time_ += dt_;
     ++step_;
     place_walls();
@@ -936,7 +940,8 @@ private:
     const bool build = thrust::reduce(on_device(), raw(tally_), raw(tally_) + n_, std::uint32_t{0},
                                       thrust::maximum<std::uint32_t>()) != 0;
     clock.add_to(phases_.integration);
-    step_sums_.add(gravity_work_); // queued: collected with the contacts' books below
+    // (queued: collected with the contacts' books below; read now, before the final kick)
+    step_sums_.add_values(GravityWork{view(), g_periodic_, dt_}, n_);
     clock.add_to(phases_.books);
     if (build) build_list();
     clock.add_to(phases_.list_build);
@@ -1037,7 +1042,6 @@ private:
   std::uint32_t flagged_ = 0;              // how many pairs are flagged: the per-slot arrays' count
   DeviceVector<Vec3> force_, torque_i_, torque_j_;
   DeviceVector<double> elastic_, relaxation_, dissipated_;
-  DeviceVector<double> gravity_work_;
   // Per particle and one more, a step's scratch: whether the particle moved more than half the
   // skin (KickDrift, PlaceWalls: the list-build test), then how many of its row's pairs are
   // flagged and, summed, the row's first slot (compute_forces).

@@ -555,30 +555,25 @@ struct SumForces {
 };
 
 // The first half kick and the drift of every grain (Simulation::kick_drift, operation for
-// operation); per grain, the work of periodic gravity m g_p . dx and whether it moved more than
-// half the skin since the last list build.
+// operation), and whether it moved more than half the skin since the last list build.
 struct KickDrift {
   Particles p;
   double dt, limit2;
-  Vec3 g_periodic;
-  double* gravity_work;
   std::uint32_t*
       moved_far; // 1 where the grain moved far (32-bit: CUB reduces 8-bit flags with spills)
   YUXI_HD void operator()(std::uint32_t i) const {
     if (p.kind[i] != Kind::grain) {
-      gravity_work[i] = 0.0;
       moved_far[i] = 0;
       return;
     }
     const double half_dt = 0.5 * dt;
-    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i], m = p.mass[i];
+    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
     const Vec3 f = p.f[i], torque = p.torque[i];
     Vec3 v = p.v[i], x = p.x[i], w = p.w[i];
     v.x = v.x + f.x * kick, v.y = v.y + f.y * kick, v.z = v.z + f.z * kick;
     const double xx = x.x + v.x * dt, xy = x.y + v.y * dt, xz = x.z + v.z * dt;
     w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
     x.x = xx, x.y = xy, x.z = xz;
-    gravity_work[i] = m * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
     const Vec3 b = p.x_build[i];
     const double dx = xx - b.x, dy = xy - b.y, dz = xz - b.z;
     moved_far[i] = !(dx * dx + dy * dy + dz * dz <= limit2) ? 1 : 0; // NaN too
@@ -634,22 +629,43 @@ struct FinalKick {
   }
 };
 
-// Each grain's energies: of translation, of rotation, and gravitational under gravity's
-// potential part, -m g_potential . x (sim/energy_ledger.cpp, EnergyLedger::parts); 1 per grain in
-// `grain` [energy]. Zeros for wall particles.
-struct GrainEnergies {
+// Values that the fixed-order sums read as they add (StridedSum), computed from the particles
+// where they stand then, so that no array holds them [energy]. Zero for wall particles.
+//
+// The work of periodic gravity over the drift just made, m g_p . v dt, v the half-step velocity
+// (Simulation::kick_drift's gravity work): read between KickDrift and FinalKick.
+struct GravityWork {
+  Particles p;
+  Vec3 g_periodic;
+  double dt;
+  YUXI_HD double operator[](std::uint64_t i) const {
+    if (p.kind[i] != Kind::grain) return 0.0;
+    const Vec3 v = p.v[i];
+    return p.mass[i] * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
+  }
+};
+// Each grain's energy of translation, of rotation, and gravitational under gravity's potential
+// part, -m g_potential . x (sim/energy_ledger.cpp, EnergyLedger::parts).
+struct TranslationalEnergy {
+  Particles p;
+  YUXI_HD double operator[](std::uint64_t i) const {
+    return p.kind[i] == Kind::grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
+  }
+};
+// (written into an array, not computed as the sum reads it: its division, inside the sum's
+// loop, spills registers on the GPU)
+struct RotationalEnergy {
+  Particles p;
+  double* energy;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    energy[i] = p.kind[i] == Kind::grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
+  }
+};
+struct GravitationalEnergy {
   Particles p;
   Vec3 g_potential;
-  double* translation;
-  double* rotation;
-  double* gravitational;
-  std::uint32_t* grain;
-  YUXI_HD void operator()(std::uint32_t i) const {
-    const bool is_grain = p.kind[i] == Kind::grain;
-    translation[i] = is_grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
-    rotation[i] = is_grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
-    gravitational[i] = is_grain ? -(p.mass[i] * dot(g_potential, p.x[i])) : 0.0;
-    grain[i] = is_grain ? 1 : 0;
+  YUXI_HD double operator[](std::uint64_t i) const {
+    return p.kind[i] == Kind::grain ? -(p.mass[i] * dot(g_potential, p.x[i])) : 0.0;
   }
 };
 
@@ -657,8 +673,9 @@ struct GrainEnergies {
 // stride] + ..., added in that order, for t in [0, stride). Neighbouring threads read
 // neighbouring values (coalesced on the GPU, cache lines shared on the CPU). The order depends on
 // n and the stride only, so every backend gives the same bits (device_engine.cpp, OrderedSums).
-struct StridedSum {
-  const double* values;
+// Values: an array, or values computed as they are read (GravityWork).
+template <class Values> struct StridedSum {
+  Values values;
   std::uint32_t n, stride;
   double* sums;
   YUXI_HD void operator()(std::uint32_t t) const {
