@@ -1,6 +1,6 @@
 // What the device engine keeps of a contact's state, and the law it evaluates through it. Each
 // touching pair's state sits on the device twice (the last evaluation's and this one's,
-// CarryState), so its size is a large part of the engine's memory: the frictional laws' state
+// GatherTouches), so its size is a large part of the engine's memory: the frictional laws' state
 // holds a rolling spring beside the tangential one, 40 bytes each, and most scenes roll without
 // resistance. Where no pair of materials has rolling resistance, the engine keeps the tangential
 // spring alone (TangentialOnly) and evaluates the law on a whole state made around it, whose
@@ -10,6 +10,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "contact/frictional_spring.hpp"
+#include "core/always_inline.hpp"
 #include "core/host_device.hpp"
 
 #include <type_traits>
@@ -22,10 +23,13 @@ template <class Model> struct WholeState {
   using Law = Model;
   using Coeffs = typename Model::Coeffs;
   using State = typename Model::State;
-  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s) {
+  YUXI_ALWAYS_INLINE YUXI_HD static ContactResult evaluate(const ContactGeometry& g,
+                                                           const Coeffs& c, State& s) {
     return Model::evaluate(g, c, s);
   }
-  YUXI_HD static double release(const Coeffs& c, State& s) { return Model::release(c, s); }
+  YUXI_ALWAYS_INLINE YUXI_HD static double release(const Coeffs& c, State& s) {
+    return Model::release(c, s);
+  }
   static State kept(const State& whole) { return whole; }
   static State whole(const State& kept) { return kept; }
 };
@@ -46,13 +50,14 @@ template <class Model> struct TangentialOnly {
       return m;
     }
   };
-  YUXI_HD static ContactResult evaluate(const ContactGeometry& g, const Coeffs& c, State& s) {
+  YUXI_ALWAYS_INLINE YUXI_HD static ContactResult evaluate(const ContactGeometry& g,
+                                                           const Coeffs& c, State& s) {
     TangentialRollingState whole{s.tangential, SliderState{}};
     const ContactResult r = Model::evaluate(g, c, whole);
     s.tangential = whole.tangential;
     return r;
   }
-  YUXI_HD static double release(const Coeffs& c, State& s) {
+  YUXI_ALWAYS_INLINE YUXI_HD static double release(const Coeffs& c, State& s) {
     TangentialRollingState whole{s.tangential, SliderState{}};
     const double held = Model::release(c, whole);
     s.tangential = whole.tangential;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "contact/contact_geometry.hpp"
+#include "core/always_inline.hpp"
 #include "core/host_device.hpp"
 #include "core/particle_energy.hpp"
 #include "core/particle_fields.hpp"
@@ -57,8 +58,8 @@ struct DeviceCells {
 // up, d = x_i - (x_j + L); where it is one length down, d = -(x_j - (x_i + L)): the particle near
 // the lower face is always the one shifted up, as the CPU engine's ghosts are (domain/halo.hpp),
 // so that both engines round the same sums and a pair's overlap agrees to the bit.
-YUXI_HD inline Vec3 separation(const Vec3& xi, const Vec3& xj, std::uint8_t image,
-                               const DeviceBox& box) {
+YUXI_ALWAYS_INLINE YUXI_HD Vec3 separation(const Vec3& xi, const Vec3& xj, std::uint8_t image,
+                                           const DeviceBox& box) {
   Vec3 d;
   for (int a = 0; a < 3; ++a) {
     const int code = image % 3;

@@ -102,6 +102,15 @@ TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
   const device::DeviceEnergies dev = engine->energies();
   expect_books_agree(dev, cpu, EnergyBooks{}, 1e-9);
   EXPECT_GT(cpu.dissipated, 0.0);
+  // What the device holds stays near what the run needs (DeviceEngine::device_memory): when
+  // written, 386 bytes a particle and 202 a touching contact; keeping the frictional law's whole
+  // state and every energy per contact, as before, held 517 and 308.
+  const device::DeviceMemory memory = engine->device_memory();
+  const double per_particle = static_cast<double>(memory.total()) / 32000.0;
+  const double per_contact =
+      static_cast<double>(memory.contacts) / static_cast<double>(dev.contacts);
+  EXPECT_LT(per_particle, 420.0);
+  EXPECT_LT(per_contact, 240.0) << "bytes per touching contact";
   const device::HostParticles got = engine->particles();
   const ParticleStore expected = by_id(*sim);
   EXPECT_LE(relative_difference(
