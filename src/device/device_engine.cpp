@@ -387,6 +387,11 @@ public:
     // standing one stays where it stands (x is its rest position) and does no work.
     for (const DeviceMotion& m : motions_) moving_walls_ = moving_walls_ || m.radial_cosine;
     if (moving_walls_) x_rest_ = hp.x_rest.size() == hp.size() ? hp.x_rest : hp.x;
+    // (a wall particle's velocity is its motion's; one given a velocity and no motion would
+    // book work as the CPU engine does)
+    walls_work_ = moving_walls_;
+    for (std::size_t i = 0; i < hp.size(); ++i)
+      if (hp.kind[i] == Kind::wall && !(hp.v[i] == Vec3{})) walls_work_ = true;
     coeffs_ = coeffs;
     n_materials_ = static_cast<std::uint32_t>(scene.n_materials);
 
@@ -681,7 +686,7 @@ private:
                       raw(elastic_),
                       holds_relaxation ? raw(relaxation_) : nullptr,
                       raw(dissipated_),
-                      moving_walls_ ? raw(wall_work_) : nullptr};
+                      walls_work_ ? raw(wall_work_) : nullptr};
   }
 
   // field[k] = field[order[k]], through scratch.
@@ -914,7 +919,7 @@ private:
     make_room_all(flagged_, touch_pair_, touch_row_, states_, force_, torque_i_, torque_j_,
                   elastic_, dissipated_);
     if (holds_relaxation) make_room(relaxation_, flagged_);
-    if (moving_walls_) make_room(wall_work_, flagged_);
+    if (walls_work_) make_room(wall_work_, flagged_);
     for_each_index(n_, GatherTouches<Kept>{pair_list(), raw(open_), raw(tally_), raw(carried_),
                                            raw(states_), raw(slot_), raw(touch_pair_),
                                            raw(touch_row_)});
@@ -951,12 +956,12 @@ private:
     clock.add_to(phases_.integration);
     step_sums_.add(dissipated_, flagged_);
     step_sums_.add(plane_dissipated_);
-    if (moving_walls_) step_sums_.add(wall_work_, flagged_);
+    if (walls_work_) step_sums_.add(wall_work_, flagged_);
     const std::vector<double> booked = step_sums_.collect();
     gravity_work_total_ += booked[0];
     dissipated_total_ += booked[1];
     dissipated_total_ += booked[2];
-    if (moving_walls_) wall_work_total_ += booked[3];
+    if (walls_work_) wall_work_total_ += booked[3];
     if (any_oscillating_) book_plane_work();
     clock.add_to(phases_.books);
   }
@@ -1022,7 +1027,8 @@ private:
   std::vector<DevicePlane> planes_;
   std::vector<double> plane_work_total_;
   bool any_oscillating_ = false;
-  bool moving_walls_ = false; // a wall particle moves: x_rest_ and wall_work_ are kept
+  bool moving_walls_ = false; // a wall particle moves: x_rest_ is kept
+  bool walls_work_ = false;   // a wall particle moves or has a velocity: wall_work_ is kept
   // The law's contacts hold energy in a relaxation buffer: relaxation_ is kept.
   static constexpr bool holds_relaxation = requires {
     requires Model::holds_relaxation;
