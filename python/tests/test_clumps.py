@@ -406,18 +406,23 @@ def test_a_refused_addition_keeps_the_books_of_a_grain_that_escaped_meanwhile(bo
 
 def test_clumps_too_long_for_the_sub_domains_are_refused_before_anything_changes(box_scene,
                                                                                   tmp_path):
-    """A periodic axis 2.5 long: a rod (written along y) whose members stand 2 from its anchor
-    member, and which may turn to lie along x, needs ghosts reaching farther than the box holds.
-    Refused, nothing added, and the run goes on."""
+    """A periodic axis 2.5 long: a dumbbell 2.4 wide (two spheres 1.9 apart, written along y),
+    whose members stand 1.9 from its anchor member and which may turn to lie along x, needs
+    ghosts reaching farther than the box holds. Refused, nothing added, and the run goes on. A
+    rod wider than the box is refused for meeting its own periodic images."""
     scene = empty_rods_box(box_scene)
     scene["domain"]["hi"][0] = 2.5
     scene["domain"]["boundary"] = ["periodic", "wall", "wall"]
     scene["particle"][0]["position"] = [1.0, 7.5, 0.3]
+    scene["shape"].append({"name": "dumbbell", "spheres": [[0.0, -0.95, 0.0, 0.25],
+                                                           [0.0, 0.95, 0.0, 0.25]]})
     scene["shape"].append({"name": "long", "spheres": [[0.0, 0.5 * k, 0.0, 0.25]
                                                        for k in range(9)]})
     sim = yuxi.Simulation(scene, output=tmp_path / "long", progress=False)
     with pytest.raises(ValueError, match="a sub-domain along axis 0 \\(2.5 wide\\) is "
                                          "narrower than the cells' edge plus that"):
+        sim.add_clumps("dumbbell", [[1.25, 4.0, 6.0]])
+    with pytest.raises(ValueError, match="new clump 0 spans 4.5 .* along x, 2.5"):
         sim.add_clumps("long", [[1.25, 4.0, 6.0]])
     assert len(sim.clumps()["id"]) == 0
     sim.add_clumps("rod", [[1.25, 4.0, 6.0]])  # (a short one fits)

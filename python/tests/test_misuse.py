@@ -149,6 +149,32 @@ def test_grains_and_clumps_added_into_a_mesh_or_a_cylinder_are_refused_by_name(b
     sim.close()
 
 
+def test_a_clump_wider_than_a_periodic_box_is_refused(box_scene, tmp_path):
+    """A clump whose bounding sphere is wider than the box along a periodic axis would meet its
+    own periodic images, which the members of one clump never touch: refused, from Python and
+    from the scene, naming the axis; one that fits is taken."""
+    box_scene["domain"]["boundary"] = ["periodic", "wall", "wall"]
+    del box_scene["fill"]
+    box_scene["particle"] = [{"position": [4.0, 4.0, 1.0], "radius": 0.5, "density": 1.0,
+                              "material": "grain"}]
+    box_scene["shape"] = [
+        {"name": "long", "spheres": [[0.4 * k - 4.2, 0.0, 0.0, 0.2] for k in range(22)]},
+        {"name": "rod", "spheres": [[0.4 * k - 1.8, 0.0, 0.0, 0.2] for k in range(10)]}]
+    sim = yuxi.Simulation(box_scene, output=tmp_path / "python", progress=False)
+    with pytest.raises(ValueError, match="new clump 0 spans 8.8 .* more than the periodic box's "
+                                         "length along x, 8: its members would meet their own "
+                                         "periodic images"):
+        sim.add_clumps("long", [[4.0, 4.0, 6.0]])
+    assert sim.energies()["grains"] == 1
+    sim.add_clumps("rod", [[4.0, 4.0, 6.0]])
+    sim.run(steps=10)
+    assert sim.energies()["grains"] == 2
+    sim.close()
+    box_scene["clump"] = [{"shape": "long", "position": [4.0, 4.0, 6.0], "material": "grain"}]
+    with pytest.raises(ValueError, match="spans 8.8 .* along x, 8"):
+        yuxi.Simulation(box_scene, output=tmp_path / "scene", progress=False)
+
+
 def test_add_grains_checks_its_lengths(sim):
     with pytest.raises(ValueError, match="2 positions but radii of shape \\(3,\\)"):
         sim.add_grains([[4.0, 4.0, 11.0], [6.0, 4.0, 11.0]], [0.5, 0.5, 0.5])

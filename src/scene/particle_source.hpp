@@ -45,6 +45,11 @@ struct InsertSpec {
   // shape scaled to the size drawn.
   double largest_sphere() const { return grains.size.largest() * sphere_scale(false); }
   double smallest_sphere() const { return grains.size.smallest() * sphere_scale(true); }
+  // The diameter of the largest clump's bounding sphere (0: spheres).
+  double clump_span() const {
+    if (!pours_clumps()) return 0.0;
+    return 2.0 * clump.scaled(grains.size.largest() / clump.bounding_radius).bounding_radius;
+  }
   // The farthest a member's centre stands from its clump's centre of mass (0: spheres).
   double clump_reach() const {
     if (!pours_clumps()) return 0.0;

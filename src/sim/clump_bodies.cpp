@@ -368,6 +368,19 @@ template <class Archive, class Body> void transfer(Archive& ar, Body& b) {
 
 } // namespace
 
+double ClumpBody::span() const {
+  double r = 0.0;
+  for (std::size_t k = 0; k < members.size(); ++k) r = std::max(r, norm(members[k]) + radii[k]);
+  return 2.0 * r;
+}
+
+std::pair<double, GlobalId> ClumpBodies::widest() const {
+  std::pair<double, GlobalId> widest{0.0, -1};
+  for (const ClumpBody& b : bodies_)
+    if (b.span() > widest.first) widest = {b.span(), b.id};
+  return widest;
+}
+
 double ClumpBodies::reach() const {
   double r = 0.0;
   for (const ClumpBody& b : bodies_) r = std::max(r, clump_reach(b.members));

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace yuxi {
@@ -56,6 +57,10 @@ struct ClumpBody {
   // 1 / (1/M + max_k sum_a d_ka^2 / I_a), d_ka the distance of b_k from principal axis a (the
   // time step's check).
   double smallest_contact_mass() const;
+  // The diameter of the smallest sphere about the centre of mass that holds every member,
+  // 2 max_k (|b_k| + a_k) [length]: however the clump turns, no two of its members stand
+  // farther apart, surfaces included.
+  double span() const;
 };
 
 // A clump of `shape` (scene/clump_shape.hpp) and `density` [mass/length^3]: its body, of id
@@ -131,6 +136,8 @@ public:
   // (scene/clump_shape.hpp: clump_anchor) [length]: how far a member may stand outside the
   // sub-domain that owns its clump (0 without clumps).
   double reach() const;
+  // The largest span() of the clumps here, and the id of a clump that has it (-1: none here).
+  std::pair<double, GlobalId> widest() const;
 
   // Moving between ranks with their members (sim/exchange.cpp), the body with its anchor
   // member: the body of id `id` (its index here), or size() where none is here; a body's

@@ -50,8 +50,25 @@ bool Simulation::ghosts_reach_for_clumps() const {
   return comm().size() > 1 || box.periodic(0) || box.periodic(1) || box.periodic(2);
 }
 
+void Simulation::check_clump_span(double span, const std::string& what) const {
+  for (int a = 0; a < 3; ++a)
+    if (config_.box.periodic(a) && span > config_.box.length(a))
+      throw std::invalid_argument(fmt::format(
+          "{} spans {:.6g} (the diameter of its bounding sphere), more than the periodic box's "
+          "length along {}, {:.6g}: its members would meet their own periodic images, which the "
+          "members of one clump never touch; make the box longer along {}, or the clump smaller",
+          what, span, "xyz"[a], config_.box.length(a), "xyz"[a]));
+}
+
 void Simulation::update_clump_reach() {
   if (!ghosts_reach_for_clumps()) return;
+  const auto [span, id] = clumps_.widest();
+  const double widest = comm().max(span);
+  if (widest == span && id >= 0) check_clump_span(span, fmt::format("clump {}", id));
+  check_clump_span(widest, "a clump on another rank");
+  for (std::size_t k = 0; k < sources_.inserts().size(); ++k)
+    check_clump_span(sources_.inserts()[k].clump_span(),
+                     fmt::format("a clump of [[insert]] {}", k));
   double reach = std::max(config_.clump_reach, comm().max(clumps_.reach()));
   for (const InsertSpec& insert : sources_.inserts()) reach = std::max(reach, insert.clump_reach());
   if (reach != exchange_.clump_reach()) exchange_.set_clump_reach(reach);

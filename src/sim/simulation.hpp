@@ -372,6 +372,9 @@ private:
   // Collective, where ghosts_reach_for_clumps(): the clumps' reach (Exchange::set_clump_reach)
   // from the scene's, the clumps' here and the inserts'.
   void update_clump_reach();
+  // Refuses a clump (`what`) wider than the box along a periodic axis: its members would meet
+  // their own periodic images, and the members of one clump never touch (ClumpBody::span).
+  void check_clump_span(double span, const std::string& what) const;
   // The box that a clump's centre (with its members) is wrapped into: periodic only along axes
   // that one rank spans (across ranks the migration shifts them).
   Box member_wrap_box() const;

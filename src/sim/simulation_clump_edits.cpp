@@ -165,6 +165,7 @@ std::vector<GlobalId> Simulation::add_clumps(std::vector<PlacedClump> clumps) {
       members.push_back(m);
       clump_of.push_back(c);
     }
+    check_clump_span(body.span(), where());
     reach = std::max(reach, clump_reach(body.members));
     ids.push_back(next);
     next += static_cast<GlobalId>(clumps[c].members.size());
