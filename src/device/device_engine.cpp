@@ -815,16 +815,12 @@ private:
     sort_stash(keys, stashed);
   }
 
-  // start[i] = count[0] + ... + count[i - 1] for i in [0, n], n = count's size; returns the
-  // total, start[n].
-  static std::uint32_t offsets_of(const DeviceVector<std::uint32_t>& count,
-                                  DeviceVector<std::uint32_t>& start) {
-    const std::uint32_t n = static_cast<std::uint32_t>(count.size());
-    resize(start, n + 1);
-    thrust::exclusive_scan(on_device(), raw(count), last(count), raw(start));
-    const std::uint32_t total = n == 0 ? 0 : read_one(start, n - 1) + read_one(count, n - 1);
-    write_one(start, n, total);
-    return total;
+  // The counts in v[0, n) become their offsets in place: v[i] = count[0] + ... + count[i - 1]
+  // for i in [0, n]; returns the total, v[n]. v holds n + 1.
+  static std::uint32_t counts_to_offsets(DeviceVector<std::uint32_t>& v, std::uint32_t n) {
+    write_one(v, n, std::uint32_t{0});
+    thrust::exclusive_scan(on_device(), raw(v), raw(v) + n + 1, raw(v));
+    return read_one(v, n);
   }
 
   // Escapes, the cell sort, the list and the grain-plane candidates, with the open contacts
@@ -855,14 +851,12 @@ private:
     }
     DeviceVector<std::uint64_t>().swap(key);
 
-    // 3. The half list: count, offsets, fill.
-    DeviceVector<std::uint32_t> count;
-    resize(count, n_);
-    FindPartners find{view(),     box_,    cells_,  raw(cell_start_), skin_,
-                      raw(count), nullptr, nullptr, nullptr};
+    // 3. The half list: count (into the rows' starts), offsets, fill.
+    resize(row_start_, n_ + 1);
+    FindPartners find{view(),          box_,    cells_,  raw(cell_start_), skin_,
+                      raw(row_start_), nullptr, nullptr, nullptr};
     for_each_index(n_, find);
-    const std::uint32_t total = offsets_of(count, row_start_);
-    DeviceVector<std::uint32_t>().swap(count);
+    const std::uint32_t total = counts_to_offsets(row_start_, n_);
     resize_all(total, partner_, image_);
     find.count = nullptr;
     find.out_start = raw(row_start_);
@@ -888,10 +882,11 @@ private:
                                             raw(carried_), raw(slot_), raw(open_)});
 
     // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
-    DeviceVector<std::uint32_t> plane_count(n_);
-    FindPlanes find_planes{view(), plane_set(), skin_, raw(plane_count), nullptr, nullptr, nullptr};
+    resize(plane_start_, n_ + 1);
+    FindPlanes find_planes{view(),  plane_set(), skin_,  raw(plane_start_),
+                           nullptr, nullptr,     nullptr};
     for_each_index(n_, find_planes);
-    const std::uint32_t candidates = offsets_of(plane_count, plane_start_);
+    const std::uint32_t candidates = counts_to_offsets(plane_start_, n_);
     resize_all(candidates, plane_row_, plane_of_);
     find_planes.count = nullptr;
     find_planes.start = raw(plane_start_);
@@ -912,10 +907,7 @@ private:
     // The pairs that touch or have just come apart, flagged and counted by row (FindTouches),
     // gathered into this step's slots with their states (GatherTouches), then their laws.
     for_each_index(n_, FindTouches{view(), pair_list(), box_, raw(open_), raw(tally_)});
-    // (each row's count becomes its first slot, in place; the last entry the total)
-    write_one(tally_, n_, std::uint32_t{0});
-    thrust::exclusive_scan(on_device(), raw(tally_), last(tally_), raw(tally_));
-    flagged_ = read_one(tally_, n_);
+    flagged_ = counts_to_offsets(tally_, n_); // (each row's count becomes its first slot)
     make_room_all(flagged_, touch_pair_, touch_row_, states_, force_, torque_i_, torque_j_,
                   elastic_, dissipated_);
     if (holds_relaxation) make_room(relaxation_, flagged_);

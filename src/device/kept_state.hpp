@@ -20,7 +20,6 @@ namespace yuxi::device {
 
 // The law's own state, kept whole.
 template <class Model> struct WholeState {
-  using Law = Model;
   using Coeffs = typename Model::Coeffs;
   using State = typename Model::State;
   YUXI_ALWAYS_INLINE YUXI_HD static ContactResult evaluate(const ContactGeometry& g,
@@ -38,7 +37,6 @@ template <class Model> struct WholeState {
 // pair of materials resists rolling (Coeffs::rolling() false): its rolling spring stays zero.
 template <class Model> struct TangentialOnly {
   static_assert(std::is_same_v<typename Model::State, TangentialRollingState>);
-  using Law = Model;
   using Coeffs = typename Model::Coeffs;
   struct State {
     SliderState tangential;
@@ -52,19 +50,19 @@ template <class Model> struct TangentialOnly {
   };
   YUXI_ALWAYS_INLINE YUXI_HD static ContactResult evaluate(const ContactGeometry& g,
                                                            const Coeffs& c, State& s) {
-    TangentialRollingState whole{s.tangential, SliderState{}};
-    const ContactResult r = Model::evaluate(g, c, whole);
-    s.tangential = whole.tangential;
+    TangentialRollingState state = whole(s);
+    const ContactResult r = Model::evaluate(g, c, state);
+    s = kept(state);
     return r;
   }
   YUXI_ALWAYS_INLINE YUXI_HD static double release(const Coeffs& c, State& s) {
-    TangentialRollingState whole{s.tangential, SliderState{}};
-    const double held = Model::release(c, whole);
-    s.tangential = whole.tangential;
+    TangentialRollingState state = whole(s);
+    const double held = Model::release(c, state);
+    s = kept(state);
     return held;
   }
-  static State kept(const TangentialRollingState& whole) { return State{whole.tangential}; }
-  static TangentialRollingState whole(const State& kept) {
+  YUXI_HD static State kept(const TangentialRollingState& whole) { return State{whole.tangential}; }
+  YUXI_HD static TangentialRollingState whole(const State& kept) {
     return TangentialRollingState{kept.tangential, SliderState{}};
   }
   // Whether a run can keep the tangential spring alone: no pair of materials resists rolling,
