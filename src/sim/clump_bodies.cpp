@@ -377,7 +377,7 @@ double ClumpBody::span() const {
 std::pair<double, GlobalId> ClumpBodies::widest() const {
   std::pair<double, GlobalId> widest{0.0, -1};
   for (const ClumpBody& b : bodies_)
-    if (b.span() > widest.first) widest = {b.span(), b.id};
+    if (const double span = b.span(); span > widest.first) widest = {span, b.id};
   return widest;
 }
 
