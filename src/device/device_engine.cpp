@@ -354,12 +354,9 @@ public:
     x_ = hp.x;
     v_ = hp.v;
     w_ = hp.w;
-    if (scene.forces_given) {
-      f_ = hp.f;
-      torque_ = hp.torque;
-    } else {
-      f_.assign(n_, Vec3{});
-      torque_.assign(n_, Vec3{});
+    if (scene.forces_given) { // (kept until the first step's kick)
+      given_force_ = hp.f;
+      given_torque_ = hp.torque;
     }
     x_build_ = hp.x;
     radius_ = hp.radius;
@@ -484,7 +481,7 @@ public:
   }
 
   void run(std::int64_t steps) override {
-    for (std::int64_t s = 0; s < steps; ++s) step_once();
+    for (std::int64_t s = 0; s < steps; ++s) step_once(s + 1 == steps);
   }
 
   HostParticles particles() const override {
@@ -494,8 +491,15 @@ public:
     get(x_, sorted.x);
     get(v_, sorted.v);
     get(w_, sorted.w);
-    get(f_, sorted.f);
-    get(torque_, sorted.torque);
+    if (given_force_.empty()) {
+      DeviceVector<Vec3> force(n_), torque(n_);
+      for_each_index(n_, WriteLoads{view(), grain_loads(), raw(force), raw(torque)});
+      get(force, sorted.f);
+      get(torque, sorted.torque);
+    } else {
+      get(given_force_, sorted.f);
+      get(given_torque_, sorted.torque);
+    }
     get(radius_, sorted.radius);
     get(mass_, sorted.mass);
     get(inv_mass_, sorted.inv_mass);
@@ -622,8 +626,8 @@ public:
 
   DeviceMemory device_memory() const override {
     DeviceMemory m;
-    m.particles = bytes_of(x_, v_, w_, f_, torque_, x_build_, x_rest_, radius_, mass_, inv_mass_,
-                           inv_inertia_, gid_, kind_, material_, motion_, tally_);
+    m.particles = bytes_of(x_, v_, w_, x_build_, x_rest_, radius_, mass_, inv_mass_, inv_inertia_,
+                           gid_, kind_, material_, motion_, tally_, given_force_, given_torque_);
     m.cells = bytes_of(cell_start_);
     m.pairs = bytes_of(row_start_, partner_, image_, reverse_start_, reverse_pair_, open_, slot_);
     m.contacts = bytes_of(carried_, states_, touch_pair_, touch_row_, force_, torque_i_, torque_j_,
@@ -653,13 +657,15 @@ private:
   Particles view() const {
     // The functors write through these pointers; the engine owns the arrays.
     auto& self = const_cast<Engine&>(*this);
-    return Particles{raw(self.x_),      raw(self.v_),
-                     raw(self.w_),      raw(self.f_),
-                     raw(self.torque_), raw(self.x_build_),
-                     raw(radius_),      raw(mass_),
-                     raw(inv_mass_),    raw(inv_inertia_),
-                     raw(gid_),         raw(kind_),
-                     raw(material_),    n_};
+    return Particles{raw(self.x_), raw(self.v_), raw(self.w_),   raw(self.x_build_),
+                     raw(radius_), raw(mass_),   raw(inv_mass_), raw(inv_inertia_),
+                     raw(gid_),    raw(kind_),   raw(material_), n_};
+  }
+  // The sums of the forces on the grains from what the last evaluation's contacts gave.
+  GrainLoads grain_loads() const {
+    auto& self = const_cast<Engine&>(*this);
+    return GrainLoads{pair_list(),       self.pair_output(),  raw(open_), raw(slot_),
+                      raw(plane_start_), self.plane_output(), gravity_};
   }
   PairList pair_list() const {
     return PairList{raw(row_start_),     raw(partner_),      raw(image_),
@@ -689,11 +695,15 @@ private:
                       walls_work_ ? raw(wall_work_) : nullptr};
   }
 
-  // field[k] = field[order[k]], through scratch.
+  // field[k] = field[order[k]], through scratch; field holds exactly what it needs afterwards
+  // (the particles only ever grow fewer: room to grow would be wasted).
   template <class T>
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
-    resize(scratch, order.size());
+    if (scratch.capacity() == order.size())
+      scratch.resize(order.size());
+    else
+      DeviceVector<T>(order.size()).swap(scratch);
     thrust::gather(on_device(), raw(order), last(order), raw(field), raw(scratch));
     field.swap(scratch);
   }
@@ -722,8 +732,11 @@ private:
   // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
   void permute_particles(const DeviceVector<std::uint32_t>& order) {
     DeviceVector<Vec3> v3;
-    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &f_, &torque_, &x_build_})
-      permute_by(order, *field, v3);
+    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &x_build_}) permute_by(order, *field, v3);
+    if (!given_force_.empty()) {
+      permute_by(order, given_force_, v3);
+      permute_by(order, given_torque_, v3);
+    }
     if (moving_walls_) permute_by(order, x_rest_, v3);
     if (!x_now_.empty()) permute_by(order, x_now_, v3);
     DeviceVector<double> d;
@@ -923,13 +936,21 @@ private:
                    PlaneForces<Kept>{view(), plane_set(), raw(plane_row_), raw(plane_of_),
                                      raw(coeffs_), n_materials_, dt, raw(plane_state_),
                                      raw(plane_open_), plane_output()});
-    for_each_index(n_, SumForces{view(), pair_list(), pair_output(), raw(open_), raw(slot_),
-                                 raw(plane_start_), plane_output(), gravity_});
   }
 
-  void step_once() {
+  // One step. The last of a run ends with the final kick alone; the others end with the next
+  // step's first kick and drift too (FinalKick), which sum the forces once for both.
+  void step_once(bool last) {
     PhaseClock clock;
-    for_each_index(n_, KickDrift{view(), dt_, 0.25 * skin_ * skin_, raw(tally_)});
+    const double limit2 = 0.25 * skin_ * skin_;
+    if (!drifted_) {
+      const bool given = !given_force_.empty();
+      for_each_index(n_, KickDrift{view(), grain_loads(), given ? raw(given_force_) : nullptr,
+                                   given ? raw(given_torque_) : nullptr, dt_, limit2, raw(tally_)});
+      DeviceVector<Vec3>().swap(given_force_);
+      DeviceVector<Vec3>().swap(given_torque_);
+    }
+    drifted_ = false;
     time_ += dt_;
     ++step_;
     place_walls();
@@ -944,7 +965,8 @@ private:
     clock.add_to(phases_.list_build);
     compute_forces(dt_);
     clock.add_to(phases_.forces);
-    for_each_index(n_, FinalKick{view(), dt_});
+    for_each_index(n_, FinalKick{view(), grain_loads(), dt_, limit2, last ? nullptr : raw(tally_)});
+    drifted_ = !last;
     clock.add_to(phases_.integration);
     step_sums_.add(dissipated_, flagged_);
     step_sums_.add(plane_dissipated_);
@@ -1000,7 +1022,12 @@ private:
   }
 
   std::uint32_t n_ = 0, n_materials_ = 1;
-  DeviceVector<Vec3> x_, v_, w_, f_, torque_, x_build_;
+  DeviceVector<Vec3> x_, v_, w_, x_build_;
+  // The forces and torques a run continued mid-way came with, until its first step's kick.
+  DeviceVector<Vec3> given_force_, given_torque_;
+  // The step's first kick and drift are done (by the last step's FinalKick): tally_ holds the
+  // moved-far flags.
+  bool drifted_ = false;
   DeviceVector<Vec3> x_now_; // while the start's list is made again: where the particles stand
   // The still planes, and the grain-plane candidates of the last list build (per candidate: its
   // grain, its plane, the contact's state, whether it is open, and what it gave this step).

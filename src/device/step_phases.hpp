@@ -72,8 +72,9 @@ YUXI_ALWAYS_INLINE YUXI_HD Vec3 separation(const Vec3& xi, const Vec3& xj, std::
 }
 
 // The particles, sorted by cell at each list build.
+// No force or torque is kept per particle: the kicks sum them from the contacts (GrainLoads).
 struct Particles {
-  Vec3 *x, *v, *w, *f, *torque, *x_build;
+  Vec3 *x, *v, *w, *x_build;
   const double *radius, *mass, *inv_mass, *inv_inertia;
   const std::uint32_t* gid; // the global id (the engine refuses ids beyond 32 bits)
   const Kind* kind;
@@ -518,9 +519,10 @@ struct OfPlane {
 
 // Each grain's force and torque: gravity, then its touching pairs as the row particle, then as
 // the partner, each in pair order, then its plane contacts in candidate order. Wall particles
-// keep none.
-struct SumForces {
-  Particles p;
+// have none. No array keeps them between steps (48 bytes a particle): each kick sums them again
+// from what the contacts gave, in the same order, so to the same bits (docs/ARCHITECTURE.md,
+// "The device engine").
+struct GrainLoads {
   PairList list;
   PairOutput out;
   const std::uint8_t* open;         // FindTouches's flags
@@ -528,13 +530,10 @@ struct SumForces {
   const std::uint32_t* plane_start; // each particle's first grain-plane candidate
   PlaneOutput planes;
   Vec3 gravity;
-  YUXI_HD void operator()(std::uint32_t i) const {
-    if (p.kind[i] != Kind::grain) {
-      p.f[i] = Vec3{};
-      p.torque[i] = Vec3{};
-      return;
-    }
-    Vec3 f = gravity * p.mass[i], t;
+  YUXI_ALWAYS_INLINE YUXI_HD void operator()(const Particles& p, std::uint32_t i, Vec3& f,
+                                             Vec3& t) const {
+    f = gravity * p.mass[i];
+    t = Vec3{};
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
       if (!(open[k] & touches_now)) continue;
       f += out.force[slot[k]];
@@ -550,15 +549,55 @@ struct SumForces {
       f += planes.force[c];
       t += planes.torque[c];
     }
-    p.f[i] = f;
-    p.torque[i] = t;
   }
 };
 
-// The first half kick and the drift of every grain (Simulation::kick_drift, operation for
-// operation), and whether it moved more than half the skin since the last list build.
+// Each particle's force and torque into arrays (zero for wall particles): for the host, at an
+// output step.
+struct WriteLoads {
+  Particles p;
+  GrainLoads loads;
+  Vec3 *force, *torque;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    Vec3 f, t;
+    if (p.kind[i] == Kind::grain) loads(p, i, f, t);
+    force[i] = f;
+    torque[i] = t;
+  }
+};
+
+// Half a kick of grain i under force f and torque t (Simulation::kick_drift and final_kick,
+// operation for operation).
+YUXI_ALWAYS_INLINE YUXI_HD void half_kick(const Particles& p, std::uint32_t i, double dt,
+                                          const Vec3& f, const Vec3& torque) {
+  const double half_dt = 0.5 * dt;
+  const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
+  Vec3 v = p.v[i], w = p.w[i];
+  v.x = v.x + f.x * kick, v.y = v.y + f.y * kick, v.z = v.z + f.z * kick;
+  w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
+  p.v[i] = v;
+  p.w[i] = w;
+}
+
+// The drift of grain i over dt, and whether it has now moved more than half the skin since the
+// last list build (limit2: that half squared).
+YUXI_ALWAYS_INLINE YUXI_HD std::uint32_t drift(const Particles& p, std::uint32_t i, double dt,
+                                               double limit2) {
+  const Vec3 v = p.v[i], x = p.x[i];
+  const double xx = x.x + v.x * dt, xy = x.y + v.y * dt, xz = x.z + v.z * dt;
+  p.x[i] = Vec3{xx, xy, xz};
+  const Vec3 b = p.x_build[i];
+  const double dx = xx - b.x, dy = xy - b.y, dz = xz - b.z;
+  return !(dx * dx + dy * dy + dz * dz <= limit2) ? 1 : 0; // NaN too
+}
+
+// The first half kick and the drift of every grain, and whether it moved more than half the
+// skin since the last list build: under the forces the last step's contacts gave, or under
+// `given` ones (a run continued mid-way, before its first step).
 struct KickDrift {
   Particles p;
+  GrainLoads loads;
+  const Vec3 *given_force, *given_torque; // null: summed from the contacts
   double dt, limit2;
   std::uint32_t*
       moved_far; // 1 where the grain moved far (32-bit: CUB reduces 8-bit flags with spills)
@@ -567,20 +606,37 @@ struct KickDrift {
       moved_far[i] = 0;
       return;
     }
-    const double half_dt = 0.5 * dt;
-    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
-    const Vec3 f = p.f[i], torque = p.torque[i];
-    Vec3 v = p.v[i], x = p.x[i], w = p.w[i];
-    v.x = v.x + f.x * kick, v.y = v.y + f.y * kick, v.z = v.z + f.z * kick;
-    const double xx = x.x + v.x * dt, xy = x.y + v.y * dt, xz = x.z + v.z * dt;
-    w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
-    x.x = xx, x.y = xy, x.z = xz;
-    const Vec3 b = p.x_build[i];
-    const double dx = xx - b.x, dy = xy - b.y, dz = xz - b.z;
-    moved_far[i] = !(dx * dx + dy * dy + dz * dz <= limit2) ? 1 : 0; // NaN too
-    p.v[i] = v;
-    p.w[i] = w;
-    p.x[i] = x;
+    Vec3 f, t;
+    if (given_force) {
+      f = given_force[i];
+      t = given_torque[i];
+    } else {
+      loads(p, i, f, t);
+    }
+    half_kick(p, i, dt, f, t);
+    moved_far[i] = drift(p, i, dt, limit2);
+  }
+};
+
+// The second half kick of every grain (Simulation::final_kick); where `moved_far` is given,
+// the next step's first half kick and drift as well, under the same forces (KickDrift): the
+// same operations in the same order, with one sum of the forces instead of two.
+struct FinalKick {
+  Particles p;
+  GrainLoads loads;
+  double dt, limit2;
+  std::uint32_t* moved_far; // null: the kick alone
+  YUXI_HD void operator()(std::uint32_t i) const {
+    if (p.kind[i] != Kind::grain) {
+      if (moved_far) moved_far[i] = 0;
+      return;
+    }
+    Vec3 f, t;
+    loads(p, i, f, t);
+    half_kick(p, i, dt, f, t);
+    if (!moved_far) return;
+    half_kick(p, i, dt, f, t);
+    moved_far[i] = drift(p, i, dt, limit2);
   }
 };
 
@@ -611,22 +667,6 @@ struct PlaceWalls {
     p.x[i] = q.position;
     p.v[i] = q.velocity;
     if (!(norm2(q.position - p.x_build[i]) <= limit2)) moved_far[i] = 1;
-  }
-};
-
-// The second half kick (Simulation::final_kick).
-struct FinalKick {
-  Particles p;
-  double dt;
-  YUXI_HD void operator()(std::uint32_t i) const {
-    if (p.kind[i] != Kind::grain) return;
-    const double half_dt = 0.5 * dt;
-    const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
-    const Vec3 f = p.f[i], torque = p.torque[i];
-    Vec3& v = p.v[i];
-    Vec3& w = p.w[i];
-    v.x += f.x * kick, v.y += f.y * kick, v.z += f.z * kick;
-    w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
   }
 };
 
