@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -249,7 +250,7 @@ struct Escaped {
         if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) out = true;
     gone[i] = out ? 1 : 0;
     energy[i] =
-        out ? mechanical_energy(p.mass[i], p.x[i], p.v[i], p.w[i], p.inv_inertia[i], g_potential)
+        out ? mechanical_energy(p.mass(i), p.x[i], p.v[i], p.w[i], p.inv_inertia(i), g_potential)
             : 0.0;
   }
 };
@@ -359,10 +360,7 @@ public:
       given_torque_ = hp.torque;
     }
     x_build_ = hp.x;
-    radius_ = hp.radius;
-    mass_ = hp.mass;
-    inv_mass_ = hp.inv_mass;
-    inv_inertia_ = hp.inv_inertia;
+    take_species(hp);
     gid_ = std::vector<std::uint32_t>(hp.gid.begin(), hp.gid.end()); // (checked above)
     kind_ = hp.kind;
     material_ = hp.material;
@@ -500,10 +498,17 @@ public:
       get(given_force_, sorted.f);
       get(given_torque_, sorted.torque);
     }
-    get(radius_, sorted.radius);
-    get(mass_, sorted.mass);
-    get(inv_mass_, sorted.inv_mass);
-    get(inv_inertia_, sorted.inv_inertia);
+    {
+      const std::vector<Species> species = to_host(species_);
+      const std::vector<std::uint16_t> species_of = to_host(species_of_);
+      for (std::uint32_t i = 0; i < n_; ++i) {
+        const Species& s = species[species_of.empty() ? i : species_of[i]];
+        sorted.radius.push_back(s.radius);
+        sorted.mass.push_back(s.mass);
+        sorted.inv_mass.push_back(s.inv_mass);
+        sorted.inv_inertia.push_back(s.inv_inertia);
+      }
+    }
     const std::vector<std::uint32_t> ids = to_host(gid_);
     sorted.gid.assign(ids.begin(), ids.end());
     get(kind_, sorted.kind);
@@ -626,8 +631,8 @@ public:
 
   DeviceMemory device_memory() const override {
     DeviceMemory m;
-    m.particles = bytes_of(x_, v_, w_, x_build_, x_rest_, radius_, mass_, inv_mass_, inv_inertia_,
-                           gid_, kind_, material_, motion_, tally_, given_force_, given_torque_);
+    m.particles = bytes_of(x_, v_, w_, x_build_, x_rest_, species_, species_of_, gid_, kind_,
+                           material_, motion_, tally_, given_force_, given_torque_);
     m.cells = bytes_of(cell_start_);
     m.pairs = bytes_of(row_start_, partner_, image_, reverse_start_, reverse_pair_, open_, slot_);
     m.contacts = bytes_of(carried_, states_, touch_pair_, touch_row_, force_, torque_i_, torque_j_,
@@ -657,9 +662,11 @@ private:
   Particles view() const {
     // The functors write through these pointers; the engine owns the arrays.
     auto& self = const_cast<Engine&>(*this);
-    return Particles{raw(self.x_), raw(self.v_), raw(self.w_),   raw(self.x_build_),
-                     raw(radius_), raw(mass_),   raw(inv_mass_), raw(inv_inertia_),
-                     raw(gid_),    raw(kind_),   raw(material_), n_};
+    return Particles{raw(self.x_),   raw(self.v_),
+                     raw(self.w_),   raw(self.x_build_),
+                     raw(species_),  species_of_.empty() ? nullptr : raw(species_of_),
+                     raw(gid_),      raw(kind_),
+                     raw(material_), n_};
   }
   // The sums of the forces on the grains from what the last evaluation's contacts gave.
   GrainLoads grain_loads() const {
@@ -693,6 +700,37 @@ private:
                       holds_relaxation ? raw(relaxation_) : nullptr,
                       raw(dissipated_),
                       walls_work_ ? raw(wall_work_) : nullptr};
+  }
+
+  // The particles' radii, masses and inertias, as a table of species shared by index where at
+  // most 65,536 distinct ones are at most half the particles; otherwise one per particle.
+  void take_species(const HostParticles& hp) {
+    std::vector<Species> table;
+    std::vector<std::uint16_t> index;
+    std::map<std::array<std::uint64_t, 4>, std::uint16_t> seen; // by their bits
+    const std::size_t most = std::min<std::size_t>(65536, hp.size() / 2);
+    for (std::size_t i = 0; i < hp.size(); ++i) {
+      const Species s{hp.radius[i], hp.mass[i], hp.inv_mass[i], hp.inv_inertia[i]};
+      const std::array<std::uint64_t, 4> bits{
+          std::bit_cast<std::uint64_t>(s.radius), std::bit_cast<std::uint64_t>(s.mass),
+          std::bit_cast<std::uint64_t>(s.inv_mass), std::bit_cast<std::uint64_t>(s.inv_inertia)};
+      const auto [at, added] = seen.emplace(bits, static_cast<std::uint16_t>(table.size()));
+      if (added) {
+        if (table.size() == most) break;
+        table.push_back(s);
+      }
+      index.push_back(at->second);
+    }
+    if (index.size() == hp.size() && !index.empty()) {
+      species_ = table;
+      species_of_ = index;
+      return;
+    }
+    table.clear();
+    for (std::size_t i = 0; i < hp.size(); ++i)
+      table.push_back({hp.radius[i], hp.mass[i], hp.inv_mass[i], hp.inv_inertia[i]});
+    species_of_.clear();
+    if (!table.empty()) species_ = table; // (assigned only when not empty: see resize())
   }
 
   // field[k] = field[order[k]], through scratch; field holds exactly what it needs afterwards
@@ -739,9 +777,13 @@ private:
     }
     if (moving_walls_) permute_by(order, x_rest_, v3);
     if (!x_now_.empty()) permute_by(order, x_now_, v3);
-    DeviceVector<double> d;
-    for (DeviceVector<double>* field : {&radius_, &mass_, &inv_mass_, &inv_inertia_})
-      permute_by(order, *field, d);
+    if (species_of_.empty()) {
+      DeviceVector<Species> s;
+      permute_by(order, species_, s);
+    } else {
+      DeviceVector<std::uint16_t> s;
+      permute_by(order, species_of_, s);
+    }
     DeviceVector<std::uint32_t> g;
     permute_by(order, gid_, g);
     DeviceVector<Kind> k;
@@ -1052,7 +1094,10 @@ private:
   static constexpr bool holds_relaxation = requires {
     requires Model::holds_relaxation;
   };
-  DeviceVector<double> radius_, mass_, inv_mass_, inv_inertia_;
+  // The particles' species (Particles): a table and each particle's index in it, or (where they
+  // are too many to share) one species per particle and no index.
+  DeviceVector<Species> species_;
+  DeviceVector<std::uint16_t> species_of_;
   DeviceVector<std::uint32_t> gid_; // (ids beyond 32 bits are refused)
   DeviceVector<Kind> kind_;
   DeviceVector<std::uint8_t> material_;

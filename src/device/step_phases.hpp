@@ -72,14 +72,32 @@ YUXI_ALWAYS_INLINE YUXI_HD Vec3 separation(const Vec3& xi, const Vec3& xj, std::
 }
 
 // The particles, sorted by cell at each list build.
-// No force or torque is kept per particle: the kicks sum them from the contacts (GrainLoads).
+// A particle's radius [length], mass [mass], inverse mass and inverse moment of inertia: the
+// same four for every particle of a species.
+struct Species {
+  double radius, mass, inv_mass, inv_inertia;
+};
+
+// The particles, sorted by cell at each list build. No force or torque is kept per particle:
+// the kicks sum them from the contacts (GrainLoads). Where the particles are of few species,
+// each keeps the index of its species (2 bytes, not 32): a monodisperse bed, or a few sizes,
+// reads one small table; otherwise each particle is a species of its own.
 struct Particles {
   Vec3 *x, *v, *w, *x_build;
-  const double *radius, *mass, *inv_mass, *inv_inertia;
-  const std::uint32_t* gid; // the global id (the engine refuses ids beyond 32 bits)
+  const Species* species;
+  const std::uint16_t* species_of; // each particle's species; null: species[i] is particle i's
+  const std::uint32_t* gid;        // the global id (the engine refuses ids beyond 32 bits)
   const Kind* kind;
   const std::uint8_t* material;
   std::uint32_t n;
+
+  YUXI_ALWAYS_INLINE YUXI_HD const Species& of(std::uint32_t i) const {
+    return species[species_of ? species_of[i] : i];
+  }
+  YUXI_ALWAYS_INLINE YUXI_HD double radius(std::uint32_t i) const { return of(i).radius; }
+  YUXI_ALWAYS_INLINE YUXI_HD double mass(std::uint32_t i) const { return of(i).mass; }
+  YUXI_ALWAYS_INLINE YUXI_HD double inv_mass(std::uint32_t i) const { return of(i).inv_mass; }
+  YUXI_ALWAYS_INLINE YUXI_HD double inv_inertia(std::uint32_t i) const { return of(i).inv_inertia; }
 };
 
 // The half list in compressed rows: particle i's partners j > i are partner[row_start[i] ..
@@ -179,7 +197,7 @@ struct FindPartners {
             if (j <= i) continue;
             if (p.kind[i] == Kind::wall && p.kind[j] == Kind::wall) continue;
             const Vec3 dij = separation(xi, p.x[j], code, box); // as PairForces sees the pair
-            const double reach = p.radius[i] + p.radius[j] + skin;
+            const double reach = p.radius(i) + p.radius(j) + skin;
             if (!(norm2(dij) < reach * reach)) continue;
             if (count) {
               ++found;
@@ -278,7 +296,7 @@ struct FindTouches {
     std::uint32_t count = 0;
     for (std::uint32_t pair = list.row_start[i]; pair < list.row_start[i + 1]; ++pair) {
       const std::uint32_t j = list.partner[pair];
-      const double touch = p.radius[i] + p.radius[j];
+      const double touch = p.radius(i) + p.radius(j);
       const bool overlaps =
           norm2(separation(p.x[i], p.x[j], list.image[pair], box)) < touch * touch;
       const auto flag = static_cast<std::uint8_t>(
@@ -353,8 +371,8 @@ template <class Model> struct PairForces {
     double released = 0.0, work = 0.0;
     if (open[pair] & touches_now) {
       const Vec3 d = separation(p.x[i], p.x[j], list.image[pair], box);
-      const ContactGeometry g = pair_geometry(d, norm2(d), p.radius[i], p.radius[j], p.v[i], p.v[j],
-                                              p.w[i], p.w[j], p.inv_mass[i], p.inv_mass[j], dt);
+      const ContactGeometry g = pair_geometry(d, norm2(d), p.radius(i), p.radius(j), p.v[i], p.v[j],
+                                              p.w[i], p.w[j], p.inv_mass(i), p.inv_mass(j), dt);
       r = Model::evaluate(g, k, state[c]);
       // Work of a wall particle's prescribed motion (contact_forces.hpp, book_wall_work).
       if (p.kind[j] == Kind::wall) work += dot(r.force, p.v[j]) * dt;
@@ -403,7 +421,7 @@ struct FindPlanes {
     if (p.kind[i] == Kind::grain)
       for (std::uint32_t k = 0; k < planes.count; ++k) {
         if (!(dot(p.x[i] - planes.point[k], planes.normal[k]) <
-              p.radius[i] + skin + planes.excursion[k]))
+              p.radius(i) + skin + planes.excursion[k]))
           continue;
         if (count) {
           ++found;
@@ -485,11 +503,11 @@ template <class Model> struct PlaneForces {
     const typename Model::Coeffs& co = coeffs[p.material[i] * n_materials + planes.material[k]];
     ContactResult r;
     double released = 0.0, work = 0.0;
-    if (dist < p.radius[i]) {
+    if (dist < p.radius(i)) {
       open[c] = 1;
       const Vec3 v_plane = planes.velocity[k];
-      const ContactGeometry g = wall_geometry(planes.normal[k], dist, p.radius[i], p.v[i], v_plane,
-                                              p.w[i], p.inv_mass[i], dt);
+      const ContactGeometry g = wall_geometry(planes.normal[k], dist, p.radius(i), p.v[i], v_plane,
+                                              p.w[i], p.inv_mass(i), dt);
       r = Model::evaluate(g, co, state[c]);
       work = dot(r.force, v_plane) * dt;
     } else if (open[c]) {
@@ -532,7 +550,7 @@ struct GrainLoads {
   Vec3 gravity;
   YUXI_ALWAYS_INLINE YUXI_HD void operator()(const Particles& p, std::uint32_t i, Vec3& f,
                                              Vec3& t) const {
-    f = gravity * p.mass[i];
+    f = gravity * p.mass(i);
     t = Vec3{};
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
       if (!(open[k] & touches_now)) continue;
@@ -571,7 +589,7 @@ struct WriteLoads {
 YUXI_ALWAYS_INLINE YUXI_HD void half_kick(const Particles& p, std::uint32_t i, double dt,
                                           const Vec3& f, const Vec3& torque) {
   const double half_dt = 0.5 * dt;
-  const double kick = half_dt * p.inv_mass[i], spin = half_dt * p.inv_inertia[i];
+  const double kick = half_dt * p.inv_mass(i), spin = half_dt * p.inv_inertia(i);
   Vec3 v = p.v[i], w = p.w[i];
   v.x = v.x + f.x * kick, v.y = v.y + f.y * kick, v.z = v.z + f.z * kick;
   w.x += torque.x * spin, w.y += torque.y * spin, w.z += torque.z * spin;
@@ -679,18 +697,20 @@ struct GravityWork {
   Particles p;
   Vec3 g_periodic;
   double dt;
-  YUXI_HD double operator[](std::uint64_t i) const {
+  YUXI_HD double operator[](std::uint64_t k) const {
+    const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
     if (p.kind[i] != Kind::grain) return 0.0;
     const Vec3 v = p.v[i];
-    return p.mass[i] * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
+    return p.mass(i) * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
   }
 };
 // Each grain's energy of translation, of rotation, and gravitational under gravity's potential
 // part, -m g_potential . x (sim/energy_ledger.cpp, EnergyLedger::parts).
 struct TranslationalEnergy {
   Particles p;
-  YUXI_HD double operator[](std::uint64_t i) const {
-    return p.kind[i] == Kind::grain ? translational_energy(p.mass[i], p.v[i]) : 0.0;
+  YUXI_HD double operator[](std::uint64_t k) const {
+    const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
+    return p.kind[i] == Kind::grain ? translational_energy(p.mass(i), p.v[i]) : 0.0;
   }
 };
 // (written into an array, not computed as the sum reads it: its division, inside the sum's
@@ -699,14 +719,15 @@ struct RotationalEnergy {
   Particles p;
   double* energy;
   YUXI_HD void operator()(std::uint32_t i) const {
-    energy[i] = p.kind[i] == Kind::grain ? rotational_energy(p.w[i], p.inv_inertia[i]) : 0.0;
+    energy[i] = p.kind[i] == Kind::grain ? rotational_energy(p.w[i], p.inv_inertia(i)) : 0.0;
   }
 };
 struct GravitationalEnergy {
   Particles p;
   Vec3 g_potential;
-  YUXI_HD double operator[](std::uint64_t i) const {
-    return p.kind[i] == Kind::grain ? -(p.mass[i] * dot(g_potential, p.x[i])) : 0.0;
+  YUXI_HD double operator[](std::uint64_t k) const {
+    const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
+    return p.kind[i] == Kind::grain ? -(p.mass(i) * dot(g_potential, p.x[i])) : 0.0;
   }
 };
 

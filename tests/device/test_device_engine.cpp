@@ -102,14 +102,15 @@ TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
   const device::DeviceEnergies dev = engine->energies();
   expect_books_agree(dev, cpu, EnergyBooks{}, 1e-9);
   EXPECT_GT(cpu.dissipated, 0.0);
-  // What the device holds stays near what the run needs (DeviceEngine::device_memory): when
-  // written, 386 bytes a particle and 202 a touching contact; keeping the frictional law's whole
-  // state and every energy per contact, as before, held 517 and 308.
+  // What the device holds stays near what the run needs (DeviceEngine::device_memory): 296 bytes
+  // a particle and 202 a touching contact now; keeping the frictional law's whole state, every
+  // energy per contact, each particle's force and torque, and its radius, mass and inertias
+  // rather than its species held 517 and 308.
   const device::DeviceMemory memory = engine->device_memory();
   const double per_particle = static_cast<double>(memory.total()) / 32000.0;
   const double per_contact =
       static_cast<double>(memory.contacts) / static_cast<double>(dev.contacts);
-  EXPECT_LT(per_particle, 420.0);
+  EXPECT_LT(per_particle, 310.0);
   EXPECT_LT(per_contact, 240.0) << "bytes per touching contact";
   const device::HostParticles got = engine->particles();
   const ParticleStore expected = by_id(*sim);
@@ -165,6 +166,82 @@ INSTANTIATE_TEST_SUITE_P(Laws, DeviceEngineLaw,
                          [](const testing::TestParamInfo<const char*>& law) {
                            return std::string(law.param);
                          });
+
+// A bed of Hertz-Mindlin grains settling on a plane in a periodic box, of the size
+// distribution `size` (a scene's `size = {...}`).
+std::unique_ptr<Simulation> settling_bed(const std::string& size) {
+  const std::string text = R"(
+materials = ["grain"]
+[run]
+dt = 1.0e-4
+t_end = 1.0
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [12.0, 12.0, 30.0]
+boundary = ["periodic", "periodic", "open"]
+gravity = [0.0, 0.0, -9.81]
+skin = 0.1
+[material.grain]
+youngs_modulus = 1.0e6
+poisson_ratio = 0.3
+density = 1000.0
+[contact]
+model = "hertz_mindlin"
+[[contact.pair]]
+materials = ["grain", "grain"]
+restitution = 0.5
+friction = 0.5
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "grain"
+[[fill]]
+material = "grain"
+count = 3000
+placement = "lattice"
+jitter = 0.05
+seed = 3
+region = { shape = "box", lo = [0.0, 0.0, 0.0], hi = [12.0, 12.0, 26.0] }
+)" + size + "\n";
+  Scene scene = read_scene_text(text, "settling-bed.toml");
+  return build_simulation(scene, false);
+}
+
+// Grains of many sizes (each its own radius, mass and inertia on the device) and of two sizes
+// (their index into a table of two): both against the CPU engine, and the table saving what it
+// should (Particles, Species).
+TEST(DeviceEngine, GrainsOfOneSizeEachOrOfTwoSizesMatchTheCpuEngine) {
+  std::size_t particle_bytes[2] = {0, 0};
+  int k = 0;
+  for (const char* size :
+       {"size = { distribution = \"uniform\", min = 0.3, max = 0.4 }",
+        "size = { distribution = \"discrete\", radii = [0.3, 0.4], weights = [1.0, 1.0] }"}) {
+    SCOPED_TRACE(size);
+    const auto sim = settling_bed(size);
+    const auto engine = make_device_engine(*sim, DeviceChoice::host);
+    const std::int64_t steps = 8000;
+    sim->run(steps);
+    engine->run(steps);
+    const EnergyBooks cpu = sim->energies();
+    ASSERT_GT(sim->last_tally().touching, 1000u) << "the grains have reached the plane";
+    expect_books_agree(engine->energies(), cpu, EnergyBooks{}, 1e-9);
+    const device::HostParticles got = engine->particles();
+    const ParticleStore expected = by_id(*sim);
+    ASSERT_EQ(got.size(), expected.n_owned());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      ASSERT_EQ(got.radius[i], expected.radius[i]);
+      ASSERT_EQ(got.mass[i], expected.mass[i]);
+      ASSERT_EQ(got.inv_inertia[i], expected.inv_inertia[i]);
+    }
+    EXPECT_LE(relative_difference(
+                  got.v, std::vector<Vec3>(expected.v.begin(), expected.v.begin() + got.size())),
+              1e-8);
+    ASSERT_EQ(got.size(), 3000u);
+    particle_bytes[k++] = engine->device_memory().particles;
+  }
+  // 32 bytes of radius, mass and inertias a particle, or a 2-byte index into a table of two.
+  EXPECT_EQ(particle_bytes[0] - particle_bytes[1], 3000u * 30u - 2u * 32u);
+}
 
 TEST(DeviceEngine, RepeatsItselfToTheBit) {
   const auto sim = scene_simulation("chute-lammps.toml");
