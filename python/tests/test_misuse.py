@@ -175,6 +175,27 @@ def test_a_clump_wider_than_a_periodic_box_is_refused(box_scene, tmp_path):
         yuxi.Simulation(box_scene, output=tmp_path / "scene", progress=False)
 
 
+def test_a_grain_too_large_for_the_cells_names_the_key_that_makes_room(box_scene, tmp_path):
+    """The linked cells are sized for the scene's grains: a larger one added from Python is
+    refused, naming the scene key that makes room for it and the value it needs; with that key
+    set, the same grain is taken."""
+    with yuxi.Simulation(box_scene, output=tmp_path / "small", progress=False) as sim:
+        with pytest.raises(ValueError, match=r"new grain 0: radius 1.5 is larger than the linked "
+                                             r"cells allow .*\[domain\] cell_size = 3.2 or more"):
+            sim.add_grains([[4.0, 4.0, 8.0]], 1.5)
+    box_scene["shape"] = [{"name": "big", "spheres": [[-0.5, 0.0, 0.0, 1.0], [0.5, 0.0, 0.0, 1.5]]}]
+    with yuxi.Simulation(box_scene, output=tmp_path / "clumps", progress=False) as sim:
+        with pytest.raises(ValueError, match=r"new clump 0: member 1: radius 1.5 is larger .*"
+                                             r"cell_size = 3.2 or more"):
+            sim.add_clumps("big", [[4.0, 4.0, 8.0]])
+    box_scene["domain"]["cell_size"] = 3.2
+    box_scene["fill"][0]["count"] = 27  # (the lowest layers: room above them)
+    with yuxi.Simulation(box_scene, output=tmp_path / "room", progress=False) as sim:
+        (big,) = sim.add_grains([[4.0, 4.0, 9.0]], 1.5)
+        sim.run(steps=10)
+        assert big in sim.gather("id")
+
+
 def test_add_grains_checks_its_lengths(sim):
     with pytest.raises(ValueError, match="2 positions but radii of shape \\(3,\\)"):
         sim.add_grains([[4.0, 4.0, 11.0], [6.0, 4.0, 11.0]], [0.5, 0.5, 0.5])

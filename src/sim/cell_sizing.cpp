@@ -39,4 +39,11 @@ double cell_edge_for(SimulationConfig& c, double reach) {
   return edge > 0.0 ? edge : 1.0;
 }
 
+std::string cells_too_small_for(double radius, double cell_edge, double skin) {
+  if (2 * radius + skin <= cell_edge) return "";
+  return fmt::format("radius {} is larger than the linked cells allow ({}); give the scene's "
+                     "[domain] cell_size = {} or more (the grain's diameter and the skin)",
+                     radius, 0.5 * (cell_edge - skin), 2 * radius + skin);
+}
+
 } // namespace yuxi

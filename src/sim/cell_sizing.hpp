@@ -6,6 +6,8 @@
 #include "domain/comm.hpp"
 #include "sim/simulation_config.hpp"
 
+#include <string>
+
 namespace yuxi {
 
 // Lengths of the region the particles occupy (the whole box along periodic axes, and where
@@ -18,5 +20,9 @@ Vec3 occupied_lengths(const Box& box, const ParticleStore& s, const Comm* comm =
 // plus the skin, or the scene's cell size, which may shorten the skin in `c` to fit. Throws
 // std::invalid_argument where the cell size is below the reach.
 double cell_edge_for(SimulationConfig& c, double reach);
+
+// Why a sphere of `radius` added to a running simulation does not fit its linked cells (edge
+// `cell_edge`, skin `skin`), and what the scene must say for it to: "" where it fits.
+std::string cells_too_small_for(double radius, double cell_edge, double skin);
 
 } // namespace yuxi

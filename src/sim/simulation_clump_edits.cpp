@@ -4,6 +4,7 @@
 // do (simulation_edits.cpp; docs/ARCHITECTURE.md, "Energy books").
 #include "contact/contact_history.hpp"
 #include "scene/clump_shape.hpp"
+#include "sim/cell_sizing.hpp"
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -157,14 +158,19 @@ std::vector<GlobalId> Simulation::add_clumps(std::vector<PlacedClump> clumps) {
         throw std::invalid_argument(
             fmt::format("{}: member {} at ({:.6g}, {:.6g}, {:.6g}) is outside the domain", where(),
                         k, m.position.x, m.position.y, m.position.z));
-      if (2 * m.radius + config_.skin > exchange_.cell_edge())
-        throw std::invalid_argument(fmt::format(
-            "{}: member {} of radius {} is larger than the linked cells allow ({}); give the "
-            "scene's [neighbor] min_contact_reach",
-            where(), k, m.radius, 0.5 * (exchange_.cell_edge() - config_.skin)));
       members.push_back(m);
       clump_of.push_back(c);
     }
+    // (the largest member, so that the advice makes room for every one)
+    const auto largest = std::max_element(
+        clumps[c].members.begin(), clumps[c].members.end(),
+        [](const ParticleSpec& a, const ParticleSpec& b) { return a.radius < b.radius; });
+    if (largest != clumps[c].members.end())
+      if (const std::string why =
+              cells_too_small_for(largest->radius, exchange_.cell_edge(), config_.skin);
+          !why.empty())
+        throw std::invalid_argument(
+            fmt::format("{}: member {}: {}", where(), largest - clumps[c].members.begin(), why));
     check_clump_span(body.span(), where());
     reach = std::max(reach, clump_reach(body.members));
     ids.push_back(next);

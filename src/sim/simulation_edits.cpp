@@ -5,6 +5,7 @@
 #include "contact/contact_history.hpp"
 #include "scene/ball_hash.hpp"
 #include "scene/closest_point_on_triangle.hpp"
+#include "sim/cell_sizing.hpp"
 #include "sim/simulation.hpp"
 
 #include <algorithm>
@@ -279,11 +280,9 @@ std::vector<GlobalId> Simulation::add_grains(std::span<const ParticleSpec> grain
         !is_finite(p.angular_velocity))
       throw std::invalid_argument(where() +
                                   ": radius and mass must be positive, velocities finite");
-    if (2 * p.radius + config_.skin > exchange_.cell_edge())
-      throw std::invalid_argument(
-          fmt::format("{}: radius {} is larger than the linked cells allow ({}); give the scene's "
-                      "[neighbor] min_contact_reach",
-                      where(), p.radius, 0.5 * (exchange_.cell_edge() - config_.skin)));
+    if (const std::string why = cells_too_small_for(p.radius, exchange_.cell_edge(), config_.skin);
+        !why.empty())
+      throw std::invalid_argument(where() + ": " + why);
     if (p.material >= contacts_.n_materials())
       throw std::invalid_argument(fmt::format("{}: material {} is not one of the scene's {}",
                                               where(), p.material, contacts_.n_materials()));
