@@ -989,8 +989,6 @@ private:
       const bool given = !given_force_.empty();
       for_each_index(n_, KickDrift{view(), grain_loads(), given ? raw(given_force_) : nullptr,
                                    given ? raw(given_torque_) : nullptr, dt_, limit2, raw(tally_)});
-      DeviceVector<Vec3>().swap(given_force_);
-      DeviceVector<Vec3>().swap(given_torque_);
     }
     drifted_ = false;
     time_ += dt_;
@@ -1006,6 +1004,10 @@ private:
     if (build) build_list();
     clock.add_to(phases_.list_build);
     compute_forces(dt_);
+    // (the forces a run continued with, until the contacts hold their own: kept for particles()
+    // should this first step stop before)
+    DeviceVector<Vec3>().swap(given_force_);
+    DeviceVector<Vec3>().swap(given_torque_);
     clock.add_to(phases_.forces);
     for_each_index(n_, FinalKick{view(), grain_loads(), dt_, limit2, last ? nullptr : raw(tally_)});
     drifted_ = !last;
@@ -1065,7 +1067,7 @@ private:
 
   std::uint32_t n_ = 0, n_materials_ = 1;
   DeviceVector<Vec3> x_, v_, w_, x_build_;
-  // The forces and torques a run continued mid-way came with, until its first step's kick.
+  // The forces and torques a run continued mid-way came with, until its first step's forces.
   DeviceVector<Vec3> given_force_, given_torque_;
   // The step's first kick and drift are done (by the last step's FinalKick): tally_ holds the
   // moved-far flags.

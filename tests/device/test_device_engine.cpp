@@ -330,6 +330,33 @@ TEST(DeviceEngine, EscapedGrainsLeaveAsOnTheCpuEngine) {
   EXPECT_EQ(engine->particles().size(), sim->gather_particles().n_owned());
 }
 
+// A run continued mid-way comes with its forces, computed at the last step's half-step
+// velocities; it keeps them until its first step has computed its own. A grain thrown out of the
+// box stops that first step at its list build: the forces handed back are the ones it came with.
+TEST(DeviceEngine, ARunStoppedInItsFirstStepHandsBackTheForcesItCameWith) {
+  const auto sim = settled_small_basin(EscapePolicy::stop);
+  const ParticleStore now = sim->gather_particles();
+  GlobalId highest = -1;
+  double top = -1e300;
+  for (std::size_t i = 0; i < now.n_owned(); ++i)
+    if (now.kind[i] == Kind::grain && now.x[i].z > top) {
+      top = now.x[i].z;
+      highest = now.gid[i];
+    }
+  const std::vector<GlobalId> thrown{highest};
+  sim->set_velocities(thrown, std::vector<Vec3>{Vec3{0.0, 0.0, 1e9}}); // out in one step
+  const ParticleStore given = sim->gather_particles();
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  EXPECT_THROW(engine->run(10), std::runtime_error);
+  const device::HostParticles got = engine->particles();
+  ASSERT_EQ(got.size(), given.n_owned());
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (given.kind[i] == Kind::grain) {
+      ASSERT_EQ(got.f[i], given.f[i]) << "grain " << given.gid[i];
+      ASSERT_EQ(got.torque[i], given.torque[i]) << "grain " << given.gid[i];
+    }
+}
+
 #if !defined(YUXI_HAVE_CUDA)
 // Two grains meeting obliquely (impact parameter b/d = 0.5) under the thermodynamic law, without
 // gravity: after they part, the device engine's velocities and spins are the CPU engine's, so
