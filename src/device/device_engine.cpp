@@ -355,7 +355,12 @@ public:
     x_ = hp.x;
     v_ = hp.v;
     w_ = hp.w;
-    if (scene.forces_given) { // (kept until the first step's kick)
+    if (scene.forces_given) { // (kept until the first step's forces)
+      if (hp.f.size() != hp.size() || hp.torque.size() != hp.size())
+        throw std::invalid_argument("device engine: " + std::to_string(hp.f.size()) +
+                                    " forces and " + std::to_string(hp.torque.size()) +
+                                    " torques given for " + std::to_string(hp.size()) +
+                                    " particles");
       given_force_ = hp.f;
       given_torque_ = hp.torque;
     }

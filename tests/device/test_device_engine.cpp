@@ -5,6 +5,8 @@
 // engine's, so the two agree to round-off, not to the bit (docs/ARCHITECTURE.md, "The device
 // engine"). Label "device".
 #include "contact/hertz_mindlin.hpp"
+#include "contact/linear_spring_dashpot.hpp"
+#include "device/device_engine.hpp"
 #include "io/scene_reader.hpp"
 #include "run/device_run.hpp"
 #include "run/scene_builder.hpp"
@@ -269,6 +271,54 @@ TEST(DeviceEngine, RefusesWhatItDoesNotRunByName) {
     for (const char* table : {"[[cylinder]]", "[[mesh]]", "[[insert]]", "[[outlet]]"})
       EXPECT_NE(what.find(table), std::string::npos) << table << " in: " << what;
   }
+}
+
+// A scene handed to the engine that contradicts itself is refused, naming what is wrong.
+TEST(DeviceEngine, RefusesAContradictoryScene) {
+  const auto two_grains = [] {
+    device::DeviceScene scene;
+    scene.lo = Vec3{0.0, 0.0, 0.0};
+    scene.hi = Vec3{10.0, 10.0, 10.0};
+    scene.dt = 1e-4;
+    scene.skin = 0.1;
+    device::HostParticles& p = scene.particles;
+    for (int k = 0; k < 2; ++k) {
+      p.x.push_back(Vec3{2.0 + 3.0 * k, 5.0, 5.0});
+      p.v.push_back(Vec3{});
+      p.w.push_back(Vec3{});
+      p.x_rest.push_back(p.x.back());
+      p.radius.push_back(0.5);
+      p.mass.push_back(1.0);
+      p.inv_mass.push_back(1.0);
+      p.inv_inertia.push_back(10.0);
+      p.gid.push_back(k);
+      p.kind.push_back(Kind::grain);
+      p.material.push_back(0);
+      p.motion.push_back(0);
+    }
+    return scene;
+  };
+  const std::vector<LinearSpringDashpot::Coeffs> one(1);
+  const auto refused = [&](const device::DeviceScene& scene,
+                           const std::vector<LinearSpringDashpot::Coeffs>& coeffs) -> std::string {
+    try {
+      device::make_host_engine<LinearSpringDashpot>(scene, coeffs, {});
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "(taken)";
+  };
+  EXPECT_EQ(refused(two_grains(), one), "(taken)");
+  device::DeviceScene forces = two_grains();
+  forces.forces_given = true;
+  forces.particles.f.assign(1, Vec3{});
+  forces.particles.torque.assign(2, Vec3{});
+  EXPECT_EQ(refused(forces, one), "device engine: 1 forces and 2 torques given for 2 particles");
+  EXPECT_EQ(refused(two_grains(), std::vector<LinearSpringDashpot::Coeffs>(2)),
+            "device engine: coefficients for 2 material pairs, expected 1");
+  device::DeviceScene plane = two_grains();
+  plane.planes.push_back(device::DevicePlane{Vec3{}, Vec3{0.0, 0.0, 1.0}, 3});
+  EXPECT_EQ(refused(plane, one), "device engine: a plane of material 3, beyond the scene's 1");
 }
 
 // The small basin of tests/small_basin.hpp, settled by the CPU engine to t = 3.0.
