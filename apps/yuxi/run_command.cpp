@@ -239,14 +239,16 @@ int run_command(const RunCommandOptions& o) {
                                : std::string());
   if (!s.device.empty()) {
     const auto& p = s.device_phases;
-    spdlog::info("device engine on {}: {:.0f} bytes of device memory per particle; time: list "
-                 "build {:.1f}%  forces {:.1f}%  integrate {:.1f}%  energy books {:.1f}% on the "
-                 "device, handing the state to the host {:.1f}%, snapshots {:.1f}%, checkpoints "
-                 "{:.1f}%  ({} list builds)",
-                 s.device, s.device_bytes_per_particle, 100 * p.list_build / wall,
-                 100 * p.forces / wall, 100 * p.integration / wall, 100 * p.books / wall,
-                 100 * s.handover_seconds / wall, 100 * s.snapshot_seconds / wall,
-                 100 * s.checkpoint_seconds / wall, sim->list_builds() - builds_before);
+    spdlog::info("device engine on {}: {:.0f} bytes of device memory per particle ({:.0f} at "
+                 "most, during list builds and outputs); time: list build {:.1f}%  forces "
+                 "{:.1f}%  integrate {:.1f}%  energy books {:.1f}% on the device, handing the "
+                 "state to the host {:.1f}%, snapshots {:.1f}%, checkpoints {:.1f}%  ({} list "
+                 "builds)",
+                 s.device, s.device_bytes_per_particle, s.device_peak_bytes_per_particle,
+                 100 * p.list_build / wall, 100 * p.forces / wall, 100 * p.integration / wall,
+                 100 * p.books / wall, 100 * s.handover_seconds / wall,
+                 100 * s.snapshot_seconds / wall, 100 * s.checkpoint_seconds / wall,
+                 sim->list_builds() - builds_before);
   }
   spdlog::info("memory: {:.0f} bytes per particle in particles (with ghosts), cells, neighbour "
                "list and contact states; the list holds {:.0f} pairs ({:.2f} per particle); {:.0f} "

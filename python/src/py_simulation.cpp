@@ -466,6 +466,7 @@ py::dict PySimulation::finish() {
   if (!s.device.empty()) {
     d["device"] = s.device;
     d["device_bytes_per_particle"] = s.device_bytes_per_particle;
+    d["device_peak_bytes_per_particle"] = s.device_peak_bytes_per_particle;
   }
   d["energies"] = books_dict(s.final_energies);
   return d;

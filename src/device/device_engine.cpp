@@ -32,6 +32,7 @@
 #include <thrust/functional.h>
 #include <thrust/gather.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sequence.h>
@@ -47,7 +48,40 @@
 namespace yuxi::device {
 namespace {
 
-template <class T> using DeviceVector = thrust::device_vector<T>;
+// The bytes that this thread's engines hold on the device, now and at most since an engine
+// started (DeviceMemory::peak): every device array and, on the GPU, the kept temporary storage
+// of Thrust's algorithms (Scratch). An engine runs on the thread that calls it.
+struct HeldBytes {
+  std::size_t now = 0, most = 0;
+  void add(std::size_t n) {
+    now += n;
+    most = std::max(most, now);
+  }
+  void remove(std::size_t n) { now -= n; }
+};
+HeldBytes& held() {
+  thread_local HeldBytes bytes;
+  return bytes;
+}
+
+// Thrust's device allocator, counting what it holds into held().
+template <class T> struct CountedAllocator : thrust::device_allocator<T> {
+  using base = thrust::device_allocator<T>;
+  template <class U> struct rebind { using other = CountedAllocator<U>; };
+  CountedAllocator() = default;
+  template <class U> CountedAllocator(const CountedAllocator<U>&) {}
+  typename base::pointer allocate(typename base::size_type n) {
+    typename base::pointer at = base::allocate(n);
+    held().add(n * sizeof(T));
+    return at;
+  }
+  void deallocate(typename base::pointer at, typename base::size_type n) {
+    base::deallocate(at, n);
+    held().remove(n * sizeof(T));
+  }
+};
+
+template <class T> using DeviceVector = thrust::device_vector<T, CountedAllocator<T>>;
 
 template <class T> T* raw(DeviceVector<T>& v) {
   return thrust::raw_pointer_cast(v.data());
@@ -126,12 +160,15 @@ template <class T> std::vector<T> to_host(const DeviceVector<T>& v) {
 class Scratch {
 public:
   using value_type = char;
-  Scratch() = default;
+  Scratch() { held(); } // (made first, so gone last: the destructor counts into it)
   Scratch(const Scratch&) = delete;
   Scratch& operator=(const Scratch&) = delete;
   ~Scratch() {
     trim();
-    for (const auto& [at, size] : used_) thrust::device_free(thrust::device_pointer_cast(at));
+    for (const auto& [at, size] : used_) {
+      thrust::device_free(thrust::device_pointer_cast(at));
+      held().remove(static_cast<std::size_t>(size));
+    }
   }
 
   char* allocate(std::ptrdiff_t n) {
@@ -140,6 +177,7 @@ public:
       trim();
       fit = kept_.emplace(
           n, thrust::raw_pointer_cast(thrust::device_malloc<char>(static_cast<std::size_t>(n))));
+      held().add(static_cast<std::size_t>(n));
     }
     char* at = fit->second;
     used_.emplace(at, fit->first);
@@ -152,7 +190,10 @@ public:
     used_.erase(block);
   }
   void trim() {
-    for (const auto& [size, at] : kept_) thrust::device_free(thrust::device_pointer_cast(at));
+    for (const auto& [size, at] : kept_) {
+      thrust::device_free(thrust::device_pointer_cast(at));
+      held().remove(static_cast<std::size_t>(size));
+    }
     kept_.clear();
   }
   std::size_t bytes() const {
@@ -463,7 +504,8 @@ public:
       planes.push_back(
           {plane_key(c.first, static_cast<std::uint32_t>(plane)), Kept::kept(c.state)});
     }
-    Stash start_pairs = stash_of(std::move(pairs)), start_planes = stash_of(std::move(planes));
+    PairStash start_pairs = stash_start(std::move(pairs));
+    Stash start_planes = stash_of(std::move(planes));
     // A run continued mid-way makes its last list build again, where the particles stood then
     // (Simulation::build_lists_after_load does the same): the same cells, order and pairs.
     const bool rebuild = hp.x_build.size() == hp.size() && n_ > 0;
@@ -495,10 +537,8 @@ public:
     get(v_, sorted.v);
     get(w_, sorted.w);
     if (given_force_.empty()) {
-      DeviceVector<Vec3> force(n_), torque(n_);
-      for_each_index(n_, WriteLoads{view(), grain_loads(), raw(force), raw(torque)});
-      get(force, sorted.f);
-      get(torque, sorted.torque);
+      sorted.f = loads(false);
+      sorted.torque = loads(true);
     } else {
       get(given_force_, sorted.f);
       get(given_torque_, sorted.torque);
@@ -580,10 +620,14 @@ public:
 
   std::vector<KeyedState<Whole>> open_contacts() const override {
     std::vector<KeyedState<Whole>> out;
+    PairStash stash;
+    stash_open_contacts(stash);
     DeviceVector<std::uint64_t> keys;
     DeviceVector<State> states;
-    stash_open_contacts(keys, states);
-    std::vector<std::uint64_t> k = to_host(keys);
+    resize(states, stash.keys.size());
+    for_each_index(static_cast<std::uint32_t>(stash.keys.size()),
+                   StashedState<Kept>{raw(carried_), raw(stash.held), raw(states)});
+    std::vector<std::uint64_t> k = to_host(stash.keys);
     std::vector<State> st = to_host(states);
     for (std::size_t c = 0; c < k.size(); ++c)
       out.push_back({static_cast<GlobalId>(k[c] >> 32), static_cast<GlobalId>(k[c] & 0xffffffffu),
@@ -647,6 +691,7 @@ public:
                         plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
                         plane_relaxation_, plane_dissipated_, plane_work_);
     m.work = sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_);
+    m.peak = held().most - held_before_;
     return m;
   }
 
@@ -672,6 +717,19 @@ private:
                      raw(species_),  species_of_.empty() ? nullptr : raw(species_of_),
                      raw(gid_),      raw(kind_),
                      raw(material_), n_};
+  }
+  // Each particle's force (or torque) summed from the contacts on the device, brought to the
+  // host a sixteenth at a time: an output step holds 1.5 bytes a particle more, not 24.
+  std::vector<Vec3> loads(bool torque) const {
+    std::vector<Vec3> out(n_);
+    const std::uint32_t part = std::max<std::uint32_t>(65536, n_ / 16 + 1);
+    DeviceVector<Vec3> load(std::min(part, n_));
+    for (std::uint32_t first = 0; first < n_; first += part) {
+      const std::uint32_t m = std::min(part, n_ - first);
+      for_each_index(m, WriteLoads{view(), grain_loads(), first, torque, raw(load)});
+      thrust::copy_n(load.begin(), m, out.begin() + first);
+    }
+    return out;
   }
   // The sums of the forces on the grains from what the last evaluation's contacts gave.
   GrainLoads grain_loads() const {
@@ -705,6 +763,15 @@ private:
                       holds_relaxation ? raw(relaxation_) : nullptr,
                       raw(dissipated_),
                       walls_work_ ? raw(wall_work_) : nullptr};
+  }
+
+  // v holds exactly n elements afterwards, of unspecified values (particles only ever grow
+  // fewer: room to grow would be wasted).
+  template <class T> static void exact_size(DeviceVector<T>& v, std::size_t n) {
+    if (v.capacity() == n)
+      v.resize(n);
+    else
+      DeviceVector<T>(n).swap(v);
   }
 
   // The particles' radii, masses and inertias, as a table of species shared by index where at
@@ -743,12 +810,15 @@ private:
   template <class T>
   static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field,
                          DeviceVector<T>& scratch) {
-    if (scratch.capacity() == order.size())
-      scratch.resize(order.size());
-    else
-      DeviceVector<T>(order.size()).swap(scratch);
+    exact_size(scratch, order.size());
     thrust::gather(on_device(), raw(order), last(order), raw(field), raw(scratch));
     field.swap(scratch);
+  }
+  // The same through a scratch array of its own, freed on return.
+  template <class T>
+  static void permute_by(const DeviceVector<std::uint32_t>& order, DeviceVector<T>& field) {
+    DeviceVector<T> scratch;
+    permute_by(order, field, scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
   void remove_escaped() {
@@ -774,29 +844,25 @@ private:
 
   // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
   void permute_particles(const DeviceVector<std::uint32_t>& order) {
-    DeviceVector<Vec3> v3;
-    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_, &x_build_}) permute_by(order, *field, v3);
+    // The vectors through x_build_ as their scratch (no array more): the list's reference
+    // positions are where the particles stand at a build, x_ copied in afterwards.
+    for (DeviceVector<Vec3>* field : {&x_, &v_, &w_}) permute_by(order, *field, x_build_);
     if (!given_force_.empty()) {
-      permute_by(order, given_force_, v3);
-      permute_by(order, given_torque_, v3);
+      permute_by(order, given_force_, x_build_);
+      permute_by(order, given_torque_, x_build_);
     }
-    if (moving_walls_) permute_by(order, x_rest_, v3);
-    if (!x_now_.empty()) permute_by(order, x_now_, v3);
-    if (species_of_.empty()) {
-      DeviceVector<Species> s;
-      permute_by(order, species_, s);
-    } else {
-      DeviceVector<std::uint16_t> s;
-      permute_by(order, species_of_, s);
-    }
-    DeviceVector<std::uint32_t> g;
-    permute_by(order, gid_, g);
-    DeviceVector<Kind> k;
-    permute_by(order, kind_, k);
-    DeviceVector<std::uint8_t> m;
-    permute_by(order, material_, m);
-    DeviceVector<std::uint16_t> motion;
-    permute_by(order, motion_, motion);
+    if (moving_walls_) permute_by(order, x_rest_, x_build_);
+    if (!x_now_.empty()) permute_by(order, x_now_, x_build_);
+    exact_size(x_build_, order.size());
+    thrust::copy(on_device(), raw(x_), last(x_), raw(x_build_));
+    if (species_of_.empty())
+      permute_by(order, species_);
+    else
+      permute_by(order, species_of_);
+    permute_by(order, gid_);
+    permute_by(order, kind_);
+    permute_by(order, material_);
+    permute_by(order, motion_);
   }
 
   // Open contacts' keys in ascending order, and their states: carried across a list build.
@@ -821,10 +887,39 @@ private:
     return stash;
   }
 
-  // A list build in a step: the open contacts' states stashed, then the list built afresh.
+  // The open contacts between particles, keys ascending, each with where its state is
+  // (StashContact): the states stay in their slots of the last evaluation through a list build.
+  struct PairStash {
+    DeviceVector<std::uint64_t> keys;
+    DeviceVector<std::uint32_t> held;
+  };
+  // The contacts a run starts with (keys, and states seen from the smaller id): their states
+  // made the carried ones, in key order.
+  PairStash stash_start(std::vector<std::pair<std::uint64_t, State>> open) {
+    std::sort(open.begin(), open.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::uint64_t> keys(open.size());
+    std::vector<std::uint32_t> held(open.size());
+    std::vector<State> states(open.size());
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      keys[k] = open[k].first;
+      held[k] = static_cast<std::uint32_t>(k);
+      states[k] = open[k].second;
+    }
+    PairStash stash;
+    if (!keys.empty()) { // (assigned only when not empty: see resize())
+      stash.keys = keys;
+      stash.held = held;
+      carried_ = states;
+    }
+    return stash;
+  }
+
+  // A list build in a step: the open contacts stashed, then the list built afresh.
   void build_list() {
-    Stash pairs, planes;
-    stash_open_contacts(pairs.keys, pairs.states);
+    PairStash pairs;
+    Stash planes;
+    stash_open_contacts(pairs);
     stash_open_planes(planes.keys, planes.states);
     build_list(pairs, planes);
   }
@@ -864,15 +959,16 @@ private:
     sort_stash(keys, stashed);
   }
 
-  // The open contacts' keys (the particles' global ids) in ascending order, and their states.
-  void stash_open_contacts(DeviceVector<std::uint64_t>& keys, DeviceVector<State>& stashed) const {
+  // The open contacts' keys (the particles' global ids) in ascending order, and where their
+  // states are.
+  void stash_open_contacts(PairStash& stash) const {
     const DeviceVector<std::uint32_t> open_pairs = set_indices(open_);
     const std::uint32_t n_open = static_cast<std::uint32_t>(open_pairs.size());
-    resize(keys, n_open);
-    resize(stashed, n_open);
-    for_each_index(n_open, StashContact<Kept>{view(), pair_list(), raw(carried_), raw(slot_),
-                                              raw(open_pairs), raw(keys), raw(stashed)});
-    sort_stash(keys, stashed);
+    resize(stash.keys, n_open);
+    resize(stash.held, n_open);
+    for_each_index(n_open, StashContact{view(), pair_list(), raw(slot_), raw(open_pairs),
+                                        raw(stash.keys), raw(stash.held)});
+    sort_by_key(raw(stash.keys), last(stash.keys), raw(stash.held));
   }
 
   // The counts in v[0, n) become their offsets in place: v[i] = count[0] + ... + count[i - 1]
@@ -885,10 +981,8 @@ private:
 
   // Escapes, the cell sort, the list and the grain-plane candidates, with the open contacts
   // (`pairs`, `planes`) taken back by their new pairs and candidates.
-  void build_list(const Stash& pairs, const Stash& planes) {
-    const DeviceVector<std::uint64_t>& keys = pairs.keys;
-    const DeviceVector<State>& stashed = pairs.states;
-    const std::uint32_t n_stashed = static_cast<std::uint32_t>(keys.size());
+  void build_list(const PairStash& pairs, const Stash& planes) {
+    const std::uint32_t n_stashed = static_cast<std::uint32_t>(pairs.keys.size());
     // 1. Grains that left through an open face stop the run, or leave it with their mechanical
     // energy booked as removed (Simulation::handle_escapes_here).
     remove_escaped();
@@ -896,20 +990,19 @@ private:
     // 2. Wrap, sort by (cell, global id), and find each cell's start.
     DeviceVector<std::uint64_t> key(n_);
     for_each_index(n_, CellOfParticle{view(), box_, cells_, raw(key)});
-    // (order, cell and count live for the build only: the steps between builds need none)
+    // (the key and order live for the build only: the steps between builds need none)
     {
-      DeviceVector<std::uint32_t> order, cell;
-      resize_all(n_, order, cell);
+      DeviceVector<std::uint32_t> order(n_);
       thrust::sequence(on_device(), raw(order), last(order));
       sort_by_key(raw(key), last(key), raw(order));
-      permute_particles(order);
-      for_each_index(n_, CellOfKey{raw(key), raw(cell)});
       resize(cell_start_, cells_.count() + 1);
-      thrust::lower_bound(
-          on_device(), raw(cell), last(cell), thrust::counting_iterator<std::uint32_t>(0),
-          thrust::counting_iterator<std::uint32_t>(cells_.count() + 1), raw(cell_start_));
+      const auto first_keys = thrust::make_transform_iterator(
+          thrust::counting_iterator<std::uint32_t>(0), FirstKeyOfCell{});
+      thrust::lower_bound(on_device(), raw(key), last(key), first_keys,
+                          first_keys + (cells_.count() + 1), raw(cell_start_));
+      DeviceVector<std::uint64_t>().swap(key);
+      permute_particles(order); // (the sort's key freed before: the permutation needs room)
     }
-    DeviceVector<std::uint64_t>().swap(key);
 
     // 3. The half list: count (into the rows' starts), offsets, fill.
     resize(row_start_, n_ + 1);
@@ -934,12 +1027,11 @@ private:
                         thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(n_ + 1), raw(reverse_start_));
 
-    // 5. Per-pair room, and the open contacts back in their new pairs: their states in the
-    // stash's slots, where the next evaluation carries them from (GatherTouches).
+    // 5. Per-pair room, and the open contacts back in their new pairs: each pair takes its
+    // state's slot, where the next evaluation carries it from (GatherTouches).
     resize_all(total, open_, slot_);
-    make_room(carried_, n_stashed);
-    for_each_index(n_, RestoreContact<Kept>{view(), pair_list(), raw(keys), raw(stashed), n_stashed,
-                                            raw(carried_), raw(slot_), raw(open_)});
+    for_each_index(n_, RestoreContact<Kept>{view(), pair_list(), raw(pairs.keys), raw(pairs.held),
+                                            n_stashed, raw(carried_), raw(slot_), raw(open_)});
 
     // 6. The grain-plane candidates (count, offsets, fill), with their open contacts' states.
     resize(plane_start_, n_ + 1);
@@ -1070,6 +1162,12 @@ private:
     if (any) for_each_index(n_, place);
   }
 
+  // What this thread's engines held on the device when this one started; the most held since
+  // counts from here (first of the members: before any array is made).
+  std::size_t held_before_ = [] {
+    held().most = held().now;
+    return held().now;
+  }();
   std::uint32_t n_ = 0, n_materials_ = 1;
   DeviceVector<Vec3> x_, v_, w_, x_build_;
   // The forces and torques a run continued mid-way came with, until its first step's forces.

@@ -136,6 +136,11 @@ struct DeviceMemory {
   std::size_t planes = 0;    // the planes and the grain-plane candidates
   std::size_t work = 0;      // the fixed-order sums' partial sums and Thrust's kept scratch
   std::size_t total() const { return particles + cells + pairs + contacts + planes + work; }
+  // The most held at once since the engine started, the temporary arrays of list builds and
+  // outputs included (on the GPU, Thrust's temporary storage too; the host build's algorithms
+  // keep theirs in host memory). Counted per thread: two engines alive on one thread count
+  // together.
+  std::size_t peak = 0;
 };
 
 class DeviceEngine {
@@ -156,7 +161,7 @@ public:
   // Each plane's load at the last force evaluation, summed in a fixed order.
   virtual std::vector<PlaneLoad> plane_loads() const = 0;
   virtual std::size_t listed_pairs() const = 0;
-  // Bytes held on the device now, by part, and in all.
+  // Bytes held on the device now, by part, and in all; and the most held at once.
   virtual DeviceMemory device_memory() const = 0;
   std::size_t device_bytes() const { return device_memory().total(); }
   // "cuda: <device name>" or "host (Thrust CPP)".

@@ -127,8 +127,9 @@ struct PairList {
 };
 
 // Each particle's sort key at a list build (after wrapping it into the periodic box): its cell,
-// then its global id. The order this gives depends on where the particles stand and nothing
-// else, so a run continued from a checkpoint sorts, lists and sums as the run that wrote it.
+// then its global id (the list's reference positions are set after the sort). The order this gives
+// depends on where the particles stand and nothing else, so a run continued from a checkpoint
+// sorts, lists and sums as the run that wrote it.
 struct CellOfParticle {
   Particles p;
   DeviceBox box;
@@ -136,18 +137,15 @@ struct CellOfParticle {
   std::uint64_t* key;
   YUXI_HD void operator()(std::uint32_t i) const {
     p.x[i] = box.wrap(p.x[i]);
-    p.x_build[i] = p.x[i];
     key[i] = (static_cast<std::uint64_t>(cells.cell_of(p.x[i])) << 32) |
              static_cast<std::uint64_t>(p.gid[i]);
   }
 };
 
-// The cell of each sorted key.
-struct CellOfKey {
-  const std::uint64_t* key;
-  std::uint32_t* cell;
-  YUXI_HD void operator()(std::uint32_t k) const {
-    cell[k] = static_cast<std::uint32_t>(key[k] >> 32);
+// The smallest sort key of cell c (CellOfParticle): where the cell starts among the sorted keys.
+struct FirstKeyOfCell {
+  YUXI_HD std::uint64_t operator()(std::uint32_t c) const {
+    return static_cast<std::uint64_t>(c) << 32;
   }
 };
 
@@ -237,34 +235,50 @@ YUXI_HD inline std::uint32_t find_key(const std::uint64_t* keys, std::uint32_t n
 // `touched_before` (it overlapped at the last one, or its contact came back at a list build).
 constexpr std::uint8_t touches_now = 1, touched_before = 2;
 
-// Before a list build: the key and the state (as seen from the smaller id) of each open contact.
-template <class Model> struct StashContact {
+// A contact stashed across a list build: its state stays in its slot of the last evaluation
+// (the engine's carried states, untouched by the build), and the stash keeps where: the slot,
+// with the top bit set where the state there is seen from the larger id (the pair's row
+// particle had it).
+constexpr std::uint32_t seen_from_larger = 0x80000000u;
+
+// Before a list build: the key of each open contact, and where its state is.
+struct StashContact {
   Particles p;
   PairList list;
-  const typename Model::State* state; // per slot (the contacts' states, GatherTouches)
-  const std::uint32_t* slot;          // per pair
+  const std::uint32_t* slot; // per pair
   const std::uint32_t* open_pairs;
   std::uint64_t* key;
-  typename Model::State* stashed;
+  std::uint32_t* held; // the slot, and seen_from_larger
   YUXI_HD void operator()(std::uint32_t k) const {
     const std::uint32_t pair = open_pairs[k];
     const GlobalId gi = p.gid[list.row_of(pair)], gj = p.gid[list.partner[pair]];
-    const typename Model::State& s = state[slot[pair]];
     key[k] = contact_key(gi, gj);
-    stashed[k] = gi < gj ? s : s.mirrored();
+    held[k] = slot[pair] | (gi < gj ? 0u : seen_from_larger);
+  }
+};
+
+// A stashed contact's state as seen from the smaller id (for the host).
+template <class Model> struct StashedState {
+  const typename Model::State* state; // per slot of the last evaluation
+  const std::uint32_t* held;
+  typename Model::State* out;
+  YUXI_HD void operator()(std::uint32_t k) const {
+    const typename Model::State& s = state[held[k] & ~seen_from_larger];
+    out[k] = (held[k] & seen_from_larger) ? s.mirrored() : s;
   }
 };
 
 // After a list build: each pair of row i finds its stashed contact (binary search on the sorted
-// keys). A found one is open and takes the stash's slot: its state goes there, as the pair sees
-// it.
+// keys). A found one is open and takes its state's slot; the state there is turned to be seen
+// from the pair's row particle where the last one saw it from the other (in place: one pair
+// finds each contact).
 template <class Model> struct RestoreContact {
   Particles p;
   PairList list;
   const std::uint64_t* key;
-  const typename Model::State* stashed;
+  const std::uint32_t* held;
   std::uint32_t n_stashed;
-  typename Model::State* state; // per slot
+  typename Model::State* state; // per slot of the last evaluation
   std::uint32_t* slot;          // per pair
   std::uint8_t* open;
   YUXI_HD void operator()(std::uint32_t i) const {
@@ -275,8 +289,9 @@ template <class Model> struct RestoreContact {
       const bool found = at < n_stashed;
       open[pair] = found ? touches_now : 0; // (the next evaluation reads it as touched_before)
       if (!found) continue;
-      slot[pair] = at;
-      state[at] = gi < gj ? stashed[at] : stashed[at].mirrored();
+      const std::uint32_t c = held[at] & ~seen_from_larger;
+      slot[pair] = c;
+      if (((held[at] & seen_from_larger) != 0) != (gi > gj)) state[c] = state[c].mirrored();
     }
   }
 };
@@ -570,17 +585,19 @@ struct GrainLoads {
   }
 };
 
-// Each particle's force and torque into arrays (zero for wall particles): for the host, at an
-// output step.
+// The force (or the torque) on particles first, first + 1, ... into out[0], out[1], ... (zero
+// for wall particles): for the host, at an output step.
 struct WriteLoads {
   Particles p;
   GrainLoads loads;
-  Vec3 *force, *torque;
-  YUXI_HD void operator()(std::uint32_t i) const {
+  std::uint32_t first;
+  bool torque;
+  Vec3* out;
+  YUXI_HD void operator()(std::uint32_t k) const {
+    const std::uint32_t i = first + k;
     Vec3 f, t;
     if (p.kind[i] == Kind::grain) loads(p, i, f, t);
-    force[i] = f;
-    torque[i] = t;
+    out[k] = torque ? t : f;
   }
 };
 

@@ -161,9 +161,10 @@ std::string DeviceStepper::device_name() const {
   return engine_->device_name();
 }
 
-double DeviceStepper::device_bytes_per_particle() const {
+double DeviceStepper::device_bytes_per_particle(bool peak) const {
   const double n = static_cast<double>(sim_.particles().n_owned());
-  return static_cast<double>(engine_->device_bytes()) / std::max(n, 1.0);
+  const device::DeviceMemory m = engine_->device_memory();
+  return static_cast<double>(peak ? m.peak : m.total()) / std::max(n, 1.0);
 }
 
 } // namespace yuxi

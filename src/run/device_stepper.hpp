@@ -45,9 +45,10 @@ public:
   // The engine's step count and time.
   std::int64_t step() const;
   double time() const;
-  // The device's name, and the bytes it holds now per particle.
+  // The device's name, and the bytes it holds now per particle (`peak`: the most it held at
+  // once, DeviceMemory::peak).
   std::string device_name() const;
-  double device_bytes_per_particle() const;
+  double device_bytes_per_particle(bool peak = false) const;
   // Each phase's wall time on the device, over every engine this stepper started [s].
   device::DevicePhaseSeconds phase_seconds() const;
   // Wall time spent stepping on the device, and handing the state to the host [s].

@@ -401,6 +401,7 @@ RunSummary RunDriver::finish() {
   if (d.stepper) {
     d.summary.device = d.stepper->device_name();
     d.summary.device_bytes_per_particle = d.stepper->device_bytes_per_particle();
+    d.summary.device_peak_bytes_per_particle = d.stepper->device_bytes_per_particle(true);
     d.summary.device_seconds = d.stepper->device_seconds();
     d.summary.handover_seconds = d.stepper->handover_seconds();
     d.summary.device_phases = d.stepper->phase_seconds();

@@ -61,7 +61,8 @@ struct RunSummary {
   // and handing the state back to the host.
   std::string device;
   double device_bytes_per_particle = 0.0, device_seconds = 0.0, handover_seconds = 0.0;
-  device::DevicePhaseSeconds device_phases; // within device_seconds
+  double device_peak_bytes_per_particle = 0.0; // the most held at once (DeviceMemory::peak)
+  device::DevicePhaseSeconds device_phases;    // within device_seconds
   EnergyBooks final_energies;
   bool failed = false;
   bool interrupted = false; // stopped by a signal after writing a checkpoint

@@ -113,6 +113,9 @@ TEST(DeviceEngine, ChuteEnergiesAfterAThousandStepsMatchTheCpuEngine) {
   const double per_contact =
       static_cast<double>(memory.contacts) / static_cast<double>(dev.contacts);
   EXPECT_LT(per_particle, 310.0);
+  // ... and at most, list builds and outputs included (312 when written).
+  EXPECT_GE(memory.peak, memory.total());
+  EXPECT_LT(static_cast<double>(memory.peak) / 32000.0, 330.0) << "bytes a particle at most";
   EXPECT_LT(per_contact, 240.0) << "bytes per touching contact";
   const device::HostParticles got = engine->particles();
   const ParticleStore expected = by_id(*sim);
