@@ -44,6 +44,7 @@ def test_host_build_keeps_the_cpu_engines_books(gas_scene, tmp_path, stir_again)
     cpu, _ = _books(gas_scene, tmp_path / "cpu", None, stir_again)
     dev, summary = _books(gas_scene, tmp_path / "host", "host", stir_again)
     assert summary["device"] == "host (Thrust CPP)"
+    assert 0 < summary["device_bytes_per_particle"] <= summary["device_peak_bytes_per_particle"]
     assert cpu["contacts"] > 50 and cpu["dissipated"] > 0
     assert dev["step"] == cpu["step"] == 300
     for book in ("translational", "rotational", "elastic", "dissipated", "inserted", "balance"):
