@@ -163,8 +163,9 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
   // mesh is taken whole (a rank holds only the triangles near its own grains), its corners
   // placed where it stands, and the triangles whose boxes meet the new grains' box listed
   // once; a grain overlaps it where one of those comes closer than its radius.
-  struct PlacedMesh {
-    const TriangleMesh* mesh = nullptr;
+  struct PlacedWall {
+    const ShapedWall* wall = nullptr;
+    const TriangleMesh* mesh = nullptr; // null: a cylinder
     std::vector<Vec3> corners;
     std::vector<std::uint32_t> near;
   };
@@ -175,8 +176,7 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
         return false;
     return true;
   };
-  std::vector<const ShapedWall*> shaped;
-  std::vector<PlacedMesh> meshes; // aligned with `shaped` (empty for a cylinder)
+  std::vector<PlacedWall> shaped;
   if (!grains.empty()) {
     Vec3 low = box.wrap(grains[0].position), high = low;
     for (const ParticleSpec& p : grains) {
@@ -187,8 +187,8 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
     const Vec3 reach{widest, widest, widest};
     for (const ShapedWall& wall : walls_.shaped()) {
       if (!wall_active(wall, time_)) continue;
-      shaped.push_back(&wall);
-      PlacedMesh& placed = meshes.emplace_back();
+      PlacedWall& placed = shaped.emplace_back();
+      placed.wall = &wall;
       if (const auto* mesh = std::get_if<MeshWall>(&wall)) {
         placed.mesh = &mesh->whole_mesh();
         placed.corners = mesh->placed_whole();
@@ -242,19 +242,18 @@ void Simulation::check_clear_of_particles(std::span<const ParticleSpec> grains,
     for (const PlaneWall& w : walls_.planes())
       if (const double d = w.distance(x, time_); d < r)
         refuse(fmt::format("the flat wall '{}'", w.name), grains[k].radius - d);
-    for (std::size_t m = 0; m < shaped.size(); ++m) {
+    for (const PlacedWall& placed : shaped) {
       const auto what = [&] {
-        return fmt::format("the {} '{}'", meshes[m].mesh ? "mesh" : "cylinder",
-                           wall_name(*shaped[m]));
+        return fmt::format("the {} '{}'", placed.mesh ? "mesh" : "cylinder",
+                           wall_name(*placed.wall));
       };
-      if (!meshes[m].mesh) {
+      if (!placed.mesh) {
         WallTouches touches;
-        std::get<CylinderWall>(*shaped[m]).touches(x, r, touches);
+        std::get<CylinderWall>(*placed.wall).touches(x, r, touches);
         for (std::size_t c = 0; c < touches.n; ++c)
           if (touches.at[c].distance < r) refuse(what(), grains[k].radius - touches.at[c].distance);
         continue;
       }
-      const PlacedMesh& placed = meshes[m];
       const Vec3 around{r, r, r};
       double nearest = r; // the closest triangle's distance, where closer than r
       for (const std::uint32_t t : placed.near) {
