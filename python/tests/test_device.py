@@ -131,6 +131,20 @@ def test_clumps_are_not_added_on_the_device(gas_scene, tmp_path):
     sim.close()
 
 
+def test_a_scene_of_clumps_is_refused_by_name_on_the_device(box_scene, tmp_path):
+    """A [[fill]] of clumps poured at the start: the device engine names what it does not run
+    (clumps) and how to run it; no run folder is left behind."""
+    box_scene["shape"] = [{"name": "rod", "spheres": [[-0.3, 0.0, 0.0, 0.2],
+                                                      [0.3, 0.0, 0.0, 0.2]]}]
+    box_scene["fill"][0]["shape"] = "rod"
+    with pytest.raises(ValueError, match=r"does not run this scene's[\s\S]*clumps of spheres"):
+        yuxi.Simulation(box_scene, output=tmp_path / "rods", progress=False, device="host")
+    assert not os.path.exists(tmp_path / "rods"), "a refused run made its folder"
+    with yuxi.Simulation(box_scene, output=tmp_path / "cpu", progress=False) as sim:
+        sim.run(steps=5)
+        assert sim.energies()["grains"] == 343
+
+
 def test_a_device_run_resumes_on_the_cpu(gas_scene, tmp_path):
     sim = yuxi.Simulation(gas_scene, output=tmp_path / "run", progress=False, device="host")
     _stir(sim, 1)
