@@ -296,18 +296,19 @@ struct Escaped {
   }
 };
 
-// Wall time since the last add_to(), added to a phase's total.
 // Sums of device arrays in a fixed order, many with one copy to the host. Each array of n
 // values is added in two levels of StridedSum (step_phases.hpp): min(n, 65,536) threads, then
 // min(that, 256); the host adds the last partial sums in order. The order depends on n alone, so
 // the GPU and the host build give the same bits; every thread of the first level reads values
-// that its neighbours' reads sit beside, so the sum runs at the memory's speed.
+// that its neighbours' reads sit beside, so the sum runs at the memory's speed. The first
+// level's partial sums are read by the second as soon as they are written: `first`, their room,
+// can serve several OrderedSums.
 class OrderedSums {
 public:
   static constexpr std::uint32_t first_width = 65536, second_width = 256;
 
   // (the first level's room grows to the widest sum asked for: a small scene keeps little)
-  OrderedSums() : second_(16 * second_width) {}
+  explicit OrderedSums(DeviceVector<double>& first) : first_(first), second_(16 * second_width) {}
 
   // Queues the sum of v's first n values (all of them by default); collect() returns it, in the
   // order of the calls to add.
@@ -347,14 +348,17 @@ public:
     add(v, n);
     return collect()[0];
   }
-  std::size_t device_bytes() const { return bytes(first_) + bytes(second_); }
+  // (the second level's: the first's room is its owner's)
+  std::size_t device_bytes() const { return bytes(second_); }
 
 private:
-  DeviceVector<double> first_, second_;
+  DeviceVector<double>& first_;
+  DeviceVector<double> second_;
   std::vector<std::uint32_t> widths_;
   std::size_t used_ = 0;
 };
 
+// Wall time since the last add_to(), added to a phase's total.
 class PhaseClock {
 public:
   void add_to(double& total) {
@@ -690,7 +694,8 @@ public:
                         plane_offset_, plane_velocity_, plane_start_, plane_row_, plane_of_,
                         plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
                         plane_relaxation_, plane_dissipated_, plane_work_);
-    m.work = sums_.device_bytes() + step_sums_.device_bytes() + scratch().bytes() + bytes(coeffs_);
+    m.work = bytes(sums_first_) + sums_.device_bytes() + step_sums_.device_bytes() +
+             scratch().bytes() + bytes(coeffs_);
     m.peak = held().most - held_before_;
     return m;
   }
@@ -1221,8 +1226,9 @@ private:
   // skin (KickDrift, PlaceWalls: the list-build test), then how many of its row's pairs are
   // flagged and, summed, the row's first slot (compute_forces).
   DeviceVector<std::uint32_t> tally_;
-  mutable OrderedSums sums_; // one sum at a time
-  OrderedSums step_sums_;    // the books of a step, queued
+  DeviceVector<double> sums_first_;       // the first level's partial sums of both (OrderedSums)
+  mutable OrderedSums sums_{sums_first_}; // one sum at a time
+  OrderedSums step_sums_{sums_first_};    // the books of a step, queued
   DeviceVector<Coeffs> coeffs_;
   DeviceBox box_;
   DeviceCells cells_;
