@@ -786,8 +786,11 @@ private:
     std::vector<std::uint16_t> index;
     std::map<std::array<std::uint64_t, 4>, std::uint16_t> seen; // by their bits
     const std::size_t most = std::min<std::size_t>(65536, hp.size() / 2);
+    const auto species_at = [&](std::size_t i) {
+      return Species{hp.radius[i], hp.mass[i], hp.inv_mass[i], hp.inv_inertia[i]};
+    };
     for (std::size_t i = 0; i < hp.size(); ++i) {
-      const Species s{hp.radius[i], hp.mass[i], hp.inv_mass[i], hp.inv_inertia[i]};
+      const Species s = species_at(i);
       const std::array<std::uint64_t, 4> bits{
           std::bit_cast<std::uint64_t>(s.radius), std::bit_cast<std::uint64_t>(s.mass),
           std::bit_cast<std::uint64_t>(s.inv_mass), std::bit_cast<std::uint64_t>(s.inv_inertia)};
@@ -804,8 +807,7 @@ private:
       return;
     }
     table.clear();
-    for (std::size_t i = 0; i < hp.size(); ++i)
-      table.push_back({hp.radius[i], hp.mass[i], hp.inv_mass[i], hp.inv_inertia[i]});
+    for (std::size_t i = 0; i < hp.size(); ++i) table.push_back(species_at(i));
     species_of_.clear();
     if (!table.empty()) species_ = table; // (assigned only when not empty: see resize())
   }
@@ -901,22 +903,13 @@ private:
   // The contacts a run starts with (keys, and states seen from the smaller id): their states
   // made the carried ones, in key order.
   PairStash stash_start(std::vector<std::pair<std::uint64_t, State>> open) {
-    std::sort(open.begin(), open.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<std::uint64_t> keys(open.size());
-    std::vector<std::uint32_t> held(open.size());
-    std::vector<State> states(open.size());
-    for (std::size_t k = 0; k < open.size(); ++k) {
-      keys[k] = open[k].first;
-      held[k] = static_cast<std::uint32_t>(k);
-      states[k] = open[k].second;
-    }
+    Stash sorted = stash_of(std::move(open));
     PairStash stash;
-    if (!keys.empty()) { // (assigned only when not empty: see resize())
-      stash.keys = keys;
-      stash.held = held;
-      carried_ = states;
-    }
+    if (sorted.keys.empty()) return stash;
+    stash.keys.swap(sorted.keys);
+    carried_.swap(sorted.states);
+    resize(stash.held, stash.keys.size());
+    thrust::sequence(on_device(), raw(stash.held), last(stash.held));
     return stash;
   }
 
