@@ -434,9 +434,6 @@ std::vector<GlobalId> PySimulation::add_clumps(std::vector<PlacedClump> clumps) 
     for (const PlacedClump& c : clumps) spheres.push_back(lone_member_as_sphere(c));
     return add_grains(spheres);
   }
-  if (device_choice(run_.scene.run.device))
-    throw std::runtime_error("clumps run on the CPU engine only: this run is on the device "
-                             "engine, which refuses them (device = \"cpu\" runs them)");
   collective("add_clumps()");
   const bool held = time_step_holds();
   const EnergyBooks books = sim().cumulative_books();

@@ -121,28 +121,52 @@ def test_contacts_are_not_recorded_on_the_device(gas_scene, tmp_path):
     sim.close()
 
 
-def test_clumps_are_not_added_on_the_device(gas_scene, tmp_path):
-    gas_scene["shape"] = [{"name": "rod", "spheres": [[-0.3, 0.0, 0.0, 0.2],
-                                                      [0.3, 0.0, 0.0, 0.2]]}]
-    sim = yuxi.Simulation(gas_scene, output=tmp_path / "rods", progress=False, device="host")
-    with pytest.raises(RuntimeError, match="clumps run on the CPU engine only"):
-        sim.add_clumps("rod", [[4.0, 4.0, 11.9]])
-    sim.step(5)
-    sim.close()
+def _rods(scene):
+    scene["shape"] = [{"name": "rod", "spheres": [[-0.3, 0.0, 0.0, 0.2],
+                                                  [0.3, 0.0, 0.0, 0.2]]}]
 
 
-def test_a_scene_of_clumps_is_refused_by_name_on_the_device(box_scene, tmp_path):
-    """A [[fill]] of clumps poured at the start: the device engine names what it does not run
-    (clumps) and how to run it; no run folder is left behind."""
-    box_scene["shape"] = [{"name": "rod", "spheres": [[-0.3, 0.0, 0.0, 0.2],
-                                                      [0.3, 0.0, 0.0, 0.2]]}]
+def test_clumps_added_on_the_device_run_there_as_on_the_cpu(gas_scene, tmp_path):
+    """Clumps added between steps: the device engine starts again from the simulation with
+    them, and keeps the CPU engine's books and the clumps' motion."""
+    _rods(gas_scene)
+    out = []
+    for device in (None, "host"):
+        sim = yuxi.Simulation(gas_scene, output=tmp_path / str(device), progress=False,
+                              device=device)
+        _stir(sim, 1)
+        sim.run(steps=50)
+        ids = sim.add_clumps("rod", [[4.0, 4.0, 11.5], [7.95, 2.0, 11.5]],
+                             velocities=[[0.0, 0.0, 4.0], [3.0, 0.0, -2.0]])
+        sim.run(steps=200)
+        out.append((sim.energies(), sim.clumps(), ids))
+        sim.close()
+    (cpu, cpu_clumps, cpu_ids), (dev, dev_clumps, dev_ids) = out
+    assert list(dev_ids) == list(cpu_ids)
+    assert dev["grains"] == cpu["grains"] == 345
+    for book in ("translational", "rotational", "elastic", "dissipated", "balance"):
+        assert dev[book] == pytest.approx(cpu[book], rel=1e-9, abs=1e-12), book
+    np.testing.assert_allclose(dev_clumps["position"], cpu_clumps["position"], rtol=1e-9)
+    np.testing.assert_allclose(dev_clumps["velocity"], cpu_clumps["velocity"], rtol=1e-8)
+
+
+def test_a_scene_of_clumps_runs_on_the_device_as_on_the_cpu(box_scene, tmp_path):
+    """A [[fill]] of clumps placed at the start settles onto the box's walls (planes) on both
+    engines alike."""
+    _rods(box_scene)
     box_scene["fill"][0]["shape"] = "rod"
-    with pytest.raises(ValueError, match=r"does not run this scene's[\s\S]*clumps of spheres"):
-        yuxi.Simulation(box_scene, output=tmp_path / "rods", progress=False, device="host")
-    assert not os.path.exists(tmp_path / "rods"), "a refused run made its folder"
-    with yuxi.Simulation(box_scene, output=tmp_path / "cpu", progress=False) as sim:
-        sim.run(steps=5)
-        assert sim.energies()["grains"] == 343
+    out = []
+    for device in (None, "host"):
+        with yuxi.Simulation(box_scene, output=tmp_path / str(device), progress=False,
+                             device=device) as sim:
+            sim.run(steps=5000)
+            out.append((sim.energies(), sim.clumps()))
+    (cpu, cpu_clumps), (dev, dev_clumps) = out
+    assert dev["grains"] == cpu["grains"] == 343
+    assert cpu["contacts"] > 50
+    for book in ("translational", "rotational", "elastic", "dissipated", "balance"):
+        assert dev[book] == pytest.approx(cpu[book], rel=1e-9, abs=1e-12), book
+    np.testing.assert_allclose(dev_clumps["orientation"], cpu_clumps["orientation"], atol=1e-9)
 
 
 def test_a_device_run_resumes_on_the_cpu(gas_scene, tmp_path):

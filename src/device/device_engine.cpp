@@ -9,6 +9,7 @@
 #include "contact/linear_spring_dashpot.hpp"
 #include "contact/luding.hpp"
 #include "contact/thermodynamic.hpp"
+#include "device/clump_phases.hpp"
 #include "device/kept_state.hpp"
 #include "device/step_phases.hpp"
 
@@ -277,7 +278,7 @@ struct IsOpen {
 };
 
 // 1 for a grain outside the box along an open axis (NaN too), and its mechanical energy
-// (core/particle_energy.hpp); 0 for the others.
+// (core/particle_energy.hpp; a clump's member's is its clump's: ClumpEscaped); 0 for the others.
 struct Escaped {
   Particles p;
   DeviceBox box;
@@ -290,9 +291,9 @@ struct Escaped {
       for (int a = 0; a < 3; ++a)
         if (!box.periodic[a] && !(p.x[i][a] >= box.lo[a] && p.x[i][a] <= box.hi[a])) out = true;
     gone[i] = out ? 1 : 0;
-    energy[i] =
-        out ? mechanical_energy(p.mass(i), p.x[i], p.v[i], p.w[i], p.inv_inertia(i), g_potential)
-            : 0.0;
+    energy[i] = out && !p.is_member(i) ? mechanical_energy(p.mass(i), p.x[i], p.v[i], p.w[i],
+                                                           p.inv_inertia(i), g_potential)
+                                       : 0.0;
   }
 };
 
@@ -414,6 +415,7 @@ public:
     gid_ = std::vector<std::uint32_t>(hp.gid.begin(), hp.gid.end()); // (checked above)
     kind_ = hp.kind;
     material_ = hp.material;
+    take_clumps(scene);
     if (hp.motion.size() == hp.size())
       motion_ = hp.motion;
     else
@@ -517,7 +519,7 @@ public:
       x_now_ = hp.x;
       x_ = hp.x_build;
     }
-    build_list(start_pairs, start_planes);
+    build_list(start_pairs, start_planes, false);
     if (rebuild) {
       x_.swap(x_now_);
       DeviceVector<Vec3>().swap(x_now_);
@@ -526,7 +528,10 @@ public:
     // a run continued mid-way keeps the forces its last step computed, at the half-step
     // velocities, as a resumed checkpoint does.
     place_planes();
-    if (!scene.forces_given) compute_forces(0.0);
+    if (!scene.forces_given) {
+      compute_forces(0.0);
+      gather_clump_loads();
+    }
   }
 
   void run(std::int64_t steps) override {
@@ -568,6 +573,12 @@ public:
       sorted.x_rest = sorted.x;
     get(x_build_, sorted.x_build);
     get(motion_, sorted.motion);
+    if (n_clumps_ > 0) {
+      const std::vector<std::uint32_t> body_of = to_host(body_of_);
+      const std::vector<RigidBody> bodies = to_host(clump_body_);
+      for (const std::uint32_t b : body_of)
+        sorted.body.push_back(b == no_body ? GlobalId{-1} : GlobalId{bodies[b].gid});
+    }
     std::vector<std::uint32_t> order(n_);
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(),
@@ -591,7 +602,31 @@ public:
     pick(sorted.x_rest, h.x_rest);
     pick(sorted.x_build, h.x_build);
     pick(sorted.motion, h.motion);
+    if (n_clumps_ > 0) pick(sorted.body, h.body);
     return h;
+  }
+
+  std::vector<DeviceClump> clumps() const override {
+    std::vector<DeviceClump> out;
+    if (n_clumps_ == 0) return out;
+    const std::vector<RigidBody> bodies = to_host(clump_body_);
+    const std::vector<Vec3> frame = to_host(clump_frame_);
+    const std::vector<Vec3> force = to_host(clump_force_), torque = to_host(clump_torque_);
+    for (std::uint32_t c = 0; c < n_clumps_; ++c) {
+      const RigidBody& b = bodies[c];
+      DeviceClump& d = out.emplace_back();
+      d.id = b.gid;
+      d.mass = b.mass;
+      d.inertia = b.inertia;
+      d.x = b.x;
+      d.v = b.v;
+      d.q = b.q;
+      d.p = b.p;
+      d.force = force[c];
+      d.torque = torque[c];
+      d.members.assign(frame.begin() + b.first, frame.begin() + b.first + b.count);
+    }
+    return out;
   }
 
   DeviceEnergies energies() const override {
@@ -602,11 +637,26 @@ public:
     sums_.add_values(TranslationalEnergy{view()}, n_);
     sums_.add(rotation);
     sums_.add_values(GravitationalEnergy{view(), g_potential_}, n_);
+    DeviceVector<double> clump_rotation;
+    if (n_clumps_ > 0) { // (the clumps' energies, in place of their members')
+      resize(clump_rotation, n_clumps_);
+      for_each_index(n_clumps_, ClumpRotationalEnergy{raw(clump_body_), raw(clump_rotation)});
+      sums_.add_values(ClumpTranslationalEnergy{raw(clump_body_)}, n_clumps_);
+      sums_.add(clump_rotation);
+      sums_.add_values(ClumpGravitationalEnergy{raw(clump_body_), g_potential_}, n_clumps_);
+    }
     const std::vector<double> kinetic = sums_.collect();
     e.translational = kinetic[0];
     e.rotational = kinetic[1];
     e.gravitational = kinetic[2];
-    e.grains = n_ == 0 ? 0 : thrust::count(on_device(), raw(kind_), last(kind_), Kind::grain);
+    if (n_clumps_ > 0) {
+      e.translational += kinetic[3];
+      e.rotational += kinetic[4];
+      e.gravitational += kinetic[5];
+    }
+    // (a clump counts once, its members not)
+    e.grains = (n_ == 0 ? 0 : thrust::count(on_device(), raw(kind_), last(kind_), Kind::grain)) -
+               static_cast<std::int64_t>(clump_member_.size()) + n_clumps_;
     const auto touching = [](const DeviceVector<std::uint8_t>& open) -> std::int64_t {
       return open.empty() ? 0 : thrust::count_if(on_device(), raw(open), last(open), IsOpen{});
     };
@@ -694,8 +744,10 @@ public:
                         plane_offset_, plane_velocity_, plane_start_, plane_row_, plane_of_,
                         plane_state_, plane_open_, plane_force_, plane_torque_, plane_elastic_,
                         plane_relaxation_, plane_dissipated_, plane_work_);
+    m.clumps =
+        bytes_of(clump_body_, clump_frame_, clump_member_, body_of_, clump_force_, clump_torque_);
     m.work = bytes(sums_first_) + sums_.device_bytes() + step_sums_.device_bytes() +
-             scratch().bytes() + bytes(coeffs_);
+             scratch().bytes() + bytes_of(coeffs_, too_wide_);
     m.peak = held().most - held_before_;
     return m;
   }
@@ -717,11 +769,21 @@ private:
   Particles view() const {
     // The functors write through these pointers; the engine owns the arrays.
     auto& self = const_cast<Engine&>(*this);
-    return Particles{raw(self.x_),   raw(self.v_),
-                     raw(self.w_),   raw(self.x_build_),
-                     raw(species_),  species_of_.empty() ? nullptr : raw(species_of_),
-                     raw(gid_),      raw(kind_),
-                     raw(material_), n_};
+    return Particles{raw(self.x_),
+                     raw(self.v_),
+                     raw(self.w_),
+                     raw(self.x_build_),
+                     raw(species_),
+                     species_of_.empty() ? nullptr : raw(species_of_),
+                     raw(gid_),
+                     raw(kind_),
+                     raw(material_),
+                     body_of_.empty() ? nullptr : raw(body_of_),
+                     n_};
+  }
+  ClumpSet clump_set() const {
+    auto& self = const_cast<Engine&>(*this);
+    return ClumpSet{raw(self.clump_body_), raw(clump_frame_), raw(self.clump_member_), n_clumps_};
   }
   // Each particle's force (or torque) summed from the contacts on the device, brought to the
   // host a sixteenth at a time: an output step holds 1.5 bytes a particle more, not 24.
@@ -812,6 +874,95 @@ private:
     if (!table.empty()) species_ = table; // (assigned only when not empty: see resize())
   }
 
+  // The scene's clumps: their bodies, their members' frames, and each particle's clump, checked
+  // against one another (every member a grain of its clump, each member once).
+  void take_clumps(const DeviceScene& scene) {
+    const HostParticles& hp = scene.particles;
+    const auto refuse = [](const std::string& what) {
+      throw std::invalid_argument("device engine: " + what);
+    };
+    if (scene.clumps.empty()) {
+      for (const GlobalId b : hp.body)
+        if (b >= 0) refuse("a particle names clump " + std::to_string(b) + ", which is not here");
+      return;
+    }
+    if (hp.body.size() != hp.size())
+      refuse(std::to_string(hp.body.size()) + " clump ids for " + std::to_string(hp.size()) +
+             " particles");
+    if (scene.clumps.size() >= (std::size_t{1} << 31)) refuse("2^31 clumps or more");
+    std::vector<RigidBody> bodies;
+    std::vector<Vec3> frame, force, torque;
+    for (const DeviceClump& c : scene.clumps) {
+      if (!bodies.empty() && !(GlobalId{bodies.back().gid} < c.id))
+        refuse("clump ids must ascend and differ (clump " + std::to_string(c.id) + ")");
+      if (c.id < 0 || c.id + static_cast<GlobalId>(c.members.size()) > (GlobalId{1} << 32))
+        refuse("a clump's ids beyond 32 bits (clump " + std::to_string(c.id) + ")");
+      if (c.members.empty() || !(c.mass > 0) || !(c.inertia.x > 0) || !(c.inertia.y > 0) ||
+          !(c.inertia.z > 0))
+        refuse("clump " + std::to_string(c.id) +
+               " has no members, or no positive mass and moments");
+      RigidBody& b = bodies.emplace_back();
+      b.x = c.x;
+      b.v = c.v;
+      b.q = c.q;
+      b.p = c.p;
+      b.inertia = c.inertia;
+      b.mass = c.mass;
+      b.first = static_cast<std::uint32_t>(frame.size());
+      b.count = static_cast<std::uint32_t>(c.members.size());
+      b.gid = static_cast<std::uint32_t>(c.id);
+      frame.insert(frame.end(), c.members.begin(), c.members.end());
+      force.push_back(c.force);
+      torque.push_back(c.torque);
+    }
+    constexpr auto missing = no_body;
+    std::vector<std::uint32_t> body_of(hp.size(), no_body), member(frame.size(), missing);
+    for (std::size_t i = 0; i < hp.size(); ++i) {
+      if (hp.body[i] < 0) continue;
+      const auto at = std::lower_bound(scene.clumps.begin(), scene.clumps.end(), hp.body[i],
+                                       [](const DeviceClump& c, GlobalId id) { return c.id < id; });
+      if (at == scene.clumps.end() || at->id != hp.body[i])
+        refuse("particle " + std::to_string(hp.gid[i]) + " names clump " +
+               std::to_string(hp.body[i]) + ", which is not here");
+      const auto c = static_cast<std::uint32_t>(at - scene.clumps.begin());
+      const GlobalId k = hp.gid[i] - at->id;
+      if (hp.kind[i] != Kind::grain || k < 0 || k >= static_cast<GlobalId>(at->members.size()) ||
+          member[bodies[c].first + k] != missing)
+        refuse("particle " + std::to_string(hp.gid[i]) + " is no member of clump " +
+               std::to_string(at->id) + " (" + std::to_string(at->members.size()) +
+               " members, ids " + std::to_string(at->id) + " on)");
+      body_of[i] = c;
+      member[bodies[c].first + static_cast<std::uint32_t>(k)] = static_cast<std::uint32_t>(i);
+    }
+    for (const RigidBody& b : bodies)
+      for (std::uint32_t k = 0; k < b.count; ++k)
+        if (member[b.first + k] == missing)
+          refuse("member " + std::to_string(k) + " (particle " + std::to_string(b.gid + k) +
+                 ") of clump " + std::to_string(b.gid) + " is missing");
+    n_clumps_ = static_cast<std::uint32_t>(bodies.size());
+    clump_body_ = bodies;
+    clump_frame_ = frame;
+    clump_member_ = member;
+    body_of_ = body_of;
+    clump_force_ = force; // (made the start's own by gather_clump_loads() where not given)
+    clump_torque_ = torque;
+  }
+
+  // Each clump's load from what its members' contacts gave at the last evaluation.
+  void gather_clump_loads() {
+    for_each_index(n_clumps_, GatherClumpLoads{clump_set(), grain_loads(), raw(clump_force_),
+                                               raw(clump_torque_)});
+  }
+
+  // The clumps' kicks (one or two half kicks, then the drift if `drift`) under their kept
+  // loads, and their members placed (positions too where moved_far is given).
+  void move_clumps(int kicks, bool drift, double limit2, std::uint32_t* moved_far) {
+    if (n_clumps_ == 0) return;
+    for_each_index(n_clumps_, KickClumps{clump_set(), raw(clump_force_), raw(clump_torque_), dt_,
+                                         kicks, drift});
+    for_each_index(n_, PlaceMembers{view(), clump_set(), limit2, moved_far});
+  }
+
   // field[k] = field[order[k]], through scratch; field holds exactly what it needs afterwards
   // (the particles only ever grow fewer: room to grow would be wasted).
   template <class T>
@@ -828,10 +979,19 @@ private:
     permute_by(order, field, scratch);
   }
   // Drops the grains outside the box along an open axis (or stops the run, as the scene says).
+  // A clump leaves whole, with the first of its members out.
   void remove_escaped() {
     DeviceVector<std::uint32_t> gone(n_);
     DeviceVector<double> energy(n_);
     for_each_index(n_, Escaped{view(), box_, g_potential_, raw(gone), raw(energy)});
+    DeviceVector<std::uint32_t> clump_gone;
+    DeviceVector<double> clump_energy;
+    if (n_clumps_ > 0) {
+      resize_all(n_clumps_, clump_gone, clump_energy);
+      for_each_index(n_clumps_, ClumpEscaped{clump_set(), raw(gone), g_potential_, raw(clump_gone),
+                                             raw(clump_energy)});
+      for_each_index(n_, MembersLeave{view(), raw(clump_gone), raw(gone)});
+    }
     const std::uint32_t n_gone =
         thrust::reduce(on_device(), raw(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
@@ -841,6 +1001,10 @@ private:
                                std::to_string(step_) + " (on_escape = \"stop\")");
     removed_total_ += sums_(energy);
     escaped_ += n_gone;
+    if (n_clumps_ > 0) {
+      removed_total_ += sums_(clump_energy);
+      escaped_ -= remove_clumps(clump_gone); // (a clump counts once, its members not)
+    }
     DeviceVector<std::uint32_t> keep(n_ - n_gone);
     thrust::copy_if(on_device(), thrust::counting_iterator<std::uint32_t>(0),
                     thrust::counting_iterator<std::uint32_t>(n_), raw(gone), raw(keep), IsZero{});
@@ -849,7 +1013,54 @@ private:
     resize(tally_, n_ + 1);
   }
 
+  // The clumps flagged in `gone` taken out (a rare event, done on the host), the others
+  // renumbered in order with their loads, their members still among the particles (they leave
+  // next); returns how many members left, less how many clumps.
+  std::int64_t remove_clumps(const DeviceVector<std::uint32_t>& gone) {
+    const std::vector<std::uint32_t> flag = to_host(gone);
+    const std::vector<RigidBody> bodies = to_host(clump_body_);
+    const std::vector<Vec3> frame = to_host(clump_frame_);
+    std::vector<RigidBody> kept;
+    std::vector<Vec3> kept_frame;
+    std::vector<std::uint32_t> renumber(n_clumps_, no_body);
+    std::vector<Vec3> force, torque;
+    const std::vector<Vec3> last_force = to_host(clump_force_),
+                            last_torque = to_host(clump_torque_);
+    std::int64_t members = 0, clumps = 0;
+    for (std::uint32_t c = 0; c < n_clumps_; ++c) {
+      if (flag[c]) {
+        members += bodies[c].count;
+        ++clumps;
+        continue;
+      }
+      renumber[c] = static_cast<std::uint32_t>(kept.size());
+      RigidBody b = bodies[c];
+      b.first = static_cast<std::uint32_t>(kept_frame.size());
+      kept_frame.insert(kept_frame.end(), frame.begin() + bodies[c].first,
+                        frame.begin() + bodies[c].first + bodies[c].count);
+      kept.push_back(b);
+      force.push_back(last_force[c]);
+      torque.push_back(last_torque[c]);
+    }
+    const DeviceVector<std::uint32_t> device_renumber = renumber;
+    for_each_index(n_, RenumberClumps{raw(device_renumber), raw(body_of_)});
+    n_clumps_ = static_cast<std::uint32_t>(kept.size());
+    const auto assign = [](auto& to, const auto& from) {
+      using V = std::remove_reference_t<decltype(to)>;
+      V fresh;
+      if (!from.empty()) V(from.begin(), from.end()).swap(fresh); // (see resize())
+      fresh.swap(to);
+    };
+    assign(clump_body_, kept);
+    assign(clump_frame_, kept_frame);
+    assign(clump_force_, force);
+    assign(clump_torque_, torque);
+    exact_size(clump_member_, kept_frame.size()); // (remapped with the particles' new order)
+    return members - clumps;
+  }
+
   // Every per-particle array reordered (and cut to order's length): array[k] = array[order[k]].
+  // The clumps' members are found again in the new order.
   void permute_particles(const DeviceVector<std::uint32_t>& order) {
     // The vectors through x_build_ as their scratch (no array more): the list's reference
     // positions are where the particles stand at a build, x_ copied in afterwards.
@@ -870,6 +1081,12 @@ private:
     permute_by(order, kind_);
     permute_by(order, material_);
     permute_by(order, motion_);
+    if (!body_of_.empty()) {
+      permute_by(order, body_of_);
+      Particles p = view();
+      p.n = static_cast<std::uint32_t>(order.size());
+      for_each_index(p.n, RemapMembers{p, clump_set()});
+    }
   }
 
   // Open contacts' keys in ascending order, and their states: carried across a list build.
@@ -919,7 +1136,7 @@ private:
     Stash planes;
     stash_open_contacts(pairs);
     stash_open_planes(planes.keys, planes.states);
-    build_list(pairs, planes);
+    build_list(pairs, planes, true);
   }
 
   // The indices of the open contacts' flags in `open` (IsOpen), in order.
@@ -978,12 +1195,14 @@ private:
   }
 
   // Escapes, the cell sort, the list and the grain-plane candidates, with the open contacts
-  // (`pairs`, `planes`) taken back by their new pairs and candidates.
-  void build_list(const PairStash& pairs, const Stash& planes) {
+  // (`pairs`, `planes`) taken back by their new pairs and candidates. In a step (not at the
+  // start, as Simulation::build_lists), the clumps' centres wrap into the periodic box.
+  void build_list(const PairStash& pairs, const Stash& planes, bool in_step) {
     const std::uint32_t n_stashed = static_cast<std::uint32_t>(pairs.keys.size());
     // 1. Grains that left through an open face stop the run, or leave it with their mechanical
     // energy booked as removed (Simulation::handle_escapes_here).
     remove_escaped();
+    if (in_step && n_clumps_ > 0) for_each_index(n_clumps_, WrapClumps{view(), clump_set(), box_});
 
     // 2. Wrap, sort by (cell, global id), and find each cell's start.
     DeviceVector<std::uint64_t> key(n_);
@@ -1004,8 +1223,22 @@ private:
 
     // 3. The half list: count (into the rows' starts), offsets, fill.
     resize(row_start_, n_ + 1);
-    FindPartners find{view(),          box_,    cells_,  raw(cell_start_), skin_,
-                      raw(row_start_), nullptr, nullptr, nullptr};
+    // (the cells hold clumps' members at their wrapped places: an array for the build alone)
+    DeviceVector<Vec3> in_cells;
+    if (n_clumps_ > 0) {
+      resize(in_cells, n_);
+      for_each_index(n_, PlaceInCells{view(), box_, raw(in_cells)});
+    }
+    FindPartners find{view(),
+                      n_clumps_ > 0 ? raw(in_cells) : raw(x_),
+                      box_,
+                      cells_,
+                      raw(cell_start_),
+                      skin_,
+                      raw(row_start_),
+                      nullptr,
+                      nullptr,
+                      nullptr};
     for_each_index(n_, find);
     const std::uint32_t total = counts_to_offsets(row_start_, n_);
     resize_all(total, partner_, image_);
@@ -1014,6 +1247,15 @@ private:
     find.partner = raw(partner_);
     find.image = raw(image_);
     for_each_index(n_, find);
+    if (n_clumps_ > 0) {
+      DeviceVector<Vec3>().swap(in_cells);
+      for_each_index(n_, MemberImages{view(), pair_list(), box_, raw(image_), raw(too_wide_)});
+      if (read_one(too_wide_, 0) != 0)
+        throw std::runtime_error(
+            "device engine: a clump's member and a particle near it stand more than one periodic "
+            "box length apart across the box: the periodic box is too short for its clumps (make "
+            "it longer than twice a clump's span)");
+    }
 
     // 4. Each particle's pairs as the partner, in pair order.
     DeviceVector<std::uint32_t> partner_sorted = partner_;
@@ -1084,6 +1326,7 @@ private:
       const bool given = !given_force_.empty();
       for_each_index(n_, KickDrift{view(), grain_loads(), given ? raw(given_force_) : nullptr,
                                    given ? raw(given_torque_) : nullptr, dt_, limit2, raw(tally_)});
+      move_clumps(1, true, limit2, raw(tally_)); // (under the loads of the last evaluation)
     }
     drifted_ = false;
     time_ += dt_;
@@ -1095,6 +1338,8 @@ private:
     clock.add_to(phases_.integration);
     // (queued: collected with the contacts' books below; read now, before the final kick)
     step_sums_.add_values(GravityWork{view(), g_periodic_, dt_}, n_);
+    if (n_clumps_ > 0)
+      step_sums_.add_values(ClumpGravityWork{raw(clump_body_), g_periodic_, dt_}, n_clumps_);
     clock.add_to(phases_.books);
     if (build) build_list();
     clock.add_to(phases_.list_build);
@@ -1105,16 +1350,22 @@ private:
     DeviceVector<Vec3>().swap(given_torque_);
     clock.add_to(phases_.forces);
     for_each_index(n_, FinalKick{view(), grain_loads(), dt_, limit2, last ? nullptr : raw(tally_)});
+    if (n_clumps_ > 0) {
+      gather_clump_loads();
+      move_clumps(last ? 1 : 2, !last, limit2, last ? nullptr : raw(tally_));
+    }
     drifted_ = !last;
     clock.add_to(phases_.integration);
     step_sums_.add(dissipated_, flagged_);
     step_sums_.add(plane_dissipated_);
     if (walls_work_) step_sums_.add(wall_work_, flagged_);
     const std::vector<double> booked = step_sums_.collect();
-    gravity_work_total_ += booked[0];
-    dissipated_total_ += booked[1];
-    dissipated_total_ += booked[2];
-    if (walls_work_) wall_work_total_ += booked[3];
+    std::size_t next = 0;
+    gravity_work_total_ += booked[next++];
+    if (n_clumps_ > 0) gravity_work_total_ += booked[next++];
+    dissipated_total_ += booked[next++];
+    dissipated_total_ += booked[next++];
+    if (walls_work_) wall_work_total_ += booked[next++];
     if (any_oscillating_) book_plane_work();
     clock.add_to(phases_.books);
   }
@@ -1174,6 +1425,16 @@ private:
   // moved-far flags.
   bool drifted_ = false;
   DeviceVector<Vec3> x_now_; // while the start's list is made again: where the particles stand
+  // The clumps (clump_phases.hpp): their bodies; per member slot, the member's centre in the
+  // principal frame and its particle's index; per particle, its clump or no_body (empty: no
+  // clumps); per clump, its load at the last evaluation (given with a run continued mid-way).
+  std::uint32_t n_clumps_ = 0;
+  DeviceVector<RigidBody> clump_body_;
+  DeviceVector<Vec3> clump_frame_;
+  DeviceVector<std::uint32_t> clump_member_, body_of_;
+  DeviceVector<Vec3> clump_force_, clump_torque_;
+  // Set by a list build that found a pair farther apart than one periodic image (FindPartners).
+  DeviceVector<std::uint32_t> too_wide_ = DeviceVector<std::uint32_t>(1, 0u);
   // The still planes, and the grain-plane candidates of the last list build (per candidate: its
   // grain, its plane, the contact's state, whether it is open, and what it gave this step).
   std::uint32_t n_planes_ = 0;

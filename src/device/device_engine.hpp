@@ -10,6 +10,7 @@
 #pragma once
 
 #include "core/particle_fields.hpp"
+#include "core/quaternion.hpp"
 #include "core/vec3.hpp"
 
 #include <cmath>
@@ -33,7 +34,24 @@ struct HostParticles {
   std::vector<Kind> kind;
   std::vector<std::uint8_t> material;
   std::vector<std::uint16_t> motion; // a wall particle's index into DeviceScene::motions
+  // The clump each particle is a member of (its DeviceClump's id), -1 for none; empty: no
+  // particle is a member.
+  std::vector<GlobalId> body;
   std::size_t size() const { return x.size(); }
+};
+
+// A rigid clump of spheres (sim/clump_bodies.hpp, ClumpBody; docs/clumps.md): its members are
+// the particles whose `body` is its id, of ids id, id + 1, ... in member order. The body carries
+// the motion: its centre of mass, its velocity, its orientation and NO_SQUISH's conjugate
+// momentum (core/free_rotation.hpp); the members are placed from it at every drift.
+struct DeviceClump {
+  GlobalId id = -1;
+  double mass = 0;           // M [mass]
+  Vec3 inertia;              // principal moments [mass length^2]
+  Vec3 x, v;                 // centre of mass and its velocity
+  Quaternion q, p;           // body frame -> lab, and its conjugate momentum 2 q (0, L_body)
+  Vec3 force, torque;        // of the last evaluation (gravity included; the torque about x)
+  std::vector<Vec3> members; // the members' centres in the principal frame [length]
 };
 
 // A wall particles' motion: standing still, or the fish basin's radial cosine wave
@@ -84,8 +102,10 @@ struct DeviceScene {
   std::vector<DeviceMotion> motions;
   std::vector<DevicePlane> planes; // at most 255
   bool remove_escaped = false;     // a grain out of the box leaves (else it stops the run)
-  // The particles' f and torque are those of the last step (a run continued mid-way): kept, not
-  // computed again at the start.
+  // The clumps, ids ascending; their members are among the particles.
+  std::vector<DeviceClump> clumps;
+  // The particles' f and torque, and the clumps', are those of the last step (a run continued
+  // mid-way): kept, not computed again at the start.
   bool forces_given = false;
 };
 
@@ -134,8 +154,11 @@ struct DeviceMemory {
   std::size_t pairs = 0;     // per listed pair: partner, image, flag, slot, the reverse list
   std::size_t contacts = 0;  // per touching pair: the state, force, torques and energies
   std::size_t planes = 0;    // the planes and the grain-plane candidates
+  std::size_t clumps = 0;    // the clumps' bodies, their members' frames and indices
   std::size_t work = 0;      // the fixed-order sums' partial sums and Thrust's kept scratch
-  std::size_t total() const { return particles + cells + pairs + contacts + planes + work; }
+  std::size_t total() const {
+    return particles + cells + pairs + contacts + planes + clumps + work;
+  }
   // The most held at once since the engine started, the temporary arrays of list builds and
   // outputs included (on the GPU, Thrust's temporary storage too; the host build's algorithms
   // keep theirs in host memory). Counted per thread: two engines alive on one thread count
@@ -148,8 +171,11 @@ public:
   virtual ~DeviceEngine() = default;
   // Advances the state by `steps` time steps.
   virtual void run(std::int64_t steps) = 0;
-  // A copy of the particles, in global-id order (forces and torques of the last evaluation).
+  // A copy of the particles, in global-id order (forces and torques of the last evaluation;
+  // a clump's member's, its contacts' alone).
   virtual HostParticles particles() const = 0;
+  // The clumps that remain, ids ascending (force and torque of the last evaluation).
+  virtual std::vector<DeviceClump> clumps() const = 0;
   virtual DeviceEnergies energies() const = 0;
   virtual std::int64_t step() const = 0;
   virtual double time() const = 0;

@@ -35,6 +35,23 @@ struct DeviceBox {
     }
     return p;
   }
+  // How wrap() moves p, as an image code (separation()): along each axis 0 (not), 1 (one box
+  // length up) or 2 (one length down); 255 where it moves p farther.
+  YUXI_HD std::uint8_t wrap_image(const Vec3& p) const {
+    const Vec3 w = wrap(p);
+    std::uint8_t code = 0, weight = 1;
+    for (int a = 0; a < 3; ++a, weight = static_cast<std::uint8_t>(weight * 3)) {
+      if (!periodic[a]) continue;
+      const double lengths = std::floor((w[a] - p[a]) / length(a) + 0.5); // (a whole number)
+      if (lengths == 1.0)
+        code = static_cast<std::uint8_t>(code + weight);
+      else if (lengths == -1.0)
+        code = static_cast<std::uint8_t>(code + 2 * weight);
+      else if (lengths != 0.0)
+        return 255;
+    }
+    return code;
+  }
 };
 
 // Linked cells over the box: n[a] cells of edge `edge[a]` along each axis.
@@ -71,7 +88,6 @@ YUXI_ALWAYS_INLINE YUXI_HD Vec3 separation(const Vec3& xi, const Vec3& xj, std::
   return d;
 }
 
-// The particles, sorted by cell at each list build.
 // A particle's radius [length], mass [mass], inverse mass and inverse moment of inertia: the
 // same four for every particle of a species.
 struct Species {
@@ -81,7 +97,9 @@ struct Species {
 // The particles, sorted by cell at each list build. No force or torque is kept per particle:
 // the kicks sum them from the contacts (GrainLoads). Where the particles are of few species,
 // each keeps the index of its species (2 bytes, not 32): a monodisperse bed, or a few sizes,
-// reads one small table; otherwise each particle is a species of its own.
+// reads one small table; otherwise each particle is a species of its own. A clump's member is
+// a grain that names its clump (`body_of`): its clump moves it (clump_phases.hpp).
+constexpr std::uint32_t no_body = 0xffffffffu;
 struct Particles {
   Vec3 *x, *v, *w, *x_build;
   const Species* species;
@@ -89,7 +107,16 @@ struct Particles {
   const std::uint32_t* gid;        // the global id (the engine refuses ids beyond 32 bits)
   const Kind* kind;
   const std::uint8_t* material;
+  const std::uint32_t* body_of; // each particle's clump (its index), or no_body; null: none
   std::uint32_t n;
+
+  YUXI_ALWAYS_INLINE YUXI_HD bool is_member(std::uint32_t i) const {
+    return body_of != nullptr && body_of[i] != no_body;
+  }
+  // A grain that moves by itself (not a clump's member).
+  YUXI_ALWAYS_INLINE YUXI_HD bool is_free_grain(std::uint32_t i) const {
+    return kind[i] == Kind::grain && !is_member(i);
+  }
 
   YUXI_ALWAYS_INLINE YUXI_HD const Species& of(std::uint32_t i) const {
     return species[species_of ? species_of[i] : i];
@@ -129,15 +156,18 @@ struct PairList {
 // Each particle's sort key at a list build (after wrapping it into the periodic box): its cell,
 // then its global id (the list's reference positions are set after the sort). The order this gives
 // depends on where the particles stand and nothing else, so a run continued from a checkpoint
-// sorts, lists and sums as the run that wrote it.
+// sorts, lists and sums as the run that wrote it. A clump's member is not wrapped alone (its
+// clump wraps, at its centre, and takes it along): it is sorted into the cell of its wrapped
+// place and stays where it stands, maybe outside the box (FindPartners).
 struct CellOfParticle {
   Particles p;
   DeviceBox box;
   DeviceCells cells;
   std::uint64_t* key;
   YUXI_HD void operator()(std::uint32_t i) const {
-    p.x[i] = box.wrap(p.x[i]);
-    key[i] = (static_cast<std::uint64_t>(cells.cell_of(p.x[i])) << 32) |
+    const Vec3 wrapped = box.wrap(p.x[i]);
+    if (!p.is_member(i)) p.x[i] = wrapped;
+    key[i] = (static_cast<std::uint64_t>(cells.cell_of(wrapped)) << 32) |
              static_cast<std::uint64_t>(p.gid[i]);
   }
 };
@@ -150,10 +180,16 @@ struct FirstKeyOfCell {
 };
 
 // Particle i's partners: every later particle (in cell order) of the 27 cells around it, closer
-// than a_i + a_j + skin, that is not a wall particle with another wall particle. Counts them
-// (count != nullptr) or writes them from out_start[i].
+// than a_i + a_j + skin, that is not a wall particle with another wall particle, nor a member of
+// i's clump. Counts them (count != nullptr) or writes them from out_start[i].
+//
+// The cells hold the particles at `at`: where they stand, or, for clumps' members, which stand
+// where their clumps put them, maybe outside a periodic box, at their wrapped places
+// (CellOfParticle). The images found between wrapped places are then made the images between
+// where the particles stand (MemberImages).
 struct FindPartners {
   Particles p;
+  const Vec3* at; // each particle's place in the cells
   DeviceBox box;
   DeviceCells cells;
   const std::uint32_t* cell_start; // first particle of each cell, and the total at the end
@@ -164,10 +200,10 @@ struct FindPartners {
   std::uint8_t* image;
 
   YUXI_HD void operator()(std::uint32_t i) const {
-    const Vec3 xi = p.x[i];
+    const Vec3 xi = at[i];
     int c[3];
     for (int a = 0; a < 3; ++a) c[a] = cells.axis_cell(xi[a], a);
-    std::uint32_t found = 0, at = count ? 0 : out_start[i];
+    std::uint32_t found = 0, next = count ? 0 : out_start[i];
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -194,19 +230,65 @@ struct FindPartners {
           for (std::uint32_t j = cell_start[cell]; j < cell_start[cell + 1]; ++j) {
             if (j <= i) continue;
             if (p.kind[i] == Kind::wall && p.kind[j] == Kind::wall) continue;
-            const Vec3 dij = separation(xi, p.x[j], code, box); // as PairForces sees the pair
+            if (p.is_member(i) && p.body_of[i] == p.body_of[j]) continue; // (one clump's members)
+            const Vec3 dij = separation(xi, at[j], code, box); // as PairForces sees the pair
             const double reach = p.radius(i) + p.radius(j) + skin;
             if (!(norm2(dij) < reach * reach)) continue;
             if (count) {
               ++found;
             } else {
-              partner[at] = j;
-              image[at] = code;
-              ++at;
+              partner[next] = j;
+              image[next] = code;
+              ++next;
             }
           }
         }
     if (count) count[i] = found;
+  }
+};
+
+// After FindPartners, where clumps' members are: the image of each pair of row i with a member,
+// found between wrapped places, made the image between where the two particles stand (a member
+// is not wrapped alone): each one's wrap (DeviceBox::wrap_image) added in. An image beyond one
+// box length (a clump about as long as the periodic box) cannot be written: it sets *too_wide.
+struct MemberImages {
+  Particles p;
+  PairList list;
+  DeviceBox box;
+  std::uint8_t* image;
+  std::uint32_t* too_wide;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    const bool member_i = p.is_member(i);
+    const std::uint8_t wrap_i = member_i ? box.wrap_image(p.x[i]) : 0;
+    for (std::uint32_t pair = list.row_start[i]; pair < list.row_start[i + 1]; ++pair) {
+      const std::uint32_t j = list.partner[pair];
+      if (!member_i && !p.is_member(j)) continue;
+      const std::uint8_t wrap_j = p.is_member(j) ? box.wrap_image(p.x[j]) : 0;
+      // Along each axis, in box lengths up: the image's, plus j's wrap, less i's.
+      const auto up = [](unsigned c) { return c == 1 ? 1 : c == 2 ? -1 : 0; };
+      unsigned in = image[pair], wi = wrap_i, wj = wrap_j, out = 0, weight = 1;
+      bool fits = wrap_i != 255 && wrap_j != 255;
+      for (int a = 0; a < 3; ++a, weight *= 3, in /= 3, wi /= 3, wj /= 3) {
+        const int m = up(in % 3) + up(wj % 3) - up(wi % 3);
+        fits = fits && m >= -1 && m <= 1;
+        out += weight * (m == 1 ? 1u : m == -1 ? 2u : 0u);
+      }
+      if (fits)
+        image[pair] = static_cast<std::uint8_t>(out);
+      else
+        *too_wide = 1; // (every thread that writes writes 1)
+    }
+  }
+};
+
+// Each particle's place in the cells at a list build: where it stands, or a clump's member's
+// wrapped place (FindPartners).
+struct PlaceInCells {
+  Particles p;
+  DeviceBox box;
+  Vec3* at;
+  YUXI_HD void operator()(std::uint32_t i) const {
+    at[i] = p.is_member(i) ? box.wrap(p.x[i]) : p.x[i];
   }
 };
 
@@ -567,6 +649,10 @@ struct GrainLoads {
                                              Vec3& t) const {
     f = gravity * p.mass(i);
     t = Vec3{};
+    add_contacts(i, f, t);
+  }
+  // What particle i's contacts gave, added to f and t in the order above.
+  YUXI_ALWAYS_INLINE YUXI_HD void add_contacts(std::uint32_t i, Vec3& f, Vec3& t) const {
     for (std::uint32_t k = list.row_start[i]; k < list.row_start[i + 1]; ++k) {
       if (!(open[k] & touches_now)) continue;
       f += out.force[slot[k]];
@@ -586,7 +672,8 @@ struct GrainLoads {
 };
 
 // The force (or the torque) on particles first, first + 1, ... into out[0], out[1], ... (zero
-// for wall particles): for the host, at an output step.
+// for wall particles; a clump's member's from its contacts alone, as its clump takes gravity):
+// for the host, at an output step.
 struct WriteLoads {
   Particles p;
   GrainLoads loads;
@@ -596,7 +683,10 @@ struct WriteLoads {
   YUXI_HD void operator()(std::uint32_t k) const {
     const std::uint32_t i = first + k;
     Vec3 f, t;
-    if (p.kind[i] == Kind::grain) loads(p, i, f, t);
+    if (p.is_member(i))
+      loads.add_contacts(i, f, t);
+    else if (p.kind[i] == Kind::grain)
+      loads(p, i, f, t);
     out[k] = torque ? t : f;
   }
 };
@@ -626,9 +716,10 @@ YUXI_ALWAYS_INLINE YUXI_HD std::uint32_t drift(const Particles& p, std::uint32_t
   return !(dx * dx + dy * dy + dz * dz <= limit2) ? 1 : 0; // NaN too
 }
 
-// The first half kick and the drift of every grain, and whether it moved more than half the
+// The first half kick and the drift of every free grain, and whether it moved more than half the
 // skin since the last list build: under the forces the last step's contacts gave, or under
-// `given` ones (a run continued mid-way, before its first step).
+// `given` ones (a run continued mid-way, before its first step). Clumps' members are left to
+// their clumps (BodyKickDrift, after this).
 struct KickDrift {
   Particles p;
   GrainLoads loads;
@@ -637,7 +728,7 @@ struct KickDrift {
   std::uint32_t*
       moved_far; // 1 where the grain moved far (32-bit: CUB reduces 8-bit flags with spills)
   YUXI_HD void operator()(std::uint32_t i) const {
-    if (p.kind[i] != Kind::grain) {
+    if (!p.is_free_grain(i)) {
       moved_far[i] = 0;
       return;
     }
@@ -653,16 +744,17 @@ struct KickDrift {
   }
 };
 
-// The second half kick of every grain (Simulation::final_kick); where `moved_far` is given,
+// The second half kick of every free grain (Simulation::final_kick); where `moved_far` is given,
 // the next step's first half kick and drift as well, under the same forces (KickDrift): the
-// same operations in the same order, with one sum of the forces instead of two.
+// same operations in the same order, with one sum of the forces instead of two. (Clumps:
+// BodyFinalKick, after this.)
 struct FinalKick {
   Particles p;
   GrainLoads loads;
   double dt, limit2;
   std::uint32_t* moved_far; // null: the kick alone
   YUXI_HD void operator()(std::uint32_t i) const {
-    if (p.kind[i] != Kind::grain) {
+    if (!p.is_free_grain(i)) {
       if (moved_far) moved_far[i] = 0;
       return;
     }
@@ -706,7 +798,8 @@ struct PlaceWalls {
 };
 
 // Values that the fixed-order sums read as they add (StridedSum), computed from the particles
-// where they stand then, so that no array holds them [energy]. Zero for wall particles.
+// where they stand then, so that no array holds them [energy]. Zero for wall particles and
+// clumps' members (their clumps' are summed apart: clump_phases.hpp).
 //
 // The work of periodic gravity over the drift just made, m g_p . v dt, v the half-step velocity
 // (Simulation::kick_drift's gravity work): read between KickDrift and FinalKick.
@@ -716,7 +809,7 @@ struct GravityWork {
   double dt;
   YUXI_HD double operator[](std::uint64_t k) const {
     const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
-    if (p.kind[i] != Kind::grain) return 0.0;
+    if (!p.is_free_grain(i)) return 0.0;
     const Vec3 v = p.v[i];
     return p.mass(i) * (g_periodic.x * v.x + g_periodic.y * v.y + g_periodic.z * v.z) * dt;
   }
@@ -727,7 +820,7 @@ struct TranslationalEnergy {
   Particles p;
   YUXI_HD double operator[](std::uint64_t k) const {
     const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
-    return p.kind[i] == Kind::grain ? translational_energy(p.mass(i), p.v[i]) : 0.0;
+    return p.is_free_grain(i) ? translational_energy(p.mass(i), p.v[i]) : 0.0;
   }
 };
 // (written into an array, not computed as the sum reads it: its division, inside the sum's
@@ -736,7 +829,7 @@ struct RotationalEnergy {
   Particles p;
   double* energy;
   YUXI_HD void operator()(std::uint32_t i) const {
-    energy[i] = p.kind[i] == Kind::grain ? rotational_energy(p.w[i], p.inv_inertia(i)) : 0.0;
+    energy[i] = p.is_free_grain(i) ? rotational_energy(p.w[i], p.inv_inertia(i)) : 0.0;
   }
 };
 struct GravitationalEnergy {
@@ -744,7 +837,7 @@ struct GravitationalEnergy {
   Vec3 g_potential;
   YUXI_HD double operator[](std::uint64_t k) const {
     const auto i = static_cast<std::uint32_t>(k); // (k < n < 2^31)
-    return p.kind[i] == Kind::grain ? -(p.mass(i) * dot(g_potential, p.x[i])) : 0.0;
+    return p.is_free_grain(i) ? -(p.mass(i) * dot(g_potential, p.x[i])) : 0.0;
   }
 };
 

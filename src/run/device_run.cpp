@@ -29,7 +29,6 @@ std::vector<std::string> device_engine_refusals(const Simulation& sim) {
                              device::max_wall_motions));
   if (!sim.inserts().empty()) no.push_back("[[insert]] sources");
   if (sim.has_outlets()) no.push_back("[[outlet]] sinks");
-  if (!sim.clumps().empty()) no.push_back("clumps of spheres");
   return no;
 }
 
@@ -38,6 +37,8 @@ namespace {
 // Tiles the particles and the box `r` times along each axis.
 void replicate(device::DeviceScene& scene, const Replicas& r) {
   const device::HostParticles one = scene.particles;
+  const std::vector<device::DeviceClump> clumps = std::move(scene.clumps);
+  scene.clumps.clear();
   GlobalId largest = 0;
   for (const GlobalId id : one.gid) largest = std::max(largest, id);
   device::HostParticles& all = scene.particles;
@@ -66,6 +67,13 @@ void replicate(device::DeviceScene& scene, const Replicas& r) {
           }
           if (!one.x_build.empty()) all.x_build.push_back(one.x_build[i] + shift);
           all.motion.push_back(one.motion[i]);
+          if (!one.body.empty())
+            all.body.push_back(one.body[i] < 0 ? one.body[i] : one.body[i] + copy * (largest + 1));
+        }
+        for (const device::DeviceClump& c : clumps) { // (a clump's id is its first member's)
+          device::DeviceClump& placed = scene.clumps.emplace_back(c);
+          placed.id = c.id + copy * (largest + 1);
+          placed.x = c.x + shift;
         }
       }
   for (int a = 0; a < 3; ++a) scene.hi[a] = scene.lo[a] + r.n[a] * length[a];
@@ -100,6 +108,22 @@ std::unique_ptr<device::DeviceEngine> engine_for(const Simulation& sim,
     p.x_build.assign(s.x_build.begin(), s.x_build.begin() + n);
   }
   p.motion.assign(s.motion.begin(), s.motion.begin() + n);
+  if (!sim.clumps().empty()) {
+    p.body.assign(s.body.begin(), s.body.begin() + n);
+    for (const ClumpBody& b : sim.clumps()) {
+      device::DeviceClump& c = scene.clumps.emplace_back();
+      c.id = b.id;
+      c.mass = b.mass;
+      c.inertia = b.inertia;
+      c.x = b.x;
+      c.v = b.v;
+      c.q = b.q;
+      c.p = b.p;
+      c.force = b.force;
+      c.torque = b.torque;
+      c.members = b.members;
+    }
+  }
   for (const WallMotion& motion : sim.wall_motions()) {
     device::DeviceMotion& m = scene.motions.emplace_back();
     if (const auto* wave = std::get_if<RadialCosineMotion>(&motion)) {

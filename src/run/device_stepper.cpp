@@ -60,6 +60,8 @@ EngineState DeviceStepper::engine_state() const {
   s.w = std::move(p.w);
   s.f = std::move(p.f);
   s.torque = std::move(p.torque);
+  for (const device::DeviceClump& c : engine_->clumps())
+    s.clumps.push_back({c.id, c.x, c.v, c.q, c.p, c.force, c.torque});
   s.time = engine_->time();
   s.step = step();
   // (the engine's first build made the list of the simulation's last one again)

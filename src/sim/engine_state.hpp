@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/particle_fields.hpp"
+#include "core/quaternion.hpp"
 #include "core/vec3.hpp"
 #include "sim/contact_tally.hpp"
 #include "sim/energy_books.hpp"
@@ -23,6 +24,15 @@ struct EngineState {
   // on escape) leave.
   std::vector<GlobalId> gid;
   std::vector<Vec3> x, x_build, v, w, f, torque;
+  // The clumps that remain, ids ascending: their motion and their loads of the last evaluation
+  // (ClumpBody's fields of the same names). The others (removed on escape) leave.
+  struct ClumpMotion {
+    GlobalId id = -1;
+    Vec3 x, v;
+    Quaternion q, p;
+    Vec3 force, torque;
+  };
+  std::vector<ClumpMotion> clumps;
   // The open contacts' states, as ContactStates::give() takes them (ContactHistory::pack_entries).
   std::string contact_stash;
   // The contacts' stored energies at the last evaluation, and how many touch.

@@ -414,6 +414,9 @@ private:
   // `as_saved`: the state of as many ranks as saved it, continued bit for bit; otherwise
   // particles merged from other ranks' sections, given a new list.
   void build_lists_after_load(bool as_saved);
+  // The clumps' motion and loads from another engine's state (take_engine_state); the clumps it
+  // lacks (removed on escape) leave.
+  void take_clump_motion(const std::vector<EngineState::ClumpMotion>& motion);
 
   // Runs `check` on every rank (an std::invalid_argument on any rank throws on all), then
   // applies `change` to this rank's particles in a list build, evaluates the forces without

@@ -410,6 +410,7 @@ void Simulation::take_engine_state(const EngineState& state) {
   store_.w = state.w;
   store_.f = state.f;
   store_.torque = state.torque;
+  take_clump_motion(state.clumps);
   time_ = state.time;
   step_ = state.step;
   list_builds_ = state.list_builds;
@@ -439,6 +440,29 @@ void Simulation::take_engine_state(const EngineState& state) {
   // The books' check that the CPU engine makes after its list builds: a run that gains energy
   // that nothing put in (a time step too large, non-finite values) stops with its diagnosis.
   check_energy_books(energies());
+}
+
+void Simulation::take_clump_motion(const std::vector<EngineState::ClumpMotion>& motion) {
+  std::vector<ClumpBody> kept;
+  std::size_t next = 0;
+  for (const ClumpBody& b : clumps_.bodies()) {
+    if (next < motion.size() && motion[next].id < b.id) break;      // (one this simulation lacks)
+    if (next == motion.size() || motion[next].id != b.id) continue; // (it left on escape)
+    ClumpBody& taken = kept.emplace_back(b);
+    const EngineState::ClumpMotion& m = motion[next++];
+    taken.x = m.x;
+    taken.v = m.v;
+    taken.q = m.q;
+    taken.p = m.p;
+    taken.force = m.force;
+    taken.torque = m.torque;
+  }
+  if (next != motion.size())
+    throw std::invalid_argument(fmt::format(
+        "take_engine_state: the state holds clump {}, which this simulation does not (or not "
+        "in ascending id)",
+        motion[next].id));
+  clumps_.set(std::move(kept)); // (the members are found again at the list build that follows)
 }
 
 ParticleStore Simulation::gather_particles() const {

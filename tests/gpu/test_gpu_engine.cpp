@@ -1,7 +1,8 @@
 // The device engine on a GPU against its host build, bit for bit (label "gpu"; built with
 // -DYUXI_CUDA=ON). Each test skips, saying why, where no CUDA GPU is found. The chute under every
-// contact law, the small basin's shaking wall particles and escapes, and a whole run through the
-// RunDriver: the same particles, books and energies.csv bytes on both sides.
+// contact law, rods of three spheres (clumps), the small basin's shaking wall particles and
+// escapes, and a whole run through the RunDriver: the same particles, clumps, books and
+// energies.csv bytes on both sides.
 #include "io/scene_reader.hpp"
 #include "run/device_run.hpp"
 #include "run/run_driver.hpp"
@@ -77,6 +78,14 @@ void expect_gpu_equals_host(const Simulation& sim, std::int64_t steps) {
   const device::DeviceEnergies eg = gpu->energies(), eh = host->energies();
   EXPECT_EQ(std::memcmp(&eg, &eh, sizeof eg), 0) << "the books differ";
   EXPECT_EQ(gpu->list_builds(), host->list_builds());
+  const std::vector<device::DeviceClump> cg = gpu->clumps(), ch = host->clumps();
+  ASSERT_EQ(cg.size(), ch.size());
+  for (std::size_t c = 0; c < cg.size(); ++c) {
+    const device::DeviceClump &a = cg[c], &b = ch[c];
+    const bool same = a.id == b.id && a.x == b.x && a.v == b.v && a.q == b.q && a.p == b.p &&
+                      a.force == b.force && a.torque == b.torque;
+    ASSERT_TRUE(same) << "clump " << b.id << " differs";
+  }
 }
 
 TEST(GpuEngine, ChuteIsTheHostBuildsToTheBit) {
@@ -96,6 +105,13 @@ INSTANTIATE_TEST_SUITE_P(Laws, GpuEngineLaw, testing::Values("hooke", "hertz", "
                          [](const testing::TestParamInfo<const char*>& law) {
                            return std::string(law.param);
                          });
+
+// Rods of three spheres settling in a periodic box, their members across its faces (clumps'
+// phases: their loads, NO_SQUISH's turns, the members' images), on both sides.
+TEST(GpuEngine, RodBedIsTheHostBuildsToTheBit) {
+  const auto sim = simulation_of(scene_text("clumps/rod-bed.toml"), "clumps/rod-bed.toml");
+  expect_gpu_equals_host(*sim, 6000);
+}
 
 // The small basin settled by the CPU engine, then its wall shaking and throwing grains out
 // (removed), on both sides.

@@ -1,0 +1,211 @@
+// Rigid clumps of spheres on the device engine's host build, against the CPU engine
+// (docs/clumps.md; docs/ARCHITECTURE.md, "The device engine"): rods settling in a box periodic
+// along x and y, whose members stand across the periodic faces with their clumps; clumps thrown
+// out of an open box, which leave whole; and a run handed to the host and started again, which
+// goes on to the bit. Label "device".
+#include "contact/linear_spring_dashpot.hpp"
+#include "device/device_engine.hpp"
+#include "io/scene_reader.hpp"
+#include "run/device_run.hpp"
+#include "run/device_stepper.hpp"
+#include "run/scene_builder.hpp"
+#include "sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+#include <string>
+
+namespace yuxi {
+namespace {
+
+// scenes/clumps/rod-bed.toml: rods of three spheres and plain spheres dropped onto a plane in a
+// box periodic along x and y; with `throw_out`, a taller box whose top lets grains out
+// (on_escape = "remove"), without the spheres.
+std::unique_ptr<Simulation> rod_bed(bool throw_out = false) {
+  const std::string path = YUXI_SCENES_DIR "/clumps/rod-bed.toml";
+  std::ifstream in(path);
+  std::string text{std::istreambuf_iterator<char>(in), {}};
+  if (throw_out) {
+    const auto replace = [&](const std::string& from, const std::string& to) {
+      const std::size_t at = text.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      text.replace(at, from.size(), to);
+    };
+    replace("hi = [8.0, 8.0, 14.0]", "hi = [8.0, 8.0, 20.0]");
+    replace("on_escape = \"stop\"", "on_escape = \"remove\"");
+    text.resize(text.rfind("[[fill]]")); // (the spheres' fill, last)
+  }
+  Scene scene = read_scene_text(text, path);
+  return build_simulation(scene, false);
+}
+
+bool close(double a, double b, double relative) {
+  return std::abs(a - b) <= relative * std::abs(b);
+}
+
+// Every clump's centre and velocity on the device against the CPU engine's (ids in the same
+// order), to `relative` of the largest.
+void expect_clumps_agree(const std::vector<device::DeviceClump>& dev,
+                         const std::vector<ClumpBody>& cpu, double relative) {
+  ASSERT_EQ(dev.size(), cpu.size());
+  double dx = 0, dv = 0, vmax = 0;
+  for (std::size_t c = 0; c < dev.size(); ++c) {
+    ASSERT_EQ(dev[c].id, cpu[c].id);
+    dx = std::max(dx, norm(dev[c].x - cpu[c].x));
+    dv = std::max(dv, norm(dev[c].v - cpu[c].v));
+    vmax = std::max(vmax, norm(cpu[c].v));
+  }
+  EXPECT_LE(dx, relative * 8.0);
+  EXPECT_LE(dv, relative * vmax);
+}
+
+TEST(DeviceClumps, RodsSettlingAcrossPeriodicFacesMatchTheCpuEngine) {
+  const auto sim = rod_bed();
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  const std::int64_t steps = 6000;
+  sim->run(steps);
+  engine->run(steps);
+  const EnergyBooks cpu = sim->energies();
+  const device::DeviceEnergies dev = engine->energies();
+  ASSERT_GT(sim->last_tally().touching, 200u) << "the rods have reached the plane and each other";
+  EXPECT_EQ(dev.grains, static_cast<std::int64_t>(cpu.grains));
+  EXPECT_EQ(dev.grains, 300);
+  EXPECT_EQ(dev.contacts, static_cast<std::int64_t>(cpu.contacts));
+  for (const auto& [d, c] : {std::pair{dev.translational, cpu.translational},
+                             {dev.rotational, cpu.rotational},
+                             {dev.gravitational, cpu.gravitational},
+                             {dev.elastic, cpu.elastic},
+                             {dev.dissipated, cpu.dissipated}})
+    EXPECT_PRED3(close, d, c, 1e-9);
+  expect_clumps_agree(engine->clumps(), sim->clumps(), 1e-8);
+  // The members stand with their clumps, some outside the periodic box (never wrapped alone).
+  const device::HostParticles got = engine->particles();
+  const ParticleStore cpu_particles = sim->gather_particles();
+  ASSERT_EQ(got.size(), cpu_particles.n_owned());
+  int outside = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got.body[i], cpu_particles.body[i]);
+    if (got.body[i] >= 0 &&
+        (got.x[i].x < 0.0 || got.x[i].x >= 8.0 || got.x[i].y < 0.0 || got.x[i].y >= 8.0))
+      ++outside;
+    EXPECT_LE(norm(got.x[i] - cpu_particles.x[i]), 1e-8 * 8.0) << "particle " << got.gid[i];
+  }
+  EXPECT_GT(outside, 0) << "no member stood across a periodic face: the test misses its case";
+}
+
+// Clumps thrown out through the open top leave whole, on both engines at the same list build,
+// their mechanical energy (the body's, rotation included) booked as removed.
+TEST(DeviceClumps, ClumpsThrownOutOfTheBoxLeaveWhole) {
+  const auto sim = rod_bed(true);
+  std::vector<std::pair<double, GlobalId>> heights; // (the highest two: nothing above them)
+  for (const ClumpBody& c : sim->clumps()) heights.emplace_back(c.x.z, c.id);
+  std::sort(heights.rbegin(), heights.rend());
+  const std::vector<GlobalId> thrown{heights[0].second, heights[1].second};
+  sim->set_clump_velocities(thrown, std::vector<Vec3>(2, Vec3{0.0, 0.0, 60.0}));
+  sim->set_clump_angular_velocities(thrown, std::vector<Vec3>(2, Vec3{3.0, -2.0, 1.0}));
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  sim->run(2500);
+  engine->run(2500);
+  const EnergyBooks cpu = sim->energies();
+  const device::DeviceEnergies dev = engine->energies();
+  ASSERT_EQ(cpu.escaped, 2u);
+  EXPECT_EQ(dev.escaped, 2);
+  EXPECT_EQ(dev.grains, 198);
+  EXPECT_PRED3(close, dev.removed, cpu.removed, 1e-12);
+  EXPECT_PRED3(close, dev.translational, cpu.translational, 1e-9);
+  EXPECT_PRED3(close, dev.rotational, cpu.rotational, 1e-9);
+  EXPECT_EQ(engine->particles().size(), sim->gather_particles().n_owned());
+  const std::vector<device::DeviceClump> left = engine->clumps();
+  for (const GlobalId id : thrown)
+    EXPECT_TRUE(std::none_of(left.begin(), left.end(),
+                             [id](const device::DeviceClump& c) { return c.id == id; }));
+  expect_clumps_agree(left, sim->clumps(), 1e-8);
+}
+
+// The state handed to the simulation mid-way and a new engine started from it: the run goes on
+// as if never stopped, to the bit (the members' places, the clumps' bodies and their loads of
+// the last step come back whole).
+TEST(DeviceClumps, ARunHandedOverAndStartedAgainGoesOnToTheBit) {
+  const auto straight = rod_bed();
+  DeviceStepper through(*straight, DeviceChoice::host);
+  through.advance(6000);
+  through.hand_over();
+  const auto stopped = rod_bed();
+  {
+    DeviceStepper first(*stopped, DeviceChoice::host);
+    first.advance(4500);
+    first.hand_over();
+    ASSERT_GT(stopped->last_tally().touching, 100u) << "handed over with the rods in contact";
+  }
+  {
+    DeviceStepper second(*stopped, DeviceChoice::host);
+    second.advance(1500);
+    second.hand_over();
+  }
+  const ParticleStore a = straight->gather_particles(), b = stopped->gather_particles();
+  ASSERT_EQ(a.n_owned(), b.n_owned());
+  const std::size_t n = a.n_owned();
+  EXPECT_EQ(std::memcmp(a.x.data(), b.x.data(), n * sizeof(Vec3)), 0);
+  EXPECT_EQ(std::memcmp(a.v.data(), b.v.data(), n * sizeof(Vec3)), 0);
+  EXPECT_EQ(std::memcmp(a.w.data(), b.w.data(), n * sizeof(Vec3)), 0);
+  const std::vector<ClumpBody>& ca = straight->clumps();
+  const std::vector<ClumpBody>& cb = stopped->clumps();
+  ASSERT_EQ(ca.size(), cb.size());
+  for (std::size_t c = 0; c < ca.size(); ++c) {
+    ASSERT_EQ(ca[c].x, cb[c].x) << "clump " << ca[c].id;
+    ASSERT_EQ(ca[c].v, cb[c].v) << "clump " << ca[c].id;
+    ASSERT_EQ(ca[c].q.w, cb[c].q.w) << "clump " << ca[c].id;
+    ASSERT_EQ(ca[c].p.vector(), cb[c].p.vector()) << "clump " << ca[c].id;
+  }
+  // (the cumulative books are added from the handover on: to round-off)
+  EXPECT_PRED3(close, stopped->energies().dissipated, straight->energies().dissipated, 1e-13);
+}
+
+// Particles that name a clump the scene does not hold, or a clump whose member is missing, are
+// refused by name.
+TEST(DeviceClumps, RefusesMembersAndClumpsThatDoNotMatch) {
+  device::DeviceScene scene;
+  scene.lo = {0, 0, 0};
+  scene.hi = {4, 4, 4};
+  scene.dt = 1e-4;
+  device::HostParticles& p = scene.particles;
+  for (int k = 0; k < 2; ++k) {
+    p.x.push_back({1.0 + 0.5 * k, 2.0, 2.0});
+    p.v.emplace_back();
+    p.w.emplace_back();
+    p.radius.push_back(0.3);
+    p.mass.push_back(1.0);
+    p.inv_mass.push_back(0.5);
+    p.inv_inertia.push_back(0.0);
+    p.gid.push_back(k);
+    p.kind.push_back(Kind::grain);
+    p.material.push_back(0);
+    p.body.push_back(0);
+  }
+  const std::vector<LinearSpringDashpot::Coeffs> coeffs(1);
+  const auto refused = [&](const std::string& what) {
+    try {
+      device::make_host_engine<LinearSpringDashpot>(scene, coeffs);
+      ADD_FAILURE() << "not refused: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("names clump 0, which is not here");
+  device::DeviceClump& c = scene.clumps.emplace_back();
+  c.id = 0;
+  c.mass = 2.0;
+  c.inertia = {0.1, 0.2, 0.2};
+  c.x = {1.25, 2.0, 2.0};
+  c.members = {{-0.25, 0, 0}, {0.25, 0, 0}, {0.5, 0, 0}};
+  refused("member 2 (particle 2) of clump 0 is missing");
+  c.members.pop_back();
+  EXPECT_NO_THROW(device::make_host_engine<LinearSpringDashpot>(scene, coeffs));
+}
+
+} // namespace
+} // namespace yuxi
