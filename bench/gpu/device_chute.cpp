@@ -80,10 +80,11 @@ int main(int argc, char** argv) try {
   const device::DeviceMemory m = engine->device_memory();
   const auto per_particle = [&](std::size_t b) { return static_cast<double>(b) / particles; };
   std::printf("device memory %.0f bytes per particle: particles %.0f, cells %.0f, listed pairs "
-              "%.0f, contacts %.0f, planes %.0f, sums and scratch %.0f; at most %.0f\n",
+              "%.0f, contacts %.0f, planes %.0f, clumps %.0f, sums and scratch %.0f; at most "
+              "%.0f\n",
               per_particle(m.total()), per_particle(m.particles), per_particle(m.cells),
               per_particle(m.pairs), per_particle(m.contacts), per_particle(m.planes),
-              per_particle(m.work), per_particle(m.peak));
+              per_particle(m.clumps), per_particle(m.work), per_particle(m.peak));
   std::printf("energies: translational %.17g rotational %.17g elastic %.17g dissipated %.17g "
               "gravity work %.17g\n",
               e.translational, e.rotational, e.elastic, e.dissipated, e.gravity_work);

@@ -18,12 +18,14 @@
 namespace yuxi::device {
 
 // A clump's body on the device: centre of mass x, its velocity v, the orientation q (body frame
-// to lab) and NO_SQUISH's conjugate momentum p, the principal moments and the mass; its members
-// are member slots first .. first + count of the clumps' arrays, in member order, of global ids
-// gid, gid + 1, ...
+// to lab) and NO_SQUISH's conjugate momentum p, the angular velocity omega that they make (lab
+// frame: lab_angular_velocity, made anew whenever q or p change, for the members' placing), the
+// principal moments and the mass; its members are member slots first .. first + count of the
+// clumps' arrays, in member order, of global ids gid, gid + 1, ...
 struct RigidBody {
   Vec3 x, v;
   Quaternion q, p;
+  Vec3 omega;
   Vec3 inertia;
   double mass;
   std::uint32_t first, count;
@@ -103,6 +105,7 @@ struct KickClumps {
       b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
       free_rotation(b.q, b.p, b.inertia, dt);
     }
+    b.omega = lab_angular_velocity(b.q, b.p, b.inertia);
     clumps.body[c] = b;
   }
 };
@@ -119,10 +122,9 @@ struct PlaceMembers {
   YUXI_HD void operator()(std::uint32_t i) const {
     if (!p.is_member(i)) return;
     const RigidBody& b = clumps.body[p.body_of[i]];
-    const Vec3 omega = lab_angular_velocity(b.q, b.p, b.inertia);
     const Vec3 r = rotation_of(b.q) * clumps.frame[b.first + (p.gid[i] - b.gid)];
-    p.v[i] = b.v + cross(omega, r);
-    p.w[i] = omega;
+    p.v[i] = b.v + cross(b.omega, r);
+    p.w[i] = b.omega;
     if (!moved_far) return;
     const Vec3 x = b.x + r;
     p.x[i] = x;
@@ -186,7 +188,7 @@ struct RenumberClumps {
 };
 
 // The clumps' energies [energy] (ClumpBodies::add_energies) and the work of periodic gravity over
-// the drift just made, M g_p . V dt (read between BodyKickDrift and BodyFinalKick), as the
+// the drift just made, M g_p . V dt (read between the drift and the final kick), as the
 // fixed-order sums read them.
 struct ClumpTranslationalEnergy {
   const RigidBody* body;

@@ -906,6 +906,7 @@ private:
       b.v = c.v;
       b.q = c.q;
       b.p = c.p;
+      b.omega = lab_angular_velocity(c.q, c.p, c.inertia);
       b.inertia = c.inertia;
       b.mass = c.mass;
       b.first = static_cast<std::uint32_t>(frame.size());
@@ -995,10 +996,23 @@ private:
     const std::uint32_t n_gone =
         thrust::reduce(on_device(), raw(gone), last(gone), std::uint32_t{0});
     if (n_gone == 0) return;
-    if (!remove_escaped_)
-      throw std::runtime_error("device engine: " + std::to_string(n_gone) +
-                               " grains left the box through an open face at step " +
+    if (!remove_escaped_) {
+      const auto count = [](std::uint32_t k, const std::string& thing) {
+        return std::to_string(k) + " " + thing + (k == 1 ? "" : "s");
+      };
+      std::string what = count(n_gone, "grain");
+      if (n_clumps_ > 0) { // (a clump counts once, its members not)
+        const std::vector<std::uint32_t> flag = to_host(clump_gone);
+        const std::vector<RigidBody> bodies = to_host(clump_body_);
+        std::uint32_t clumps = 0, members = 0;
+        for (std::uint32_t c = 0; c < n_clumps_; ++c)
+          if (flag[c]) ++clumps, members += bodies[c].count;
+        what = count(n_gone - members, "grain") + " and " + count(clumps, "clump");
+      }
+      throw std::runtime_error("device engine: " + what +
+                               " left the box through an open face at step " +
                                std::to_string(step_) + " (on_escape = \"stop\")");
+    }
     removed_total_ += sums_(energy);
     escaped_ += n_gone;
     if (n_clumps_ > 0) {
@@ -1253,8 +1267,8 @@ private:
       if (read_one(too_wide_, 0) != 0)
         throw std::runtime_error(
             "device engine: a clump's member and a particle near it stand more than one periodic "
-            "box length apart across the box: the periodic box is too short for its clumps (make "
-            "it longer than twice a clump's span)");
+            "box length apart across the box: a clump spans about the periodic box's length, or "
+            "a member's place is not finite");
     }
 
     // 4. Each particle's pairs as the partner, in pair order.
@@ -1338,7 +1352,9 @@ private:
     clock.add_to(phases_.integration);
     // (queued: collected with the contacts' books below; read now, before the final kick)
     step_sums_.add_values(GravityWork{view(), g_periodic_, dt_}, n_);
-    if (n_clumps_ > 0)
+    // (queued now, collected below: a list build between may take the last clumps away)
+    const bool clumps_worked = n_clumps_ > 0;
+    if (clumps_worked)
       step_sums_.add_values(ClumpGravityWork{raw(clump_body_), g_periodic_, dt_}, n_clumps_);
     clock.add_to(phases_.books);
     if (build) build_list();
@@ -1362,7 +1378,7 @@ private:
     const std::vector<double> booked = step_sums_.collect();
     std::size_t next = 0;
     gravity_work_total_ += booked[next++];
-    if (n_clumps_ > 0) gravity_work_total_ += booked[next++];
+    if (clumps_worked) gravity_work_total_ += booked[next++];
     dissipated_total_ += booked[next++];
     dissipated_total_ += booked[next++];
     if (walls_work_) wall_work_total_ += booked[next++];
@@ -1433,7 +1449,7 @@ private:
   DeviceVector<Vec3> clump_frame_;
   DeviceVector<std::uint32_t> clump_member_, body_of_;
   DeviceVector<Vec3> clump_force_, clump_torque_;
-  // Set by a list build that found a pair farther apart than one periodic image (FindPartners).
+  // Set by a list build that found a pair farther apart than one periodic image (MemberImages).
   DeviceVector<std::uint32_t> too_wide_ = DeviceVector<std::uint32_t>(1, 0u);
   // The still planes, and the grain-plane candidates of the last list build (per candidate: its
   // grain, its plane, the contact's state, whether it is open, and what it gave this step).

@@ -719,7 +719,7 @@ YUXI_ALWAYS_INLINE YUXI_HD std::uint32_t drift(const Particles& p, std::uint32_t
 // The first half kick and the drift of every free grain, and whether it moved more than half the
 // skin since the last list build: under the forces the last step's contacts gave, or under
 // `given` ones (a run continued mid-way, before its first step). Clumps' members are left to
-// their clumps (BodyKickDrift, after this).
+// their clumps (KickClumps and PlaceMembers, after this).
 struct KickDrift {
   Particles p;
   GrainLoads loads;
@@ -747,7 +747,7 @@ struct KickDrift {
 // The second half kick of every free grain (Simulation::final_kick); where `moved_far` is given,
 // the next step's first half kick and drift as well, under the same forces (KickDrift): the
 // same operations in the same order, with one sum of the forces instead of two. (Clumps:
-// BodyFinalKick, after this.)
+// KickClumps and PlaceMembers, after this.)
 struct FinalKick {
   Particles p;
   GrainLoads loads;

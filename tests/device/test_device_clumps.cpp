@@ -23,9 +23,10 @@ namespace yuxi {
 namespace {
 
 // scenes/clumps/rod-bed.toml: rods of three spheres and plain spheres dropped onto a plane in a
-// box periodic along x and y; with `throw_out`, a taller box whose top lets grains out
-// (on_escape = "remove"), without the spheres.
-std::unique_ptr<Simulation> rod_bed(bool throw_out = false) {
+// box periodic along x and y; with `throw_out`, a taller box whose top lets grains out (as
+// `on_escape` says), without the spheres, and gravity `gravity`.
+std::unique_ptr<Simulation> rod_bed(bool throw_out = false, const std::string& on_escape = "remove",
+                                    const std::string& gravity = "[0.0, 0.0, -9.81]") {
   const std::string path = YUXI_SCENES_DIR "/clumps/rod-bed.toml";
   std::ifstream in(path);
   std::string text{std::istreambuf_iterator<char>(in), {}};
@@ -36,11 +37,26 @@ std::unique_ptr<Simulation> rod_bed(bool throw_out = false) {
       text.replace(at, from.size(), to);
     };
     replace("hi = [8.0, 8.0, 14.0]", "hi = [8.0, 8.0, 20.0]");
-    replace("on_escape = \"stop\"", "on_escape = \"remove\"");
+    replace("on_escape = \"stop\"", "on_escape = \"" + on_escape + "\"");
+    replace("gravity = [0.0, 0.0, -9.81]", "gravity = " + gravity);
     text.resize(text.rfind("[[fill]]")); // (the spheres' fill, last)
   }
   Scene scene = read_scene_text(text, path);
   return build_simulation(scene, false);
+}
+
+// The clumps' ids, highest first, and every clump thrown up at `speed`, spinning.
+std::vector<GlobalId> highest_first(const Simulation& sim) {
+  std::vector<std::pair<double, GlobalId>> heights;
+  for (const ClumpBody& c : sim.clumps()) heights.emplace_back(c.x.z, c.id);
+  std::sort(heights.rbegin(), heights.rend());
+  std::vector<GlobalId> ids;
+  for (const auto& h : heights) ids.push_back(h.second);
+  return ids;
+}
+void throw_up(Simulation& sim, const std::vector<GlobalId>& ids, double speed) {
+  sim.set_clump_velocities(ids, std::vector<Vec3>(ids.size(), Vec3{0.0, 0.0, speed}));
+  sim.set_clump_angular_velocities(ids, std::vector<Vec3>(ids.size(), Vec3{3.0, -2.0, 1.0}));
 }
 
 bool close(double a, double b, double relative) {
@@ -101,12 +117,9 @@ TEST(DeviceClumps, RodsSettlingAcrossPeriodicFacesMatchTheCpuEngine) {
 // their mechanical energy (the body's, rotation included) booked as removed.
 TEST(DeviceClumps, ClumpsThrownOutOfTheBoxLeaveWhole) {
   const auto sim = rod_bed(true);
-  std::vector<std::pair<double, GlobalId>> heights; // (the highest two: nothing above them)
-  for (const ClumpBody& c : sim->clumps()) heights.emplace_back(c.x.z, c.id);
-  std::sort(heights.rbegin(), heights.rend());
-  const std::vector<GlobalId> thrown{heights[0].second, heights[1].second};
-  sim->set_clump_velocities(thrown, std::vector<Vec3>(2, Vec3{0.0, 0.0, 60.0}));
-  sim->set_clump_angular_velocities(thrown, std::vector<Vec3>(2, Vec3{3.0, -2.0, 1.0}));
+  const std::vector<GlobalId> highest = highest_first(*sim);
+  const std::vector<GlobalId> thrown{highest[0], highest[1]}; // (nothing above them)
+  throw_up(*sim, thrown, 60.0);
   const auto engine = make_device_engine(*sim, DeviceChoice::host);
   sim->run(2500);
   engine->run(2500);
@@ -124,6 +137,41 @@ TEST(DeviceClumps, ClumpsThrownOutOfTheBoxLeaveWhole) {
     EXPECT_TRUE(std::none_of(left.begin(), left.end(),
                              [id](const device::DeviceClump& c) { return c.id == id; }));
   expect_clumps_agree(left, sim->clumps(), 1e-8);
+}
+
+// Every clump thrown out, under gravity with a part along the periodic x: the step whose list
+// build takes the last clumps away books their gravity's work as gravity's, and the books go on
+// as the CPU engine's.
+TEST(DeviceClumps, TheLastClumpsToLeaveKeepTheBooksInOrder) {
+  const auto sim = rod_bed(true, "remove", "[2.0, 0.0, -9.81]");
+  throw_up(*sim, highest_first(*sim), 60.0);
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  sim->run(2500);
+  engine->run(2500);
+  const EnergyBooks cpu = sim->energies();
+  const device::DeviceEnergies dev = engine->energies();
+  ASSERT_EQ(cpu.escaped, 200u);
+  EXPECT_EQ(dev.escaped, 200);
+  EXPECT_EQ(dev.grains, 0);
+  EXPECT_TRUE(engine->clumps().empty());
+  ASSERT_GT(cpu.gravity_work, 0.0);
+  EXPECT_PRED3(close, dev.gravity_work, cpu.gravity_work, 1e-9);
+  EXPECT_PRED3(close, dev.removed, cpu.removed, 1e-9);
+  EXPECT_EQ(dev.dissipated, 0.0);
+}
+
+// A clump out through an open face stops a run that says so, counted as one clump.
+TEST(DeviceClumps, AClumpOutOfTheBoxStopsTheRunCountedOnce) {
+  const auto sim = rod_bed(true, "stop");
+  throw_up(*sim, {highest_first(*sim)[0]}, 60.0);
+  const auto engine = make_device_engine(*sim, DeviceChoice::host);
+  try {
+    engine->run(2500);
+    ADD_FAILURE() << "the run went on";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("0 grains and 1 clump left the box"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The state handed to the simulation mid-way and a new engine started from it: the run goes on
