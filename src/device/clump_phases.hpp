@@ -89,9 +89,10 @@ YUXI_ALWAYS_INLINE YUXI_HD void half_kick(RigidBody& b, double dt, const Vec3& f
 }
 
 // Half kicks of every clump under its kept load, `kicks` of them (1 or 2), then, where `drift`,
-// the drift over dt: the centre, and NO_SQUISH's free rotation (ClumpBodies::kick_drift and
-// final_kick). The second half kick of a step and the next step's first, under the same load,
-// are one call of two kicks.
+// the drift of its centre over dt (ClumpBodies::kick_drift and final_kick; NO_SQUISH's free
+// rotation follows, TurnClumps). The second half kick of a step and the next step's first, under
+// the same load, are one call of two kicks. Where the clumps do not drift, their angular
+// velocity is made anew here (their p changed); otherwise by the last turn.
 struct KickClumps {
   ClumpSet clumps;
   const Vec3 *force, *torque; // per clump
@@ -101,12 +102,32 @@ struct KickClumps {
   YUXI_HD void operator()(std::uint32_t c) const {
     RigidBody b = clumps.body[c];
     for (int k = 0; k < kicks; ++k) half_kick(b, dt, force[c], torque[c]);
-    if (drift) {
+    if (drift)
       b.x.x += b.v.x * dt, b.x.y += b.v.y * dt, b.x.z += b.v.z * dt;
-      free_rotation(b.q, b.p, b.inertia, dt);
-    }
-    b.omega = lab_angular_velocity(b.q, b.p, b.inertia);
+    else
+      b.omega = lab_angular_velocity(b.q, b.p, b.inertia);
     clumps.body[c] = b;
+  }
+};
+
+// One turn of NO_SQUISH's free rotation (free_rotation(): R3(h/2) R2(h/2) R1(h) R2(h/2) R3(h/2)),
+// about body axis `axis` (1, 2, 3) by h, for every clump; the last of the five makes the angular
+// velocity anew. Each turn waits on its sine and cosine: one pass a turn lets the processor run
+// many clumps' turns at once (the CPU engine turns its bodies axis by axis too), with each
+// clump's operations those of free_rotation() in its order, so its bits.
+struct TurnClumps {
+  ClumpSet clumps;
+  int axis;
+  double h;
+  bool last;
+  YUXI_HD void operator()(std::uint32_t c) const {
+    RigidBody& b = clumps.body[c];
+    Quaternion q = b.q, p = b.p;
+    const double moment = axis == 1 ? b.inertia.x : axis == 2 ? b.inertia.y : b.inertia.z;
+    rotate_about_body_axis(q, p, axis, moment, h);
+    b.q = q;
+    b.p = p;
+    if (last) b.omega = lab_angular_velocity(q, p, b.inertia);
   }
 };
 

@@ -961,6 +961,14 @@ private:
     if (n_clumps_ == 0) return;
     for_each_index(n_clumps_, KickClumps{clump_set(), raw(clump_force_), raw(clump_torque_), dt_,
                                          kicks, drift});
+    if (drift) { // NO_SQUISH's free rotation, a pass a turn (TurnClumps)
+      const double half_dt = 0.5 * dt_;
+      for_each_index(n_clumps_, TurnClumps{clump_set(), 3, half_dt, false});
+      for_each_index(n_clumps_, TurnClumps{clump_set(), 2, half_dt, false});
+      for_each_index(n_clumps_, TurnClumps{clump_set(), 1, dt_, false});
+      for_each_index(n_clumps_, TurnClumps{clump_set(), 2, half_dt, false});
+      for_each_index(n_clumps_, TurnClumps{clump_set(), 3, half_dt, true});
+    }
     for_each_index(n_, PlaceMembers{view(), clump_set(), limit2, moved_far});
   }
 
