@@ -1094,7 +1094,8 @@ private:
     if (moving_walls_) permute_by(order, x_rest_, x_build_);
     if (!x_now_.empty()) permute_by(order, x_now_, x_build_);
     exact_size(x_build_, order.size());
-    thrust::copy(on_device(), raw(x_), last(x_), raw(x_build_));
+    if (!x_.empty()) // (none left: every grain gone; a copy of nothing from null trips UBSan)
+      thrust::copy(on_device(), raw(x_), last(x_), raw(x_build_));
     if (species_of_.empty())
       permute_by(order, species_);
     else

@@ -213,6 +213,43 @@ TEST(DeviceClumps, ARunHandedOverAndStartedAgainGoesOnToTheBit) {
   EXPECT_PRED3(close, stopped->energies().dissipated, straight->energies().dissipated, 1e-13);
 }
 
+// The bed tiled 2 x 2 along its periodic axes (Replicas, as device_chute tiles a scene): four
+// copies of it side by side, each clump with its copy's ids and place, whose books are four
+// times the bed's and whose first copy moves as the bed does, to round-off (the sums run in
+// another order).
+TEST(DeviceClumps, ATiledBedIsFourCopiesOfItSideBySide) {
+  const auto sim = rod_bed();
+  const auto one = make_device_engine(*sim, DeviceChoice::host);
+  const auto four = make_device_engine(*sim, DeviceChoice::host, Replicas{{2, 2, 1}});
+  one->run(5000);
+  four->run(5000);
+  const device::DeviceEnergies e1 = one->energies(), e4 = four->energies();
+  ASSERT_GT(e1.contacts, 100);
+  EXPECT_EQ(e4.grains, 4 * e1.grains);
+  EXPECT_EQ(e4.contacts, 4 * e1.contacts);
+  for (const auto& [d4, d1] : {std::pair{e4.translational, e1.translational},
+                               {e4.rotational, e1.rotational},
+                               {e4.gravitational, e1.gravitational},
+                               {e4.elastic, e1.elastic},
+                               {e4.dissipated, e1.dissipated}})
+    EXPECT_PRED3(close, d4, 4.0 * d1, 1e-9);
+  const std::vector<device::DeviceClump> c1 = one->clumps(), c4 = four->clumps();
+  ASSERT_EQ(c4.size(), 4 * c1.size());
+  // (copy 0 keeps the ids; copy k's ids are offset by k (largest id + 1))
+  for (std::size_t c = 0; c < c1.size(); ++c) {
+    ASSERT_EQ(c4[c].id, c1[c].id);
+    // (a clump wraps into the bed at x or y = 8, into the tiling at 16: whole bed lengths apart)
+    Vec3 d = c4[c].x - c1[c].x;
+    for (int a = 0; a < 2; ++a) d[a] -= 8.0 * std::round(d[a] / 8.0);
+    EXPECT_LE(norm(d), 1e-9 * 8.0) << "clump " << c1[c].id;
+  }
+  GlobalId largest = 0;
+  for (const GlobalId id : one->particles().gid) largest = std::max(largest, id);
+  for (std::size_t k = 0; k < 4 * c1.size(); ++k)
+    ASSERT_EQ(c4[k].id,
+              c1[k % c1.size()].id + static_cast<GlobalId>(k / c1.size()) * (largest + 1));
+}
+
 // Particles that name a clump the scene does not hold, or a clump whose member is missing, are
 // refused by name.
 TEST(DeviceClumps, RefusesMembersAndClumpsThatDoNotMatch) {
