@@ -18,7 +18,8 @@
 #                  (tests/regression/references.sh, cases device-c1 and device-basin): the
 #                  chute and the small basin with its analysis, byte for byte;
 #   engine.txt     the device engine's speed: LAMMPS's 32k chute, the chute replicated to 960k
-#                  grains, and the paper basin to 10.5 tau, on the GPU;
+#                  grains, the paper basin to 10.5 tau, and a bed of rods (clumps) beside
+#                  spheres of their volume, on the GPU;
 #   engine_sanitizer.txt  compute-sanitizer memcheck and racecheck on a short GPU chute run;
 #   run.txt        `yuxi run --device gpu` on the chute: its run folder against `--device host`
 #                  on this machine's CPU (energies.csv byte for byte), and a run resumed on the
@@ -90,6 +91,10 @@ part_engine() {
   timeout 120 device_chute_cuda scenes/chute-lammps.toml 2000 --cuda --replicate 5 6 1
   echo "== GPU, the paper basin (scenes/basin-paper.toml), 105,000 steps: t = 0 to 10.5 tau"
   timeout 200 device_chute_cuda scenes/basin-paper.toml 105000 --cuda
+  echo "== GPU, clumps: the rod bed tiled 16 x 16 (179,200 particles, 51,200 rods), 4000 steps;"
+  echo "   then the same with each rod a sphere of its volume (a member's cost in spheres)"
+  timeout 60 device_chute_cuda scenes/clumps/rod-bed.toml 4000 --cuda --replicate 16 16 1
+  timeout 60 device_chute_cuda scenes/clumps/rod-bed-spheres.toml 4000 --cuda --replicate 16 16 1
 }
 
 part_engine_sanitizer() {
