@@ -11,6 +11,7 @@
 #pragma once
 
 #include "core/host_device.hpp"
+#include "core/particle_energy.hpp"
 #include "core/portable_math.hpp"
 #include "core/quaternion.hpp"
 #include "core/vec3.hpp"
@@ -45,6 +46,15 @@ YUXI_HD constexpr double rotor_energy(const Quaternion& q, const Quaternion& p,
                                       const Vec3& inertia) {
   const Vec3 l = body_angular_momentum(q, p);
   return 0.5 * (l.x * l.x / inertia.x + l.y * l.y / inertia.y + l.z * l.z / inertia.z);
+}
+
+// A rigid body's kinetic energy, of its centre's motion and of its rotation, plus its
+// gravitational energy at x under gravity's potential part (as mechanical_energy() for a sphere)
+// [energy]: the clumps' books on both engines.
+YUXI_HD inline double rigid_mechanical_energy(double mass, const Vec3& x, const Vec3& v,
+                                              const Quaternion& q, const Quaternion& p,
+                                              const Vec3& inertia, const Vec3& g_potential) {
+  return translational_energy(mass, v) + rotor_energy(q, p, inertia) - mass * dot(g_potential, x);
 }
 
 // A kick by the torque (lab frame) over dt: dp/dt = 2 q (0, tau_body).

@@ -183,9 +183,8 @@ struct ClumpEscaped {
     bool out = false;
     for (std::uint32_t k = 0; k < b.count; ++k) out = out || gone[clumps.member[b.first + k]] != 0;
     clump_gone[c] = out ? 1 : 0;
-    energy[c] = out ? translational_energy(b.mass, b.v) + rotor_energy(b.q, b.p, b.inertia) -
-                          b.mass * dot(g_potential, b.x)
-                    : 0.0;
+    energy[c] =
+        out ? rigid_mechanical_energy(b.mass, b.x, b.v, b.q, b.p, b.inertia, g_potential) : 0.0;
   }
 };
 

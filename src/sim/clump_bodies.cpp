@@ -297,8 +297,8 @@ void ClumpBodies::add_energies(EnergyBooks& e, const Vec3& g_potential) const {
 
 double ClumpBodies::mechanical_energy(std::size_t b, const Vec3& g_potential) const {
   const ClumpBody& body = bodies_[b];
-  return translational_energy(body.mass, body.v) + rotor_energy(body.q, body.p, body.inertia) -
-         body.mass * dot(g_potential, body.x);
+  return rigid_mechanical_energy(body.mass, body.x, body.v, body.q, body.p, body.inertia,
+                                 g_potential);
 }
 
 void ClumpBodies::add(ClumpBody body) {

@@ -2,8 +2,8 @@
 // (docs/clumps.md; docs/ARCHITECTURE.md, "The device engine"): rods settling in a box periodic
 // along x and y, whose members stand across the periodic faces with their clumps; clumps thrown
 // out of an open box, which leave whole; and a run handed to the host and started again, which
-// goes on to the bit. Label "device".
-#include "contact/linear_spring_dashpot.hpp"
+// goes on to the bit. (A scene whose members and clumps contradict each other:
+// test_device_engine.cpp, RefusesAContradictoryScene.) Label "device".
 #include "device/device_engine.hpp"
 #include "io/scene_reader.hpp"
 #include "run/device_run.hpp"
@@ -59,6 +59,21 @@ void throw_up(Simulation& sim, const std::vector<GlobalId>& ids, double speed) {
   sim.set_clump_angular_velocities(ids, std::vector<Vec3>(ids.size(), Vec3{3.0, -2.0, 1.0}));
 }
 
+// `sim` and a device engine started from it, both `steps` steps on: the engine, and both books.
+struct SideBySide {
+  std::unique_ptr<device::DeviceEngine> engine;
+  EnergyBooks cpu;
+  device::DeviceEnergies dev;
+};
+SideBySide run_side_by_side(Simulation& sim, std::int64_t steps) {
+  SideBySide both{make_device_engine(sim, DeviceChoice::host), {}, {}};
+  sim.run(steps);
+  both.engine->run(steps);
+  both.cpu = sim.energies();
+  both.dev = both.engine->energies();
+  return both;
+}
+
 bool close(double a, double b, double relative) {
   return std::abs(a - b) <= relative * std::abs(b);
 }
@@ -81,12 +96,7 @@ void expect_clumps_agree(const std::vector<device::DeviceClump>& dev,
 
 TEST(DeviceClumps, RodsSettlingAcrossPeriodicFacesMatchTheCpuEngine) {
   const auto sim = rod_bed();
-  const auto engine = make_device_engine(*sim, DeviceChoice::host);
-  const std::int64_t steps = 6000;
-  sim->run(steps);
-  engine->run(steps);
-  const EnergyBooks cpu = sim->energies();
-  const device::DeviceEnergies dev = engine->energies();
+  const auto [engine, cpu, dev] = run_side_by_side(*sim, 6000);
   ASSERT_GT(sim->last_tally().touching, 200u) << "the rods have reached the plane and each other";
   EXPECT_EQ(dev.grains, static_cast<std::int64_t>(cpu.grains));
   EXPECT_EQ(dev.grains, 300);
@@ -120,11 +130,7 @@ TEST(DeviceClumps, ClumpsThrownOutOfTheBoxLeaveWhole) {
   const std::vector<GlobalId> highest = highest_first(*sim);
   const std::vector<GlobalId> thrown{highest[0], highest[1]}; // (nothing above them)
   throw_up(*sim, thrown, 60.0);
-  const auto engine = make_device_engine(*sim, DeviceChoice::host);
-  sim->run(2500);
-  engine->run(2500);
-  const EnergyBooks cpu = sim->energies();
-  const device::DeviceEnergies dev = engine->energies();
+  const auto [engine, cpu, dev] = run_side_by_side(*sim, 2500);
   ASSERT_EQ(cpu.escaped, 2u);
   EXPECT_EQ(dev.escaped, 2);
   EXPECT_EQ(dev.grains, 198);
@@ -145,11 +151,7 @@ TEST(DeviceClumps, ClumpsThrownOutOfTheBoxLeaveWhole) {
 TEST(DeviceClumps, TheLastClumpsToLeaveKeepTheBooksInOrder) {
   const auto sim = rod_bed(true, "remove", "[2.0, 0.0, -9.81]");
   throw_up(*sim, highest_first(*sim), 60.0);
-  const auto engine = make_device_engine(*sim, DeviceChoice::host);
-  sim->run(2500);
-  engine->run(2500);
-  const EnergyBooks cpu = sim->energies();
-  const device::DeviceEnergies dev = engine->energies();
+  const auto [engine, cpu, dev] = run_side_by_side(*sim, 2500);
   ASSERT_EQ(cpu.escaped, 200u);
   EXPECT_EQ(dev.escaped, 200);
   EXPECT_EQ(dev.grains, 0);
@@ -248,48 +250,6 @@ TEST(DeviceClumps, ATiledBedIsFourCopiesOfItSideBySide) {
   for (std::size_t k = 0; k < 4 * c1.size(); ++k)
     ASSERT_EQ(c4[k].id,
               c1[k % c1.size()].id + static_cast<GlobalId>(k / c1.size()) * (largest + 1));
-}
-
-// Particles that name a clump the scene does not hold, or a clump whose member is missing, are
-// refused by name.
-TEST(DeviceClumps, RefusesMembersAndClumpsThatDoNotMatch) {
-  device::DeviceScene scene;
-  scene.lo = {0, 0, 0};
-  scene.hi = {4, 4, 4};
-  scene.dt = 1e-4;
-  device::HostParticles& p = scene.particles;
-  for (int k = 0; k < 2; ++k) {
-    p.x.push_back({1.0 + 0.5 * k, 2.0, 2.0});
-    p.v.emplace_back();
-    p.w.emplace_back();
-    p.radius.push_back(0.3);
-    p.mass.push_back(1.0);
-    p.inv_mass.push_back(0.5);
-    p.inv_inertia.push_back(0.0);
-    p.gid.push_back(k);
-    p.kind.push_back(Kind::grain);
-    p.material.push_back(0);
-    p.body.push_back(0);
-  }
-  const std::vector<LinearSpringDashpot::Coeffs> coeffs(1);
-  const auto refused = [&](const std::string& what) {
-    try {
-      device::make_host_engine<LinearSpringDashpot>(scene, coeffs);
-      ADD_FAILURE() << "not refused: " << what;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
-  };
-  refused("names clump 0, which is not here");
-  device::DeviceClump& c = scene.clumps.emplace_back();
-  c.id = 0;
-  c.mass = 2.0;
-  c.inertia = {0.1, 0.2, 0.2};
-  c.x = {1.25, 2.0, 2.0};
-  c.members = {{-0.25, 0, 0}, {0.25, 0, 0}, {0.5, 0, 0}};
-  refused("member 2 (particle 2) of clump 0 is missing");
-  c.members.pop_back();
-  EXPECT_NO_THROW(device::make_host_engine<LinearSpringDashpot>(scene, coeffs));
 }
 
 } // namespace

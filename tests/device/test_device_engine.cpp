@@ -276,7 +276,8 @@ TEST(DeviceEngine, RefusesWhatItDoesNotRunByName) {
   }
 }
 
-// A scene handed to the engine that contradicts itself is refused, naming what is wrong.
+// A scene handed to the engine that contradicts itself is refused, naming what is wrong: forces,
+// coefficients, planes and clumps.
 TEST(DeviceEngine, RefusesAContradictoryScene) {
   const auto two_grains = [] {
     device::DeviceScene scene;
@@ -322,6 +323,20 @@ TEST(DeviceEngine, RefusesAContradictoryScene) {
   device::DeviceScene plane = two_grains();
   plane.planes.push_back(device::DevicePlane{Vec3{}, Vec3{0.0, 0.0, 1.0}, 3});
   EXPECT_EQ(refused(plane, one), "device engine: a plane of material 3, beyond the scene's 1");
+  // The two grains as members of clump 0: named while the scene holds no clump 0, missing while
+  // the clump has a third member, taken once the clump is theirs.
+  device::DeviceScene clump = two_grains();
+  clump.particles.body.assign(2, 0);
+  EXPECT_EQ(refused(clump, one), "device engine: a particle names clump 0, which is not here");
+  device::DeviceClump& c = clump.clumps.emplace_back();
+  c.id = 0;
+  c.mass = 2.0;
+  c.inertia = Vec3{0.1, 0.2, 0.2};
+  c.x = Vec3{3.5, 5.0, 5.0};
+  c.members = {Vec3{-1.5, 0.0, 0.0}, Vec3{1.5, 0.0, 0.0}, Vec3{3.0, 0.0, 0.0}};
+  EXPECT_EQ(refused(clump, one), "device engine: member 2 (particle 2) of clump 0 is missing");
+  c.members.pop_back();
+  EXPECT_EQ(refused(clump, one), "(taken)");
 }
 
 // The small basin of tests/small_basin.hpp, settled by the CPU engine to t = 3.0.
